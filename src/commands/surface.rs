@@ -1,0 +1,33 @@
+//! `surface`: generate a realization and write its heights.
+
+use std::path::PathBuf;
+
+use clap::Args as ClapArgs;
+use persson_check::error::Result;
+use persson_check::fft::Fft2;
+use persson_check::scene::check_zeta;
+
+use super::SurfaceArgs;
+
+/// Arguments of `surface`.
+#[derive(ClapArgs, Debug)]
+pub struct Args {
+    #[command(flatten)]
+    surface: SurfaceArgs,
+    /// Magnification: keep modes with |q| <= zeta q_l (default: full resolution).
+    #[arg(long)]
+    zeta: Option<f64>,
+    /// Output .npy file (float64, N x N).
+    #[arg(long)]
+    out: PathBuf,
+}
+
+pub fn run(args: Args) -> Result<()> {
+    let (scene, surface) = args.surface.generate()?;
+    let zeta = args.zeta.unwrap_or(scene.surface.zeta_max());
+    check_zeta(zeta, scene.surface.zeta_max())?;
+    let fft = Fft2::new(surface.grid());
+    let h = surface.heights_at(zeta, &fft);
+    persson_check::npy::write_field(&args.out, surface.grid().n(), &h)?;
+    Ok(())
+}

@@ -1,0 +1,345 @@
+//! The hard-wall contact problem, its solution, and the solver-independent residual.
+//!
+//! Problem (SPEC section 1): find the displacement `u` of the elastic surface and the
+//! contact pressure `p` over a rigid substrate of heights `h` such that
+//!
+//! ```text
+//!     g = u - h >= 0,   p >= 0,   p g = 0,   mean(p) = p0,   p~(q) = (q E*/2) u~(q), q != 0.
+//! ```
+//!
+//! # Residual
+//!
+//! Two solvers reach these conditions from different sides: the constrained conjugate
+//! gradient method keeps `u` exactly consistent with `p` and drives the gap to zero inside
+//! contact; GFMD keeps the gap exactly zero at the wall and drives the stress outside
+//! contact to zero. To compare them at equal accuracy, every solution is judged by the same
+//! [`Residual`], computed from the returned `(p, u)` alone. With `ell` the rms height of
+//! `h` (or, for a flat substrate, the displacement scale `p0 L / (pi E*)`):
+//!
+//! | component | definition | measures |
+//! |---|---|---|
+//! | `penetration` | `max(0, -min g) / ell` | interpenetration anywhere |
+//! | `complementarity` | `sum p |g| / (ell sum p)` | gap left where pressure acts |
+//! | `tension` | `max(0, -min p) / rms(p)` | adhesive (negative) pressure |
+//! | `equilibrium` | `rms(K u + p0 - p) / rms(p)` | stress not balanced by contact, `K = q E*/2` |
+//! | `load` | `abs(mean p - p0) / p0` | load balance |
+//!
+//! The residual is the largest component; a solver stops when it falls below the requested
+//! tolerance. The [`Residual::tamaas`] figure, `sum p (g - min g) / (sum p std(h))`, is
+//! reported as well so that tolerances here and in tamaas can be put side by side.
+
+use rustfft::num_complex::Complex64;
+use serde::{Deserialize, Serialize};
+
+use crate::elastic::HalfSpace;
+use crate::error::{check_positive, Error, Result};
+use crate::fft::Fft2;
+use crate::field;
+use crate::grid::Grid;
+
+/// The elastic model on a grid: geometry, material and the FFT plans. Plain data.
+#[derive(Debug)]
+pub struct Model {
+    /// The grid.
+    pub grid: Grid,
+    /// The half-space.
+    pub halfspace: HalfSpace,
+    /// FFT plans for the grid.
+    pub fft: Fft2,
+}
+
+impl Model {
+    /// A model on `grid` with modulus `e_star`.
+    pub fn new(grid: Grid, e_star: f64) -> Result<Self> {
+        let halfspace = HalfSpace::new(&grid, e_star)?;
+        let fft = Fft2::new(&grid);
+        Ok(Self {
+            grid,
+            halfspace,
+            fft,
+        })
+    }
+}
+
+/// One hard-wall problem: a model, substrate heights and the mean pressure.
+#[derive(Debug, Clone, Copy)]
+pub struct ContactProblem<'a> {
+    /// The elastic model.
+    pub model: &'a Model,
+    /// Substrate heights `h(r)` at the magnification being solved.
+    pub heights: &'a [f64],
+    /// Mean pressure `p0`.
+    pub p0: f64,
+    /// Length scale `ell` of the residual (see the module docs).
+    pub length_scale: f64,
+}
+
+impl<'a> ContactProblem<'a> {
+    /// Checks the inputs and prepares the problem.
+    pub fn new(model: &'a Model, heights: &'a [f64], p0: f64) -> Result<Self> {
+        check_positive("p0", p0)?;
+        if heights.len() != model.grid.points() {
+            return Err(Error::invalid(
+                "heights",
+                format!("{} values", heights.len()),
+                format!("n^2 = {} values", model.grid.points()),
+            ));
+        }
+        if !field::all_finite(heights) {
+            return Err(Error::invalid(
+                "heights",
+                "a non-finite value",
+                "finite numbers (no NaN or infinity)",
+            ));
+        }
+        let rms = field::std_dev(heights);
+        let flat_scale =
+            p0 * model.grid.length() / (std::f64::consts::PI * model.halfspace.e_star());
+        let length_scale = if rms > 1e-12 * flat_scale {
+            rms
+        } else {
+            flat_scale
+        };
+        Ok(Self {
+            model,
+            heights,
+            p0,
+            length_scale,
+        })
+    }
+
+    /// The grid.
+    pub fn grid(&self) -> &Grid {
+        &self.model.grid
+    }
+}
+
+/// The solver-independent residual (see the module docs). All components are dimensionless.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, Default)]
+pub struct Residual {
+    /// Interpenetration, `max(0, -min g) / ell`.
+    pub penetration: f64,
+    /// Gap where pressure acts, `sum p |g| / (ell sum p)`.
+    pub complementarity: f64,
+    /// Negative pressure, `max(0, -min p) / rms(p)`.
+    pub tension: f64,
+    /// Unbalanced stress, `rms(K u + p0 - p) / rms(p)`.
+    pub equilibrium: f64,
+    /// Load balance, `|mean p - p0| / p0`.
+    pub load: f64,
+    /// tamaas's error measure, `sum p (g - min g) / (sum p std(h))`.
+    pub tamaas: f64,
+}
+
+impl Residual {
+    /// The residual: the largest component.
+    pub fn value(&self) -> f64 {
+        self.penetration
+            .max(self.complementarity)
+            .max(self.tension)
+            .max(self.equilibrium)
+            .max(self.load)
+    }
+
+    /// Evaluates the residual of `(p, u)` for `problem`. `spec` (a half spectrum) and
+    /// `scratch` (a real field) are work space.
+    pub fn evaluate(
+        problem: &ContactProblem,
+        p: &[f64],
+        u: &[f64],
+        spec: &mut [Complex64],
+        scratch: &mut [f64],
+    ) -> Self {
+        let h = problem.heights;
+        let ell = problem.length_scale;
+        let npts = p.len() as f64;
+        let min_g = min_zip(u, h);
+        let sum_p = field::sum(p);
+        let p_gap = field::sum_map(p, |i, pi| pi * (u[i] - h[i]).abs());
+        let p_gap_shifted = field::sum_map(p, |i, pi| pi * (u[i] - h[i] - min_g));
+        let rms_p = (field::sum_map(p, |_, v| v * v) / npts).sqrt();
+        let min_p = field::min(p);
+        // Stress balance: K u + p0 - p.
+        let model = problem.model;
+        model.fft.forward(u, spec);
+        for (s, k) in spec.iter_mut().zip(model.halfspace.stiffness()) {
+            *s *= *k;
+        }
+        spec[0] = Complex64::new(problem.p0, 0.0);
+        model.fft.inverse_in_place(spec, scratch);
+        let unbalanced = field::sum_zip(scratch, p, |s, pi| (s - pi) * (s - pi));
+        let h_std = field::std_dev(h);
+        let tamaas = if h_std > 0.0 && sum_p > 0.0 {
+            p_gap_shifted / (sum_p * h_std)
+        } else {
+            0.0
+        };
+        let rms_p = if rms_p > 0.0 { rms_p } else { problem.p0 };
+        Self {
+            penetration: (-min_g).max(0.0) / ell,
+            complementarity: if sum_p > 0.0 {
+                p_gap / (ell * sum_p)
+            } else {
+                0.0
+            },
+            tension: (-min_p).max(0.0) / rms_p,
+            equilibrium: (unbalanced / npts).sqrt() / rms_p,
+            load: (sum_p / npts - problem.p0).abs() / problem.p0,
+            tamaas,
+        }
+    }
+}
+
+/// `min(u - h)`.
+fn min_zip(u: &[f64], h: &[f64]) -> f64 {
+    use rayon::prelude::*;
+    u.par_iter()
+        .zip(h)
+        .map(|(a, b)| a - b)
+        .reduce(|| f64::INFINITY, f64::min)
+}
+
+/// A converged solution: fields, and how it was reached.
+#[derive(Debug, Clone)]
+pub struct ContactSolution {
+    /// Contact pressure `p(r) >= 0`.
+    pub pressure: Vec<f64>,
+    /// Displacement `u(r)` of the elastic surface, rigid shift included.
+    pub displacement: Vec<f64>,
+    /// Mean pressure `p0`.
+    pub p0: f64,
+    /// How the solution was reached.
+    pub stats: SolveStats,
+}
+
+/// How a solution was reached.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
+pub struct SolveStats {
+    /// Solver name.
+    pub solver: &'static str,
+    /// Iterations (GFMD: time steps) used.
+    pub iterations: usize,
+    /// Residual of the returned fields.
+    pub residual: Residual,
+    /// Wall time of the solve, seconds.
+    pub wall_s: f64,
+    /// Whether the solve started from a previous solution.
+    pub warm: bool,
+}
+
+impl ContactSolution {
+    /// Relative contact area: the fraction of points with `p > 0`.
+    pub fn contact_area(&self) -> f64 {
+        field::positive_fraction(&self.pressure)
+    }
+
+    /// Gap `g = u - h`.
+    pub fn gap(&self, heights: &[f64]) -> Vec<f64> {
+        self.displacement
+            .iter()
+            .zip(heights)
+            .map(|(u, h)| (u - h).max(0.0))
+            .collect()
+    }
+
+    /// Mean gap `mean(u - h)`.
+    pub fn mean_gap(&self, heights: &[f64]) -> f64 {
+        field::sum_zip(&self.displacement, heights, |u, h| (u - h).max(0.0)) / heights.len() as f64
+    }
+
+    /// Elastic energy per unit area, `(1/2) mean[(p - p0) u]` (see [`crate::elastic`]).
+    pub fn elastic_energy(&self) -> f64 {
+        0.5 * field::sum_zip(&self.pressure, &self.displacement, |p, u| (p - self.p0) * u)
+            / self.pressure.len() as f64
+    }
+
+    /// Displacement spectrum `u~(q)`.
+    pub fn displacement_spectrum(&self, model: &Model) -> Vec<Complex64> {
+        let mut spec = model.fft.new_spectrum();
+        model.fft.forward(&self.displacement, &mut spec);
+        spec
+    }
+}
+
+/// Solver settings shared by every solver.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct SolveOptions {
+    /// Requested residual (see [`Residual`]).
+    pub tol: f64,
+    /// Iteration budget; exceeding it is an error carrying the residual reached.
+    pub max_iter: usize,
+}
+
+impl Default for SolveOptions {
+    fn default() -> Self {
+        Self {
+            tol: 1e-8,
+            max_iter: 100_000,
+        }
+    }
+}
+
+impl SolveOptions {
+    /// Options with tolerance `tol`.
+    pub fn with_tol(tol: f64) -> Self {
+        Self {
+            tol,
+            ..Self::default()
+        }
+    }
+
+    /// Checks the ranges.
+    pub fn validate(&self) -> Result<()> {
+        if !(self.tol.is_finite() && self.tol >= 1e-14 && self.tol < 1.0) {
+            return Err(Error::invalid("tol", self.tol, "in [1e-14, 1)"));
+        }
+        if self.max_iter == 0 {
+            return Err(Error::invalid("max_iter", 0, ">= 1"));
+        }
+        Ok(())
+    }
+}
+
+/// Where a solve starts.
+#[derive(Debug, Clone, Copy)]
+pub enum Start<'a> {
+    /// From scratch (uniform pressure, flat displacement).
+    Cold,
+    /// From a previous solution: another load, or a lower magnification.
+    Warm(&'a ContactSolution),
+}
+
+/// Progress of a solve, for monitors (progress bars, logs).
+#[derive(Debug, Clone, Copy)]
+pub struct Progress {
+    /// Iteration number.
+    pub iteration: usize,
+    /// The solver's running estimate of the residual.
+    pub residual: f64,
+}
+
+/// A hard-wall contact solver.
+pub trait Solver {
+    /// Short name (`"gfmd"`, `"cg"`).
+    fn name(&self) -> &'static str;
+
+    /// Solves `problem` from `start` to `opts.tol`, or fails with the residual reached;
+    /// `monitor` sees every iteration.
+    fn solve_monitored(
+        &mut self,
+        problem: &ContactProblem,
+        start: Start,
+        opts: &SolveOptions,
+        monitor: &mut dyn FnMut(Progress),
+    ) -> Result<ContactSolution>;
+
+    /// Solves `problem` from `start` to `opts.tol`, or fails with the residual reached.
+    fn solve(
+        &mut self,
+        problem: &ContactProblem,
+        start: Start,
+        opts: &SolveOptions,
+    ) -> Result<ContactSolution> {
+        self.solve_monitored(problem, start, opts, &mut |_| {})
+    }
+}

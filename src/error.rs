@@ -1,0 +1,114 @@
+//! The crate's error type.
+//!
+//! Every message names what was wrong, where, and what is allowed, so that a user can fix
+//! the input without reading the code. Non-convergence carries the residual reached: a
+//! solver never hands back an unconverged field as if it were a result.
+
+use std::fmt::Display;
+use std::path::PathBuf;
+
+/// Result with the crate's [`Error`].
+pub type Result<T> = std::result::Result<T, Error>;
+
+/// Everything that can go wrong in this crate.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// A parameter outside its allowed range.
+    #[error("invalid {field} = {value}: must be {allowed}")]
+    InvalidInput {
+        /// The parameter's name as the user writes it.
+        field: String,
+        /// The offending value, as text.
+        value: String,
+        /// The allowed range, in words.
+        allowed: String,
+    },
+    /// A file that could not be used (scene, `.npy`, checkpoint).
+    #[error("{path}: {message}")]
+    BadFile {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong with it.
+        message: String,
+    },
+    /// A solver stopped before reaching its tolerance.
+    #[error(
+        "{solver} did not converge: residual {residual:.3e} > tolerance {tol:.1e} after {iterations} iterations"
+    )]
+    NotConverged {
+        /// Solver name.
+        solver: &'static str,
+        /// Iterations spent.
+        iterations: usize,
+        /// Residual reached (solver-independent definition, see `contact::Residual`).
+        residual: f64,
+        /// Requested tolerance.
+        tol: f64,
+    },
+    /// A NaN or infinity appeared in a solver's state.
+    #[error("{solver}: non-finite value in {what} at iteration {iteration}")]
+    NonFinite {
+        /// Solver name.
+        solver: &'static str,
+        /// The quantity that went non-finite.
+        what: &'static str,
+        /// Iteration where it was detected.
+        iteration: usize,
+    },
+    /// Root finding on the load failed (for example, a target contact area not reachable).
+    #[error("load search: {0}")]
+    LoadSearch(String),
+    /// An I/O failure, with the path involved.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The underlying error.
+        source: std::io::Error,
+    },
+}
+
+impl Error {
+    /// An [`Error::InvalidInput`] for `field = value`, allowed `allowed`.
+    pub fn invalid(field: &str, value: impl Display, allowed: impl Into<String>) -> Self {
+        Error::InvalidInput {
+            field: field.to_string(),
+            value: value.to_string(),
+            allowed: allowed.into(),
+        }
+    }
+
+    /// An [`Error::BadFile`] for `path`.
+    pub fn bad_file(path: impl Into<PathBuf>, message: impl Into<String>) -> Self {
+        Error::BadFile {
+            path: path.into(),
+            message: message.into(),
+        }
+    }
+
+    /// An [`Error::Io`] for `path`.
+    pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
+        Error::Io {
+            path: path.into(),
+            source,
+        }
+    }
+}
+
+/// Checks `lo < value < hi` (open interval); names the field on failure.
+pub fn check_open(field: &str, value: f64, lo: f64, hi: f64) -> Result<()> {
+    if value.is_finite() && value > lo && value < hi {
+        Ok(())
+    } else {
+        Err(Error::invalid(field, value, format!("in ({lo}, {hi})")))
+    }
+}
+
+/// Checks `value > 0` and finite; names the field on failure.
+pub fn check_positive(field: &str, value: f64) -> Result<()> {
+    if value.is_finite() && value > 0.0 {
+        Ok(())
+    } else {
+        Err(Error::invalid(field, value, "a finite number > 0"))
+    }
+}

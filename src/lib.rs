@@ -1,0 +1,47 @@
+//! # persson-check
+//!
+//! A theory-versus-simulation harness for Persson's contact mechanics of randomly rough
+//! elastic surfaces, after Dapp, Prodanov & Müser, J. Phys.: Condens. Matter 26, 355002
+//! (2014) ("the paper"). A rigid self-affine surface is pressed against an elastic
+//! half-space; hard-wall contact is solved with GFMD and with constrained conjugate
+//! gradients while roughness is added one magnification at a time, and each assumption of
+//! Persson's theory is measured against the simulation.
+//!
+//! ## Units
+//!
+//! Lengths are in grid spacings (`a = 1`), pressures in units of `E*` (`E* = 1`), and
+//! generated surfaces have unit rms gradient at full resolution, so that `p0` is also the
+//! reduced pressure `p0 / (E* g_bar)` at full resolution.
+//!
+//! ## Fourier convention
+//!
+//! `f~(q) = N^-2 sum_r f(r) exp(-i q.r)`, `f(r) = sum_q f~(q) exp(i q.r)`, so that
+//! `mean(f^2) = sum_q |f~(q)|^2`, with `q = 2 pi (m, n) / L`. Real fields are stored as
+//! half spectra ([`grid`]).
+//!
+//! ## Map
+//!
+//! * [`grid`], [`fft`], [`field`]: the periodic grid, its transforms and reductions;
+//! * [`spectrum`], [`surface`]: self-affine spectra and realizations;
+//! * [`elastic`]: the half-space Green's function and elastic energy;
+//! * [`contact`], [`solver`], [`load`]: the hard-wall problem, its two solvers, and the
+//!   load that gives a target contact area;
+//! * [`reference`]: closed-form solutions the solvers are tested against;
+//! * [`npy`]: `.npy` field files.
+
+pub mod contact;
+pub mod elastic;
+pub mod error;
+pub mod fft;
+pub mod field;
+pub mod grid;
+pub mod io;
+pub mod load;
+pub mod npy;
+pub mod reference;
+pub mod scene;
+pub mod solver;
+pub mod spectrum;
+pub mod surface;
+
+pub use error::{Error, Result};

@@ -1,0 +1,170 @@
+//! The load that gives a target relative contact area (SPEC section 2).
+//!
+//! Validations state their load as a contact area at a given magnification, because
+//! `p~0 = p0 / (E* g_bar(zeta))` changes with `zeta` at fixed `p0` (paper section 3.1). The
+//! contact area `a_r(p0)` grows monotonically with `p0`, so `p0` is found by bracketing and
+//! then regula falsi (Illinois variant) on `(ln p0, a_r)`, every solve warm-started from the
+//! previous one. On a grid `a_r` moves in steps of `1/N^2`, so the search accepts
+//! `|a_r - target| <= max(rel_tol min(target, 1 - target), 1.5 / N^2)`.
+//!
+//! The first guess is Persson's `a_r = erf(p0 / (sqrt2 Dp_tot))` with
+//! `Dp_tot = E* g_bar / 2` (paper eq. pressureDistOri), inverted.
+
+use serde::{Deserialize, Serialize};
+
+use crate::contact::{ContactProblem, ContactSolution, Model, SolveOptions, Solver, Start};
+use crate::error::{check_open, Error, Result};
+
+/// How closely the contact area must match its target.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct AreaSearch {
+    /// Relative tolerance on `min(a_r, 1 - a_r)`.
+    pub rel_tol: f64,
+    /// Largest number of solves.
+    pub max_solves: usize,
+}
+
+impl Default for AreaSearch {
+    fn default() -> Self {
+        Self {
+            rel_tol: 2e-3,
+            max_solves: 60,
+        }
+    }
+}
+
+/// Persson's estimate of the load for contact area `a_r` on a surface of rms gradient
+/// `g_bar`: `p0 = sqrt2 (E* g_bar / 2) erfinv(a_r)`.
+pub fn persson_load_guess(a_r: f64, g_bar: f64, e_star: f64) -> f64 {
+    std::f64::consts::SQRT_2 * 0.5 * e_star * g_bar * statrs::function::erf::erf_inv(a_r)
+}
+
+/// What to aim for: a contact area, and where to start looking for its load.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct AreaTarget {
+    /// Target relative contact area, in (0, 1).
+    pub contact_area: f64,
+    /// First load to try (see [`persson_load_guess`]).
+    pub p0_guess: f64,
+}
+
+/// A solution at the load that gives `target` contact area, with the number of solves.
+pub struct AreaSolution {
+    /// The solution at the accepted load.
+    pub solution: ContactSolution,
+    /// Solves used by the search.
+    pub solves: usize,
+}
+
+/// Finds `p0` such that the contact area on `heights` is `target.contact_area`, starting
+/// from the load `target.p0_guess` (and from `start`'s fields).
+pub fn solve_for_area(
+    solver: &mut dyn Solver,
+    model: &Model,
+    heights: &[f64],
+    target: AreaTarget,
+    start: Start,
+    opts: &SolveOptions,
+    search: &AreaSearch,
+) -> Result<AreaSolution> {
+    let AreaTarget {
+        contact_area: target,
+        p0_guess,
+    } = target;
+    check_open("contact_area", target, 0.0, 1.0)?;
+    crate::error::check_positive("p0_guess", p0_guess)?;
+    let n2 = model.grid.points() as f64;
+    let accept = (search.rel_tol * target.min(1.0 - target)).max(1.5 / n2);
+    let solves = std::cell::Cell::new(0usize);
+    let mut solve_at = |p0: f64, start: Start| -> Result<ContactSolution> {
+        solves.set(solves.get() + 1);
+        let problem = ContactProblem::new(model, heights, p0)?;
+        solver.solve(&problem, start, opts)
+    };
+
+    // Bracket in x = ln p0, f = a_r - target.
+    let mut x0 = p0_guess.ln();
+    let mut s0 = solve_at(x0.exp(), start)?;
+    let mut f0 = s0.contact_area() - target;
+    if f0.abs() <= accept {
+        return Ok(AreaSolution {
+            solution: s0,
+            solves: solves.get(),
+        });
+    }
+    let mut step = if f0 < 0.0 { 0.5 } else { -0.5 };
+    let (mut x1, mut s1, mut f1);
+    loop {
+        x1 = x0 + step;
+        s1 = solve_at(x1.exp(), Start::Warm(&s0))?;
+        f1 = s1.contact_area() - target;
+        if f1.abs() <= accept {
+            return Ok(AreaSolution {
+                solution: s1,
+                solves: solves.get(),
+            });
+        }
+        if f1.signum() != f0.signum() {
+            break;
+        }
+        x0 = x1;
+        s0 = s1;
+        f0 = f1;
+        step *= 2.0;
+        if step.abs() > 60.0 {
+            return Err(Error::LoadSearch(format!(
+                "no load gives contact area {target} (reached {:.4e} at p0 = {:.3e})",
+                f1 + target,
+                x1.exp()
+            )));
+        }
+    }
+    // Illinois regula falsi inside [x0, x1].
+    let mut side = 0i32;
+    let mut count = 0usize;
+    loop {
+        count += 1;
+        if count > search.max_solves {
+            return Err(Error::LoadSearch(format!(
+                "contact area {target} not matched within {} solves (bracket a_r in [{:.5}, {:.5}])",
+                search.max_solves,
+                f0.min(f1) + target,
+                f0.max(f1) + target
+            )));
+        }
+        let mut x = (x0 * f1 - x1 * f0) / (f1 - f0);
+        if !(x.is_finite()) || (x1 - x0).abs() < 1e-13 {
+            x = 0.5 * (x0 + x1);
+        }
+        let warm = if (x - x0).abs() < (x - x1).abs() {
+            &s0
+        } else {
+            &s1
+        };
+        let s = solve_at(x.exp(), Start::Warm(warm))?;
+        let f = s.contact_area() - target;
+        if f.abs() <= accept || (x1 - x0).abs() < 1e-12 {
+            return Ok(AreaSolution {
+                solution: s,
+                solves: solves.get(),
+            });
+        }
+        if f.signum() == f1.signum() {
+            x1 = x;
+            s1 = s;
+            f1 = f;
+            if side == 1 {
+                f0 *= 0.5;
+            }
+            side = 1;
+        } else {
+            x0 = x;
+            s0 = s;
+            f0 = f;
+            if side == -1 {
+                f1 *= 0.5;
+            }
+            side = -1;
+        }
+    }
+}

@@ -1,0 +1,60 @@
+//! `persson-check`: the command line (SPEC section 7).
+//!
+//! ```text
+//! persson-check surface  (--scene FILE.toml | --n N --hurst H --lambda-l L --lambda-s S --seed K)
+//!                        [--zeta Z] --out FILE.npy
+//! persson-check solve    (--heights FILE.npy | --scene FILE.toml) (--p0 P | --contact-area A)
+//!                        [--zeta Z] [--solver gfmd|cg] [--tol T] --out DIR
+//! ```
+//!
+//! Exit code 0 on success; otherwise a message on stderr and a non-zero code, and no
+//! partial output files.
+
+mod commands;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+/// Tests Persson's contact mechanics theory against hard-wall contact simulations.
+#[derive(Parser, Debug)]
+#[command(name = "persson-check", version, about, long_about = None)]
+struct Cli {
+    /// Worker threads (default: all cores).
+    #[arg(long, global = true, value_parser = clap::value_parser!(u16).range(1..=1024))]
+    threads: Option<u16>,
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Generate a self-affine surface and write its heights as .npy.
+    Surface(commands::surface::Args),
+    /// Solve one hard-wall contact problem and write its fields and summary.
+    Solve(commands::solve::Args),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    if let Some(t) = cli.threads {
+        if let Err(e) = rayon::ThreadPoolBuilder::new()
+            .num_threads(t as usize)
+            .build_global()
+        {
+            eprintln!("error: --threads: {e}");
+            return ExitCode::from(2);
+        }
+    }
+    let result = match cli.command {
+        Command::Surface(args) => commands::surface::run(args),
+        Command::Solve(args) => commands::solve::run(args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

@@ -1,0 +1,140 @@
+//! `.npy` field files (SPEC section 7): float64, shape `(N, N)`, row-major.
+//!
+//! Reading checks everything a field must satisfy and names what is wrong: a file that is
+//! not `.npy`, truncated data, another dtype, another rank, a non-square or empty array,
+//! and NaN or infinite entries (with their row and column). Fortran-ordered arrays are
+//! accepted and transposed. Writing is atomic ([`crate::io`]).
+
+use std::path::Path;
+
+use crate::error::{Error, Result};
+use crate::grid::{MAX_N, MIN_N};
+
+/// A square float64 field read from a `.npy` file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Field {
+    /// Points per side.
+    pub n: usize,
+    /// Values, row-major.
+    pub values: Vec<f64>,
+}
+
+/// Reads a square float64 field from `path`.
+pub fn read_field(path: &Path) -> Result<Field> {
+    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    parse_field(&bytes).map_err(|m| Error::bad_file(path, m))
+}
+
+/// Parses a square float64 field from the bytes of a `.npy` file; the error says what is
+/// wrong.
+pub fn parse_field(bytes: &[u8]) -> std::result::Result<Field, String> {
+    let npy = npyz::NpyFile::new(bytes).map_err(|e| format!("not a valid .npy file ({e})"))?;
+    let dtype = npy.dtype();
+    let is_f64 = matches!(&dtype, npyz::DType::Plain(t)
+        if t.type_char() == npyz::TypeChar::Float && t.size_field() == 8);
+    if !is_f64 {
+        return Err(format!(
+            "dtype is {}, expected float64 ('<f8')",
+            dtype.descr()
+        ));
+    }
+    let shape = npy.shape().to_vec();
+    if shape.len() != 2 {
+        return Err(format!(
+            "array has {} dimensions (shape {:?}), expected 2 (N, N)",
+            shape.len(),
+            shape
+        ));
+    }
+    if shape[0] == 0 || shape[1] == 0 {
+        return Err(format!("array is empty (shape {shape:?})"));
+    }
+    if shape[0] != shape[1] {
+        return Err(format!(
+            "array is not square (shape {shape:?}), expected (N, N)"
+        ));
+    }
+    let n = shape[0] as usize;
+    if !(MIN_N..=MAX_N).contains(&n) {
+        return Err(format!("N = {n} is outside [{MIN_N}, {MAX_N}]"));
+    }
+    let fortran = npy.order() == npyz::Order::Fortran;
+    let mut values: Vec<f64> = npy.into_vec().map_err(|e| {
+        format!(
+            "data is truncated or unreadable ({e}); expected {} float64 values",
+            n * n
+        )
+    })?;
+    if values.len() != n * n {
+        return Err(format!(
+            "data holds {} values, expected {}",
+            values.len(),
+            n * n
+        ));
+    }
+    if fortran {
+        let mut t = vec![0.0; n * n];
+        for i in 0..n {
+            for j in 0..n {
+                t[i * n + j] = values[j * n + i];
+            }
+        }
+        values = t;
+    }
+    if let Some(k) = values.iter().position(|v| !v.is_finite()) {
+        return Err(format!(
+            "entry at row {}, column {} is {} (fields must be finite)",
+            k / n,
+            k % n,
+            values[k]
+        ));
+    }
+    Ok(Field { n, values })
+}
+
+/// Writes a square float64 field to `path` atomically.
+pub fn write_field(path: &Path, n: usize, values: &[f64]) -> Result<()> {
+    assert_eq!(values.len(), n * n, "field length");
+    crate::io::write_atomic_with(path, |w| {
+        use npyz::WriterBuilder;
+        let mut writer = npyz::WriteOptions::<f64>::new()
+            .default_dtype()
+            .shape(&[n as u64, n as u64])
+            .writer(w)
+            .begin_nd()?;
+        writer.extend(values.iter().copied())?;
+        writer.finish()
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn round_trip() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("f.npy");
+        let values: Vec<f64> = (0..25).map(|i| i as f64 * 0.5 - 3.0).collect();
+        write_field(&path, 5, &values).unwrap();
+        let f = read_field(&path).unwrap();
+        assert_eq!(f.n, 5);
+        assert_eq!(f.values, values);
+    }
+
+    #[test]
+    fn names_the_problem() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("f.npy");
+        let mut values = vec![1.0; 16];
+        values[6] = f64::INFINITY;
+        write_field(&path, 4, &values).unwrap();
+        let e = read_field(&path).unwrap_err().to_string();
+        assert!(e.contains("row 1, column 2"), "{e}");
+        let bytes = std::fs::read(&path).unwrap();
+        let e = parse_field(&bytes[..bytes.len() - 9]).unwrap_err();
+        assert!(e.contains("truncated"), "{e}");
+        let e = parse_field(b"hello").unwrap_err();
+        assert!(e.contains("not a valid .npy"), "{e}");
+    }
+}

@@ -1,0 +1,202 @@
+//! Scene files: TOML descriptions of a surface and of a solve (SPEC section 7).
+//!
+//! ```toml
+//! [surface]
+//! n = 256            # points per side
+//! hurst = 0.8        # H in (0, 1)
+//! lambda_l = 128     # long-wavelength cutoff, <= L
+//! lambda_s = 4       # short-wavelength cutoff, >= 2 grid spacings
+//! seed = 1
+//! # lambda_r = 256   # optional roll-off plateau up to lambda_r
+//! # amplitudes = "gaussian" | "random_phase"
+//! # rms_gradient = 1.0
+//!
+//! [solve]            # optional; command-line flags take precedence
+//! zeta = 16          # magnification in [1, lambda_l / lambda_s]
+//! contact_area = 0.1 # or p0 = 0.05
+//! solver = "cg"      # or "gfmd"
+//! tol = 1e-8
+//! ```
+//!
+//! Unknown keys, missing fields, wrong types and values out of range are errors that name
+//! the file, the field and the allowed range.
+
+use std::path::Path;
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Result};
+use crate::grid::Grid;
+use crate::solver::SolverKind;
+use crate::spectrum::SelfAffine;
+use crate::surface::{Amplitudes, SurfaceParams};
+
+fn one() -> f64 {
+    1.0
+}
+
+/// The `[surface]` table: a self-affine surface model (the seed may come from elsewhere).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SurfaceScene {
+    /// Points per side.
+    pub n: usize,
+    /// Hurst exponent.
+    pub hurst: f64,
+    /// Long-wavelength cutoff (grid units).
+    pub lambda_l: f64,
+    /// Short-wavelength cutoff (grid units).
+    pub lambda_s: f64,
+    /// Optional roll-off wavelength.
+    #[serde(default)]
+    pub lambda_r: Option<f64>,
+    /// Amplitude distribution.
+    #[serde(default)]
+    pub amplitudes: Amplitudes,
+    /// Rms gradient at full resolution.
+    #[serde(default = "one")]
+    pub rms_gradient: f64,
+    /// Seed of the realization (scene files for one surface).
+    #[serde(default)]
+    pub seed: Option<u64>,
+}
+
+impl SurfaceScene {
+    /// The generator parameters for `seed`.
+    pub fn params(&self, seed: u64) -> SurfaceParams {
+        SurfaceParams {
+            n: self.n,
+            spectrum: SelfAffine {
+                hurst: self.hurst,
+                lambda_l: self.lambda_l,
+                lambda_s: self.lambda_s,
+                lambda_r: self.lambda_r,
+            },
+            seed,
+            amplitudes: self.amplitudes,
+            rms_gradient: self.rms_gradient,
+        }
+    }
+
+    /// Checks every range (grid size, spectrum, normalisation).
+    pub fn validate(&self) -> Result<()> {
+        let grid = Grid::new(self.n, 1.0)?;
+        self.params(0).spectrum.validate(&grid)?;
+        crate::error::check_positive("rms_gradient", self.rms_gradient)
+    }
+
+    /// `zeta_max = lambda_l / lambda_s`.
+    pub fn zeta_max(&self) -> f64 {
+        self.lambda_l / self.lambda_s
+    }
+}
+
+/// The `[solve]` table: load, magnification and solver settings.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolveScene {
+    /// Magnification.
+    pub zeta: Option<f64>,
+    /// Mean pressure.
+    pub p0: Option<f64>,
+    /// Target relative contact area (instead of `p0`).
+    pub contact_area: Option<f64>,
+    /// Solver.
+    pub solver: Option<SolverKind>,
+    /// Residual tolerance.
+    pub tol: Option<f64>,
+    /// Effective modulus.
+    pub e_star: Option<f64>,
+}
+
+/// A scene file.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    /// The surface.
+    pub surface: SurfaceScene,
+    /// The solve.
+    #[serde(default)]
+    pub solve: SolveScene,
+}
+
+/// Reads and checks a scene file.
+pub fn read_scene(path: &Path) -> Result<Scene> {
+    let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+    parse_toml::<Scene>(path, &text).and_then(|scene| {
+        scene
+            .surface
+            .validate()
+            .map_err(|e| Error::bad_file(path, e.to_string()))?;
+        Ok(scene)
+    })
+}
+
+/// Parses TOML text into `T`, naming the file in the error (the `toml` crate's message
+/// names the key, the line and what was expected).
+pub fn parse_toml<T: serde::de::DeserializeOwned>(path: &Path, text: &str) -> Result<T> {
+    toml::from_str(text).map_err(|e| Error::bad_file(path, e.to_string().trim_end().to_string()))
+}
+
+/// Checks a magnification against `[1, zeta_max]`.
+pub fn check_zeta(zeta: f64, zeta_max: f64) -> Result<()> {
+    if zeta.is_finite() && (1.0..=zeta_max * (1.0 + 1e-12)).contains(&zeta) {
+        Ok(())
+    } else {
+        Err(Error::invalid(
+            "zeta",
+            zeta,
+            format!("in [1, zeta_max = {zeta_max}]"),
+        ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> Result<Scene> {
+        parse_toml::<Scene>(Path::new("scene.toml"), text)
+            .and_then(|s| s.surface.validate().map(|_| s))
+    }
+
+    #[test]
+    fn reads_a_scene_and_names_bad_fields() {
+        let ok = "[surface]\nn = 64\nhurst = 0.8\nlambda_l = 32\nlambda_s = 4\nseed = 3\n";
+        let s = parse(ok).unwrap();
+        assert_eq!(s.surface.seed, Some(3));
+        let e = parse(&ok.replace("seed = 3", "sead = 3"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("scene.toml") && e.contains("sead"), "{e}");
+        let e = parse(&ok.replace("hurst = 0.8", "hurst = 1.2"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("hurst") && e.contains("(0, 1)"), "{e}");
+        let e = parse(&ok.replace("lambda_s = 4", "lambda_s = 1"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("lambda_s") && e.contains("2 grid spacings"),
+            "{e}"
+        );
+        let e = parse(&ok.replace("lambda_l = 32", "lambda_l = 128"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("lambda_l") && e.contains("L = 64"), "{e}");
+        let e = parse(&ok.replace("n = 64\n", "")).unwrap_err().to_string();
+        assert!(e.contains("missing field") && e.contains("n"), "{e}");
+        let e = parse(&ok.replace("n = 64", "n = \"big\""))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("invalid type"), "{e}");
+    }
+
+    #[test]
+    fn zeta_range() {
+        assert!(check_zeta(1.0, 8.0).is_ok());
+        assert!(check_zeta(8.0, 8.0).is_ok());
+        let e = check_zeta(0.5, 8.0).unwrap_err().to_string();
+        assert!(e.contains("zeta") && e.contains("[1, zeta_max = 8]"), "{e}");
+    }
+}

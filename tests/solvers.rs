@@ -1,0 +1,332 @@
+//! The two hard-wall solvers against exact solutions, conservation laws and each other.
+
+use persson_check::contact::{ContactProblem, ContactSolution, Model, SolveOptions, Start};
+use persson_check::field;
+use persson_check::grid::Grid;
+use persson_check::load::{persson_load_guess, solve_for_area, AreaSearch, AreaTarget};
+use persson_check::reference::Westergaard;
+use persson_check::solver::SolverKind;
+use persson_check::surface::{Surface, SurfaceParams};
+use persson_check::Error;
+
+const BOTH: [SolverKind; 2] = [SolverKind::Cg, SolverKind::Gfmd];
+
+fn solve(kind: SolverKind, model: &Model, h: &[f64], p0: f64, tol: f64) -> ContactSolution {
+    let problem = ContactProblem::new(model, h, p0).unwrap();
+    let mut solver = kind.build();
+    solver
+        .solve(&problem, Start::Cold, &SolveOptions::with_tol(tol))
+        .unwrap_or_else(|e| panic!("{}: {e}", kind.name()))
+}
+
+/// `h(x, y) = h0 cos(2 pi x / L)`: one wavelength across the box, constant along y.
+fn sinusoid(n: usize, h0: f64) -> (Model, Vec<f64>) {
+    let model = Model::new(Grid::new(n, 1.0).unwrap(), 1.0).unwrap();
+    let h = (0..n * n)
+        .map(|k| h0 * (2.0 * std::f64::consts::PI * (k % n) as f64 / n as f64).cos())
+        .collect();
+    (model, h)
+}
+
+#[test]
+fn westergaard_contact_area_and_peak_pressure_converge_with_resolution() {
+    let h0 = 1.0;
+    for kind in BOTH {
+        for ratio in [0.05, 0.3, 0.8] {
+            let mut area_err = Vec::new();
+            let mut peak_err = Vec::new();
+            for n in [32usize, 64, 128] {
+                let (model, h) = sinusoid(n, h0);
+                let exact = Westergaard {
+                    h0,
+                    lambda: n as f64,
+                    e_star: 1.0,
+                };
+                let p0 = ratio * exact.full_contact_pressure();
+                let s = solve(kind, &model, &h, p0, 1e-10);
+                let area = s.contact_area();
+                let peak = field::max(&s.pressure);
+                let ea = (area - exact.contact_fraction(p0)).abs();
+                let ep = (peak - exact.peak_pressure(p0)).abs() / exact.peak_pressure(p0);
+                // The contact edge is located to within one grid spacing on each side.
+                assert!(
+                    ea <= 2.0 / n as f64,
+                    "{}: p0/p* = {ratio}, N = {n}: area {area} vs {}",
+                    kind.name(),
+                    exact.contact_fraction(p0)
+                );
+                area_err.push(ea);
+                peak_err.push(ep);
+            }
+            let fmt = |v: &[f64]| {
+                v.iter()
+                    .map(|x| format!("{x:.2e}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            };
+            eprintln!(
+                "{} p0/p* = {ratio}: area errors [{}], peak errors [{}]",
+                kind.name(),
+                fmt(&area_err),
+                fmt(&peak_err)
+            );
+            // Refinement by 4 reduces both errors.
+            assert!(
+                area_err[2] < area_err[0] || area_err[2] < 1e-12,
+                "{}: area errors {area_err:?}",
+                kind.name()
+            );
+            assert!(
+                peak_err[2] < peak_err[0],
+                "{}: peak errors {peak_err:?}",
+                kind.name()
+            );
+            assert!(
+                peak_err[2] < 0.02,
+                "{}: peak errors {peak_err:?}",
+                kind.name()
+            );
+        }
+    }
+}
+
+#[test]
+fn westergaard_full_contact_is_exact() {
+    let (model, h) = sinusoid(64, 0.5);
+    let exact = Westergaard {
+        h0: 0.5,
+        lambda: 64.0,
+        e_star: 1.0,
+    };
+    let p0 = 1.5 * exact.full_contact_pressure();
+    for kind in BOTH {
+        let s = solve(kind, &model, &h, p0, 1e-11);
+        assert_eq!(s.contact_area(), 1.0);
+        for (k, &p) in s.pressure.iter().enumerate() {
+            let x = (k % 64) as f64;
+            let e = exact.pressure(p0, x);
+            assert!(
+                (p - e).abs() < 1e-9 * p0,
+                "{}: x = {x}: {p} vs {e}",
+                kind.name()
+            );
+        }
+    }
+}
+
+#[test]
+fn full_contact_on_a_random_surface_matches_persson_exactly() {
+    let surface = Surface::generate(&SurfaceParams::new(64, 0.8, 32.0, 4.0, 3)).unwrap();
+    let model = Model::new(surface.grid().clone(), 1.0).unwrap();
+    let h = surface.heights_at(f64::INFINITY, &model.fft);
+    // g_bar = 1: pressure fluctuations have rms E* g_bar / 2 = 0.5, so p0 = 5 stays in full
+    // contact (the most tensile point would need a 10-sigma excursion).
+    let p0 = 5.0;
+    for kind in BOTH {
+        let s = solve(kind, &model, &h, p0, 1e-11);
+        assert_eq!(s.contact_area(), 1.0, "{}", kind.name());
+        let var = field::std_dev(&s.pressure).powi(2);
+        assert!(
+            (var - 0.25).abs() < 1e-9,
+            "{}: var(p) = {var}, expected (E* g_bar / 2)^2 = 0.25",
+            kind.name()
+        );
+        let u = s.displacement_spectrum(&model);
+        let exact = model.halfspace.mode_energies(&model.grid, &u);
+        let predicted = model.halfspace.mode_energies(&model.grid, surface.modes());
+        for (q, (e, p)) in exact.iter().zip(&predicted).enumerate().skip(1) {
+            assert!(
+                (e - p).abs() <= 1e-9 * p.max(1e-6 * 1e-6),
+                "{}: mode {q}: E_exa {e} vs (E*/4) q |h~|^2 = {p}",
+                kind.name()
+            );
+        }
+    }
+}
+
+#[test]
+fn flat_surface_carries_the_load_uniformly() {
+    let model = Model::new(Grid::new(32, 1.0).unwrap(), 1.0).unwrap();
+    let h = vec![0.25; 32 * 32];
+    for kind in BOTH {
+        let s = solve(kind, &model, &h, 0.37, 1e-10);
+        assert!(
+            (field::mean(&s.pressure) - 0.37).abs() <= 1e-12 * 0.37,
+            "{}",
+            kind.name()
+        );
+        assert!(s.pressure.iter().all(|&p| (p - 0.37).abs() <= 1e-12));
+        assert_eq!(s.contact_area(), 1.0);
+    }
+}
+
+#[test]
+fn load_balance_and_energy_identity_hold_on_random_contact() {
+    let surface = Surface::generate(&SurfaceParams::new(128, 0.8, 64.0, 4.0, 8)).unwrap();
+    let model = Model::new(surface.grid().clone(), 1.0).unwrap();
+    let h = surface.heights_at(f64::INFINITY, &model.fft);
+    for kind in BOTH {
+        let s = solve(kind, &model, &h, 0.05, 1e-10);
+        let load = (field::mean(&s.pressure) - 0.05).abs() / 0.05;
+        let bound = if kind == SolverKind::Cg { 1e-12 } else { 1e-10 };
+        assert!(load <= bound, "{}: load error {load}", kind.name());
+        // Energy from real space equals energy from Fourier space.
+        let u = s.displacement_spectrum(&model);
+        let ef = model.halfspace.energy_fourier(&model.grid, &u);
+        let er = s.elastic_energy();
+        assert!(
+            (ef - er).abs() <= 1e-8 * ef,
+            "{}: energy {ef} (Fourier) vs {er} (real)",
+            kind.name()
+        );
+    }
+}
+
+/// The solvers agree to what their tolerance implies: at residual `tol` the energies agree
+/// to a few `tol` and the pressure fields (relative L2) to within two orders of `tol`, the
+/// contact edge being where the fields are least determined.
+#[test]
+fn solvers_agree_on_a_random_surface() {
+    const TOL: f64 = 1e-10;
+    let surface = Surface::generate(&SurfaceParams::new(256, 0.8, 128.0, 4.0, 1)).unwrap();
+    let model = Model::new(surface.grid().clone(), 1.0).unwrap();
+    let h = surface.heights_at(f64::INFINITY, &model.fft);
+    for target in [0.1, 0.01] {
+        let p0 = persson_load_guess(target, 1.0, 1.0) * 0.8;
+        let a = solve(SolverKind::Cg, &model, &h, p0, TOL);
+        let b = solve(SolverKind::Gfmd, &model, &h, p0, TOL);
+        let (ar_a, ar_b) = (a.contact_area(), b.contact_area());
+        assert!(
+            (ar_a / target - 1.0).abs() < 0.5,
+            "load guess off: a_r = {ar_a} for target {target}"
+        );
+        let points = (ar_a - ar_b).abs() * (256.0 * 256.0);
+        let diff = field::sum_zip(&a.pressure, &b.pressure, |x, y| (x - y) * (x - y)).sqrt();
+        let norm = field::sum_map(&a.pressure, |_, x| x * x).sqrt();
+        eprintln!(
+            "target {target}: a_r {ar_a} vs {ar_b}, energy rel diff {:.2e}, pressure L2 {:.2e}, iterations cg {} gfmd {}",
+            (a.elastic_energy() - b.elastic_energy()).abs() / a.elastic_energy(),
+            diff / norm,
+            a.stats.iterations,
+            b.stats.iterations
+        );
+        assert!(
+            points <= 2.0,
+            "a_r {ar_a} vs {ar_b}: {points} points differ"
+        );
+        let (ea, eb) = (a.elastic_energy(), b.elastic_energy());
+        assert!((ea - eb).abs() <= 10.0 * TOL * ea, "energy {ea} vs {eb}");
+        assert!(
+            diff / norm <= 100.0 * TOL,
+            "pressure fields differ by {:e} (relative L2)",
+            diff / norm
+        );
+    }
+}
+
+#[test]
+fn very_low_and_near_full_contact_converge() {
+    let surface = Surface::generate(&SurfaceParams::new(128, 0.8, 64.0, 4.0, 5)).unwrap();
+    let model = Model::new(surface.grid().clone(), 1.0).unwrap();
+    let h = surface.heights_at(f64::INFINITY, &model.fft);
+    for kind in BOTH {
+        let low = solve(kind, &model, &h, 2e-4, 1e-9);
+        let a = low.contact_area();
+        assert!(a > 0.0 && a < 1e-3, "{}: a_r = {a}", kind.name());
+        let mut solver = kind.build();
+        let target = AreaTarget {
+            contact_area: 0.995,
+            p0_guess: persson_load_guess(0.995, 1.0, 1.0),
+        };
+        let high = solve_for_area(
+            solver.as_mut(),
+            &model,
+            &h,
+            target,
+            Start::Cold,
+            &SolveOptions::with_tol(1e-9),
+            &AreaSearch::default(),
+        )
+        .unwrap();
+        let a = high.solution.contact_area();
+        assert!(a > 0.99 && a < 1.0, "{}: a_r = {a}", kind.name());
+    }
+}
+
+#[test]
+fn warm_start_reaches_the_cold_solution() {
+    let surface = Surface::generate(&SurfaceParams::new(128, 0.8, 64.0, 4.0, 2)).unwrap();
+    let model = Model::new(surface.grid().clone(), 1.0).unwrap();
+    let h_lo = surface.heights_at(8.0, &model.fft);
+    let h_hi = surface.heights_at(9.0, &model.fft);
+    for kind in BOTH {
+        let mut solver = kind.build();
+        let opts = SolveOptions::with_tol(1e-10);
+        let lo = solver
+            .solve(
+                &ContactProblem::new(&model, &h_lo, 0.1).unwrap(),
+                Start::Cold,
+                &opts,
+            )
+            .unwrap();
+        let problem = ContactProblem::new(&model, &h_hi, 0.1).unwrap();
+        let warm = solver.solve(&problem, Start::Warm(&lo), &opts).unwrap();
+        let cold = solver.solve(&problem, Start::Cold, &opts).unwrap();
+        assert!(warm.stats.warm && !cold.stats.warm);
+        let (ew, ec) = (warm.elastic_energy(), cold.elastic_energy());
+        assert!(
+            (ew - ec).abs() <= 1e-8 * ec,
+            "{}: {ew} vs {ec}",
+            kind.name()
+        );
+        assert!(
+            (warm.contact_area() - cold.contact_area()).abs() <= 2.0 / (128.0 * 128.0),
+            "{}",
+            kind.name()
+        );
+    }
+}
+
+#[test]
+fn budget_exhaustion_is_an_error_with_the_residual() {
+    let surface = Surface::generate(&SurfaceParams::new(64, 0.8, 32.0, 4.0, 2)).unwrap();
+    let model = Model::new(surface.grid().clone(), 1.0).unwrap();
+    let h = surface.heights_at(f64::INFINITY, &model.fft);
+    let problem = ContactProblem::new(&model, &h, 0.1).unwrap();
+    for kind in BOTH {
+        let opts = SolveOptions {
+            tol: 1e-12,
+            max_iter: 3,
+        };
+        match kind.build().solve(&problem, Start::Cold, &opts) {
+            Err(Error::NotConverged {
+                iterations,
+                residual,
+                ..
+            }) => {
+                assert_eq!(iterations, 3);
+                assert!(residual > 1e-12 && residual.is_finite());
+            }
+            other => panic!(
+                "{}: expected NotConverged, got {:?}",
+                kind.name(),
+                other.err()
+            ),
+        }
+    }
+}
+
+#[test]
+fn non_finite_heights_are_rejected_before_solving() {
+    let model = Model::new(Grid::new(16, 1.0).unwrap(), 1.0).unwrap();
+    let mut h = vec![0.0; 256];
+    h[17] = f64::NAN;
+    let e = ContactProblem::new(&model, &h, 0.1)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("heights"), "{e}");
+    let e = ContactProblem::new(&model, &vec![0.0; 256], -1.0)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("p0"), "{e}");
+}
