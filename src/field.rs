@@ -151,7 +151,7 @@ mod tests {
         let x = [3.0, -1.0, 2.0, 0.0];
         assert_eq!(min(&x), -1.0);
         assert_eq!(max(&x), 3.0);
-        assert!((std_dev(&x) - (2.1875f64).sqrt()).abs() < 1e-15);
+        assert!((std_dev(&x) - 2.5f64.sqrt()).abs() < 1e-15);
         assert_eq!(positive_fraction(&x), 0.5);
     }
 }

@@ -29,6 +29,7 @@
 //! * [`reference`]: closed-form solutions the solvers are tested against;
 //! * [`npy`]: `.npy` field files.
 
+pub mod area;
 pub mod contact;
 pub mod elastic;
 pub mod error;
@@ -38,10 +39,14 @@ pub mod grid;
 pub mod io;
 pub mod load;
 pub mod npy;
+pub mod plot;
 pub mod reference;
 pub mod scene;
 pub mod solver;
 pub mod spectrum;
+pub mod stats;
 pub mod surface;
+pub mod sweep;
+pub mod validation;
 
 pub use error::{Error, Result};

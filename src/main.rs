@@ -33,6 +33,8 @@ enum Command {
     Surface(commands::surface::Args),
     /// Solve one hard-wall contact problem and write its fields and summary.
     Solve(commands::solve::Args),
+    /// Run named validations (all by default) and write their outcomes.
+    Validate(commands::validate::Args),
 }
 
 fn main() -> ExitCode {
@@ -49,6 +51,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Surface(args) => commands::surface::run(args),
         Command::Solve(args) => commands::solve::run(args),
+        Command::Validate(args) => commands::validate::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -3,6 +3,7 @@
 
 pub mod solve;
 pub mod surface;
+pub mod validate;
 
 use clap::Args as ClapArgs;
 use persson_check::error::{Error, Result};

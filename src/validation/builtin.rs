@@ -1,0 +1,79 @@
+//! The experiments this build knows, and the validation definitions shipped with it.
+//!
+//! The definitions in `validations/` are compiled in, so the command line runs the default
+//! validations from any directory; `--dir` reads definitions from a folder instead. A test
+//! checks that the compiled-in copies equal the files.
+
+use std::path::{Path, PathBuf};
+
+use super::runner::run_experiment;
+use super::{Outcome, RunOptions, Source};
+use crate::error::{Error, Result};
+
+/// Experiment names accepted in a definition's `experiment` key.
+pub const EXPERIMENTS: &[&str] = &["contact_area"];
+
+/// Runs `source` with the experiment named `experiment`.
+pub fn dispatch(experiment: &str, source: &Source, opts: &RunOptions) -> Result<Outcome> {
+    match experiment {
+        "contact_area" => run_experiment::<crate::area::ContactArea>(source, opts),
+        other => Err(Error::bad_file(
+            &source.path,
+            format!("experiment = \"{other}\" is unknown; expected one of {EXPERIMENTS:?}"),
+        )),
+    }
+}
+
+/// The definitions compiled into this build: `(name, TOML text)`.
+pub const DEFINITIONS: &[(&str, &str)] = &[(
+    "contact_area",
+    include_str!("../../validations/contact_area.toml"),
+)];
+
+/// The compiled-in definitions as sources.
+pub fn builtin_sources() -> Vec<Source> {
+    DEFINITIONS
+        .iter()
+        .map(|(name, text)| Source {
+            path: PathBuf::from(format!("builtin:{name}")),
+            text: text.to_string(),
+        })
+        .collect()
+}
+
+/// Definitions from `dir` (every `*.toml`, sorted by name).
+pub fn sources_in(dir: &Path) -> Result<Vec<Source>> {
+    let mut paths: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map_err(|e| Error::io(dir, e))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    paths.sort();
+    paths.iter().map(|p| Source::read(p)).collect()
+}
+
+/// Selects definitions by name (all when `names` is empty); unknown names are an error
+/// that lists the known ones.
+pub fn select(sources: Vec<Source>, names: &[String]) -> Result<Vec<Source>> {
+    if names.is_empty() {
+        return Ok(sources);
+    }
+    let mut known = Vec::new();
+    for s in &sources {
+        known.push(s.header()?.0);
+    }
+    let mut out = Vec::new();
+    for name in names {
+        match known.iter().position(|k| k == name) {
+            Some(i) => out.push(sources[i].clone()),
+            None => {
+                return Err(Error::invalid(
+                    "validation name",
+                    name,
+                    format!("one of {known:?}"),
+                ))
+            }
+        }
+    }
+    Ok(out)
+}

@@ -1,0 +1,217 @@
+//! Runs validations: jobs in parallel, each job's result on disk as soon as it finishes,
+//! then the conclusion, the verdict and the output files.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use indicatif::{ProgressBar, ProgressStyle};
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use sha2::{Digest, Sha256};
+
+use super::{builtin, Experiment, JobContext, Outcome, Scale, Source, Verdict};
+use crate::error::{Error, Result};
+
+/// How to run validations.
+#[derive(Debug, Clone)]
+pub struct RunOptions {
+    /// Which scene of each definition to run.
+    pub scale: Scale,
+    /// Output directory.
+    pub out: PathBuf,
+    /// Reuse job results already on disk (from an interrupted or earlier run of the same
+    /// scene); without it every job is recomputed.
+    pub resume: bool,
+    /// Show progress bars on stderr (when it is a terminal).
+    pub progress: bool,
+}
+
+/// Runs one validation definition.
+pub fn run(source: &Source, opts: &RunOptions) -> Result<Outcome> {
+    let (_, experiment) = source.header()?;
+    builtin::dispatch(&experiment, source, opts)
+}
+
+/// Runs several definitions in turn; one failure does not stop the others.
+pub fn run_all(sources: &[Source], opts: &RunOptions) -> Vec<(PathBuf, Result<Outcome>)> {
+    sources
+        .iter()
+        .map(|s| (s.path.clone(), run(s, opts)))
+        .collect()
+}
+
+/// A job's result as stored on disk.
+#[derive(Serialize, Deserialize)]
+struct Stored<J, R> {
+    job: J,
+    result: R,
+}
+
+/// Runs experiment `E` on `source` (called through [`builtin::dispatch`]).
+pub(crate) fn run_experiment<E: Experiment>(source: &Source, opts: &RunOptions) -> Result<Outcome> {
+    let timer = Instant::now();
+    let def = source.parse::<E::Scene>()?;
+    let scene = match opts.scale {
+        Scale::Reduced => &def.reduced,
+        Scale::Full => &def.full,
+    };
+    E::validate(scene)
+        .map_err(|e| Error::bad_file(&source.path, format!("[{}] {e}", opts.scale)))?;
+    let jobs = E::jobs(scene);
+    if jobs.is_empty() {
+        return Err(Error::bad_file(
+            &source.path,
+            format!("[{}] the scene has no jobs (no seeds?)", opts.scale),
+        ));
+    }
+    let scene_json = serde_json::to_value(scene).expect("scenes serialise");
+    let dir = opts.out.join(&def.name);
+    let state = dir.join("state").join(opts.scale.to_string());
+    let jobs_dir = state.join("jobs");
+    let ctx = JobContext {
+        name: def.name.clone(),
+        scale: opts.scale,
+        state_dir: state.clone(),
+    };
+
+    let bar = progress_bar(opts.progress, &def.name, jobs.len());
+    let results: Vec<(E::Job, E::JobResult)> = jobs
+        .par_iter()
+        .map(|job| -> Result<(E::Job, E::JobResult)> {
+            let job_json = serde_json::to_string(job).expect("jobs serialise");
+            let key = job_key(opts.scale, &scene_json, &job_json);
+            let path = jobs_dir.join(format!("{key}.json"));
+            if opts.resume {
+                if let Some(result) = load::<E::Job, E::JobResult>(&path) {
+                    bar.inc(1);
+                    return Ok((job.clone(), result));
+                }
+            }
+            let mut job_ctx = ctx.clone();
+            job_ctx.state_dir = state.join("checkpoints").join(&key);
+            let result = E::run_job(scene, job, &job_ctx).map_err(|e| {
+                Error::bad_file(
+                    &source.path,
+                    format!("[{}] job {job_json}: {e}", opts.scale),
+                )
+            })?;
+            let stored = Stored {
+                job: job.clone(),
+                result,
+            };
+            let bytes = serde_json::to_vec(&stored).expect("results serialise");
+            crate::io::write_atomic(&path, &bytes)?;
+            bar.inc(1);
+            Ok((stored.job, stored.result))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    bar.finish_and_clear();
+
+    let conclusion = E::conclude(&def, scene, &results)?;
+    let measured = conclusion
+        .measured
+        .ok_or_else(|| Error::bad_file(&source.path, "the experiment measured nothing"))?;
+    let verdict = def.verdict.judge(measured, conclusion.persson);
+    let in_range = def.paper.range.is_none_or(|(lo, hi)| {
+        // The measurement's interval overlaps the paper's range.
+        let half = def.verdict.significance * measured.std_error;
+        measured.value + half >= lo && measured.value - half <= hi
+    });
+    let reproduced = match verdict {
+        Verdict::Inconclusive => None,
+        v => Some(v == def.paper.verdict && in_range && conclusion.checks.iter().all(|c| c.passed)),
+    };
+
+    let mut files = Vec::new();
+    for (k, table) in conclusion.tables.iter().enumerate() {
+        let path = if k == 0 {
+            opts.out.join(format!("{}.csv", def.name))
+        } else {
+            dir.join(format!("{}.csv", table.name))
+        };
+        table.write_csv(&path)?;
+        files.push(relative(&opts.out, &path));
+    }
+    for figure in &conclusion.figures {
+        for path in crate::plot::render(figure, &dir)? {
+            files.push(relative(&opts.out, &path));
+        }
+    }
+    for raster in &conclusion.rasters {
+        for path in crate::plot::render_raster(raster, &dir)? {
+            files.push(relative(&opts.out, &path));
+        }
+    }
+
+    let outcome = Outcome {
+        name: def.name.clone(),
+        title: def.title.clone(),
+        assumption: def.assumption.clone(),
+        statistic: def.statistic.clone(),
+        value: measured.value,
+        std_error: measured.std_error,
+        persson: conclusion.persson,
+        persson_text: def.persson.clone(),
+        paper: def.paper.finding.clone(),
+        paper_value: def.paper.value,
+        paper_verdict: def.paper.verdict,
+        verdict,
+        reproduced,
+        rule: def.verdict,
+        scale: opts.scale,
+        scene: scene_json,
+        definition_sha256: source.sha256(),
+        wall_s: timer.elapsed().as_secs_f64(),
+        max_residual: conclusion.max_residual,
+        details: conclusion.details,
+        checks: conclusion.checks,
+        account: conclusion.account,
+        golden: conclusion.golden,
+        files,
+        threads: rayon::current_num_threads(),
+    };
+    let json = serde_json::to_vec_pretty(&outcome).expect("outcomes serialise");
+    crate::io::write_atomic(&opts.out.join(format!("{}.json", def.name)), &json)?;
+    Ok(outcome)
+}
+
+/// A short hash of everything that determines a job's result.
+fn job_key(scale: Scale, scene: &serde_json::Value, job: &str) -> String {
+    let mut h = Sha256::new();
+    h.update(scale.to_string().as_bytes());
+    h.update(scene.to_string().as_bytes());
+    h.update(job.as_bytes());
+    h.finalize()
+        .iter()
+        .take(8)
+        .map(|b| format!("{b:02x}"))
+        .collect()
+}
+
+/// A stored result, if present and readable (a damaged file is recomputed).
+fn load<J: serde::de::DeserializeOwned, R: serde::de::DeserializeOwned>(path: &Path) -> Option<R> {
+    let bytes = std::fs::read(path).ok()?;
+    let stored: Stored<J, R> = serde_json::from_slice(&bytes).ok()?;
+    Some(stored.result)
+}
+
+fn relative(base: &Path, path: &Path) -> String {
+    path.strip_prefix(base)
+        .unwrap_or(path)
+        .to_string_lossy()
+        .to_string()
+}
+
+fn progress_bar(show: bool, name: &str, len: usize) -> ProgressBar {
+    if !show {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::new(len as u64);
+    bar.set_style(
+        ProgressStyle::with_template("{prefix:>16} [{elapsed_precise}] {bar:30} {pos}/{len} jobs")
+            .expect("static template"),
+    );
+    bar.set_prefix(name.to_string());
+    bar.tick();
+    bar
+}
