@@ -279,6 +279,7 @@ impl Experiment for ContactArea {
                 value: k,
                 persson: Some(c.persson),
                 paper: def.paper.value,
+                grid: Some(scene.n * refine),
             });
             c.golden
                 .insert(format!("kappa_refine{refine}"), round_sig(k.value, 4));
@@ -325,6 +326,7 @@ impl Experiment for ContactArea {
                 value: k_h,
                 persson: Some(c.persson),
                 paper: def.paper.value,
+                grid: None,
             });
             c.golden
                 .insert(format!("kappa_H{hurst}"), round_sig(k_h.value, 4));
@@ -405,6 +407,7 @@ impl Experiment for ContactArea {
             value: Estimate::new(worst_law, f64::NAN),
             persson: None,
             paper: Some(scene.law_tolerance),
+            grid: None,
         });
         c.golden
             .insert("law_deviation".into(), round_sig(worst_law, 3));

@@ -183,6 +183,10 @@ pub struct Detail {
     pub persson: Option<f64>,
     /// The paper's value, if any.
     pub paper: Option<f64>,
+    /// Points per side of the grid the value was measured on, when the detail is one step
+    /// of a resolution study (statistic against grid resolution).
+    #[serde(default)]
+    pub grid: Option<usize>,
 }
 
 /// A check of the paper's finding; all must pass for the finding to count as reproduced.
