@@ -38,6 +38,7 @@ pub mod grid;
 pub mod io;
 pub mod load;
 pub mod npy;
+pub mod persson;
 pub mod reference;
 pub mod scene;
 pub mod solver;
