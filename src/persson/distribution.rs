@@ -14,6 +14,8 @@
 
 use statrs::function::erf::{erf, erfc};
 
+use crate::error::{check_positive, Error, Result};
+
 /// The pressure distribution of eq. (pressureDistOri) for mean pressure `p0` and total
 /// broadening `Dp_tot^2`.
 ///
@@ -27,9 +29,21 @@ pub struct PressureDistribution {
 }
 
 impl PressureDistribution {
-    /// The distribution for `p0 > 0` and `dp2 = Dp_tot^2 >= 0` (not checked here: the
-    /// callers in this module have validated them).
-    pub fn new(p0: f64, dp2: f64) -> Self {
+    /// The distribution for mean pressure `p0` (finite, > 0) and total broadening
+    /// `dp2 = Dp_tot^2` (finite, >= 0); errors name the argument.
+    ///
+    /// With `p0 -> p'` and `dp2 -> Dp^2` this is also the transition probability of
+    /// eq. (transitionFinal) for walkers starting at `p'`.
+    pub fn new(p0: f64, dp2: f64) -> Result<Self> {
+        check_positive("p0", p0)?;
+        if !(dp2.is_finite() && dp2 >= 0.0) {
+            return Err(Error::invalid("dp2", dp2, "a finite number >= 0"));
+        }
+        Ok(Self::from_validated(p0, dp2))
+    }
+
+    /// [`new`](Self::new) for arguments already checked.
+    pub(super) fn from_validated(p0: f64, dp2: f64) -> Self {
         Self { p0, dp2 }
     }
 

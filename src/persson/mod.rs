@@ -190,8 +190,9 @@ pub struct ShellPrediction {
     pub q: f64,
     /// The shell's full-contact broadening `Dp^2`, eq. (broadening).
     pub broadening: f64,
-    /// The broadening this variant adds with the shell: `Dp^2` for the original theory,
-    /// `Dp^2 [S_before + S_after] / 2` for the corrected one.
+    /// The broadening this variant adds with the shell, `Dp^2 [S_before + S_after] / 2`
+    /// (`Dp^2` itself for the original theory; for the corrected one, the trapezoidal
+    /// increment that `total_broadening` solves self-consistently).
     pub added_broadening: f64,
     /// `Dp_tot^2` (original) or `Dp_mod,tot^2` (corrected) after the shell.
     pub total_broadening: f64,
@@ -249,7 +250,7 @@ impl Prediction {
                 zeta: shell.zeta,
                 q: shell.q,
                 broadening: b,
-                added_broadening: v - v_prev,
+                added_broadening: 0.5 * b * (s_prev + s),
                 total_broadening: v,
                 contact_area: a,
                 non_contact_area: not_a,
@@ -331,7 +332,7 @@ impl Prediction {
     /// The pressure distribution at `zeta`, eq. (pressureDistOri) (`delta(p - p0)` when
     /// flat).
     pub fn pressure_distribution(&self, zeta: f64) -> PressureDistribution {
-        PressureDistribution::new(self.p0, self.total_broadening(zeta))
+        PressureDistribution::from_validated(self.p0, self.total_broadening(zeta))
     }
 
     /// The elastic energy of one mode of wavenumber `q` and power `h2 = |h~(q)|^2`:
