@@ -24,32 +24,45 @@
 //!   exactly on a shell). Total `Dp_tot^2(zeta)` over `|q| <= zeta q_l`; diffusion
 //!   coefficient `D_P = Dp^2 / dzeta`. [`Broadening`] keeps cumulative sums over shells,
 //!   so every lookup is a binary search.
-//! * Pressure distribution, eq. (pressureDistOri): the mirror Gaussian with
-//!   `Dp_tot^2(zeta)`, plus a delta function of weight `1 - a_r` at `p = 0`, from the
-//!   initial condition `Pr(p) = delta(p - p0)` of the flat interface
-//!   ([`PressureDistribution`]). Relative contact area
-//!   `a_r(p0, zeta) = erf(p0 / (sqrt2 Dp_tot(zeta)))`; `a_r = 1` on the flat interface.
+//! * Pressure distribution, eq. (pressureDistOri), from the initial condition
+//!   `Pr(p) = delta(p - p0)` of the flat interface and absorption at `p = 0`:
+//!   `Pr(p > 0, zeta) = [exp(-(p - p0)^2 / 2V) - exp(-(p + p0)^2 / 2V)] / sqrt(2 pi V)`
+//!   with `V = Dp_tot^2(zeta)`, zero for `p < 0`, and a delta function of weight
+//!   `1 - a_r` at `p = 0` ([`PressureDistribution`]). Relative contact area
+//!   `a_r(p0, zeta) = erf(p0 / (sqrt2 Dp_tot(zeta)))`; on the flat interface `a_r = 1`
+//!   and `Pr = delta(p - p0)`.
 //! * Modified theory, eq. (gamma): `Dp_mod^2 = S(a_r) Dp^2` with
-//!   `S = gamma + (1 - gamma) a_r^2`, `gamma = 0.42`, or Wang & Müser's later factor
-//!   ([`Correction`]). `S` depends on the corrected theory's own `a_r`, so `Dp_mod,tot^2`
-//!   is integrated shell by shell: with `V_i` the total after shell `i` and `b_i` the
-//!   shell's `Dp^2`, the implicit trapezoidal update
+//!   `S = gamma + (1 - gamma) a_r^2`, `gamma = 0.42`, or Wang & Müser's later
+//!   `S = gamma - (2/9) a_r^2 + (11/9 - gamma) a_r^4`, `gamma = 5/9` ([`Correction`]).
+//!   `S` depends on the corrected theory's own `a_r`, so `Dp_mod,tot^2` is integrated
+//!   shell by shell: with `V_i` the total after shell `i` and `b_i` the shell's `Dp^2`, the
+//!   implicit trapezoidal update
 //!   `V_i = V_{i-1} + b_i [S(a(V_{i-1})) + S(a(V_i))] / 2`, `a(V) = erf(p0 / sqrt(2 V))`,
-//!   is solved by fixed-point iteration, converged to a few ulps. The distribution and `a_r` of the corrected theory are eq.
-//!   (pressureDistOri) and the erf with `V_i` in place of `Dp_tot^2`.
+//!   `V_{-1} = 0`, is solved by fixed-point iteration, converged to a few ulps. The
+//!   distribution and `a_r` of the corrected theory are eq. (pressureDistOri) and the erf
+//!   with `V_i` in place of `Dp_tot^2`.
 //! * Elastic energy per mode, eq. (elasticEnergy_h_q):
 //!   `E_P(p0, q) = (E*/4) q a_r(p0, |q|/q_l) |h~(q)|^2`, with `a_r` evaluated at the
 //!   magnification that resolves the mode, that mode's shell included. The corrected energy
 //!   is `E_c(p0, q) = S(a_r) E_P(p0, q)`; in the corrected theory both `a_r` (inside `E_P`)
-//!   and `S` come from the corrected theory. Totals up to `zeta`, eqs.
+//!   and `S` come from the corrected theory. Totals up to `zeta`,
+//!   `E_P(p0) = sum_q E_P(p0, q)` and `E_c(p0) = sum_q E_c(p0, q)`, eqs.
 //!   (elasticEnergy_h_tot) and (elasticEnergy_h_tot_wS), are cumulative sums over shells.
 //!   All of this is [`Prediction`], for [`Variant::Original`] (`S = 1`) or
 //!   [`Variant::Corrected`].
-//! * The empirical contact-area law, eq. (contactArea) with eq. (switching), and the
+//! * The empirical contact-area law, eq. (contactArea),
+//!   `a_r = (1 - s) erf(c1 sqrt(pi) p~0) + s erf(c2 sqrt2 p~0)`, with the switching
+//!   function eq. (switching) `s = erf^2(c2 sqrt2 p~0)`, `c1 = 1.075`, `c2 = 1.025`, of the
 //!   reduced pressure `p~0 = p0 / (E* g_bar(zeta))`: [`ContactAreaLaw`],
 //!   [`reduced_pressure`].
-//! * The Appendix's moment analysis, eq. (2ndMoment) and its inversion from the closed form
-//!   eq. (approxDeltaPress) by Newton's method: [`moments`].
+//! * The Appendix's moment analysis ([`moments`]): the second moment of the mirror
+//!   Gaussian with parameter `p'` and width `Dp_n`, eq. (2ndMoment),
+//!   `<p^2> = sqrt(2/pi) p' Dp_n exp(-p'^2 / 2Dp_n^2) + (p'^2 + Dp_n^2) erf(p' / (sqrt2 Dp_n))`,
+//!   and its inversion for `Dp_n` given `sigma^2 = <p^2>/p'^2 - 1`: the closed form
+//!   eq. (approxDeltaPress),
+//!   `Dp_n / p' ~ sigma (1 + alpha1 sigma + alpha2 sqrt(pi/8) sigma^2) / (1 + alpha2 sigma)`,
+//!   `alpha1 = 0.5153`, `alpha2 = 0.7591`, refined by Newton's method with
+//!   `d<p^2>/dDp_n = 2 Dp_n erf(p' / (sqrt2 Dp_n))`.
 //!
 //! `1 - a_r` is always computed with `erfc`, never as `1 - erf`, so that near full contact
 //! it keeps its relative precision.
