@@ -25,9 +25,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use self::interim::{contact_area_law, original_contact_area_reduced};
 use crate::contact::{Model, SolveOptions};
 use crate::error::{check_open, check_positive, Error, Result};
+use crate::persson::{persson_contact_area, ContactAreaLaw};
 use crate::plot::{Axis, Figure, Series, Style};
 use crate::solver::SolverKind;
 use crate::stats::{round_sig, Estimate};
@@ -244,6 +244,7 @@ impl Experiment for ContactArea {
         };
 
         let mut c = Conclusion {
+            // Persson's a_r = erf(sqrt2 p~0) has slope sqrt(8/pi) at p~0 -> 0.
             persson: (8.0 / std::f64::consts::PI).sqrt(),
             max_residual: results.iter().map(|r| r.1.max_residual).fold(0.0, f64::max),
             ..Default::default()
@@ -334,13 +335,13 @@ impl Experiment for ContactArea {
             let mut kpts = Vec::new();
             for (k, &p) in pressures.iter().enumerate() {
                 let a = Estimate::mean_of(&curves.iter().map(|r| r[k]).collect::<Vec<_>>());
-                let law = contact_area_law(p);
+                let law = ContactAreaLaw::PAPER.contact_area(p);
                 table.push(vec![
                     hurst,
                     p,
                     a.value,
                     a.std_error,
-                    original_contact_area_reduced(p),
+                    persson_contact_area(p),
                     law,
                 ]);
                 pts.push((p, a.value, a.std_error));
@@ -368,23 +369,24 @@ impl Experiment for ContactArea {
         fig.series.push(Series::xy(
             "Persson, erf(sqrt2 p~0)",
             Style::Line,
-            grid.iter().map(|&p| (p, original_contact_area_reduced(p))),
+            grid.iter().map(|&p| (p, persson_contact_area(p))),
         ));
         fig.series.push(Series::xy(
             "paper, eq. (contactArea)",
             Style::Dashed,
-            grid.iter().map(|&p| (p, contact_area_law(p))),
+            grid.iter()
+                .map(|&p| (p, ContactAreaLaw::PAPER.contact_area(p))),
         ));
         kappa_fig.series.push(Series::xy(
             "Persson, sqrt(8/pi)",
             Style::Line,
-            grid.iter()
-                .map(|&p| (p, original_contact_area_reduced(p) / p)),
+            grid.iter().map(|&p| (p, persson_contact_area(p) / p)),
         ));
         kappa_fig.series.push(Series::xy(
             "paper, eq. (contactArea)",
             Style::Dashed,
-            grid.iter().map(|&p| (p, contact_area_law(p) / p)),
+            grid.iter()
+                .map(|&p| (p, ContactAreaLaw::PAPER.contact_area(p) / p)),
         ));
         c.checks.push(Check {
             name: format!(
@@ -444,18 +446,4 @@ pub fn log_grid(lo: f64, hi: f64, count: usize) -> Vec<f64> {
     (0..count)
         .map(|k| (lo.ln() + (hi.ln() - lo.ln()) * k as f64 / (count - 1) as f64).exp())
         .collect()
-}
-
-/// Interim theory formulas, until the `persson` module lands.
-mod interim {
-    use statrs::function::erf::erf;
-    pub fn original_contact_area_reduced(p: f64) -> f64 {
-        erf(std::f64::consts::SQRT_2 * p)
-    }
-    pub fn contact_area_law(p: f64) -> f64 {
-        let (c1, c2) = (1.075, 1.025);
-        let s = erf(c2 * std::f64::consts::SQRT_2 * p).powi(2);
-        (1.0 - s) * erf(c1 * std::f64::consts::PI.sqrt() * p)
-            + s * erf(c2 * std::f64::consts::SQRT_2 * p)
-    }
 }

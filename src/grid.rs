@@ -20,6 +20,11 @@
 
 use crate::error::{Error, Result};
 
+/// Relative slack on `|k|^2` when deciding whether a shell is resolved at a magnification:
+/// a `zeta` computed from a shell's own `|q|` includes that shell despite rounding. Every
+/// "is this shell resolved at zeta" decision (grid, surfaces, theory) uses it.
+pub const SHELL_SLACK: f64 = 1e-9;
+
 /// Smallest grid accepted: below this the FFT tables and the spectra are degenerate.
 pub const MIN_N: usize = 4;
 /// Largest grid accepted (the paper's largest runs were 16384^2).
@@ -149,11 +154,11 @@ impl Grid {
     /// Largest shell index `k2` included at magnification `zeta` for long-wavelength
     /// cutoff `lambda_l`: modes with `k2 <= shell_limit` have `|q| <= zeta q_l`.
     ///
-    /// A relative slack of 1e-9 makes `zeta` values computed from a shell's own `|q|`
-    /// include that shell.
+    /// The relative slack [`SHELL_SLACK`] makes `zeta` values computed from a shell's own
+    /// `|q|` include that shell.
     pub fn shell_limit(&self, zeta: f64, lambda_l: f64) -> u32 {
         let r = zeta * self.length() / lambda_l;
-        let r2 = r * r * (1.0 + 1e-9);
+        let r2 = r * r * (1.0 + SHELL_SLACK);
         if r2 >= u32::MAX as f64 {
             u32::MAX
         } else {

@@ -26,8 +26,13 @@
 //! * [`elastic`]: the half-space Green's function and elastic energy;
 //! * [`contact`], [`solver`], [`load`]: the hard-wall problem, its two solvers, and the
 //!   load that gives a target contact area;
-//! * [`reference`]: closed-form solutions the solvers are tested against;
-//! * [`npy`]: `.npy` field files.
+//! * [`persson`]: Persson's theory, original and corrected, on a realization's own spectrum;
+//! * [`sweep`]: magnification sweeps with warm starts;
+//! * [`validation`], [`area`]: named validations with verdicts, and the experiments
+//!   behind them;
+//! * [`stats`], [`plot`]: estimates with error bars, and figures;
+//! * [`crate::reference`]: closed-form solutions the solvers are tested against;
+//! * [`npy`], [`scene`], [`io`]: `.npy` fields, scene files, atomic writes.
 
 pub mod area;
 pub mod contact;
@@ -39,6 +44,7 @@ pub mod grid;
 pub mod io;
 pub mod load;
 pub mod npy;
+pub mod persson;
 pub mod plot;
 pub mod reference;
 pub mod scene;

@@ -181,11 +181,11 @@ impl ShellSpectrum {
         Self { q_l, shells }
     }
 
-    /// Shells resolved at magnification `zeta` (`|q| <= zeta q_l`).
+    /// Shells resolved at magnification `zeta` (`|q| <= zeta q_l`, with the same slack as
+    /// [`Grid::shell_limit`]).
     pub fn up_to(&self, zeta: f64) -> &[Shell] {
-        let end = self
-            .shells
-            .partition_point(|s| s.zeta <= zeta * (1.0 + 1e-12));
+        let limit = zeta * zeta * (1.0 + crate::grid::SHELL_SLACK);
+        let end = self.shells.partition_point(|s| s.zeta * s.zeta <= limit);
         &self.shells[..end]
     }
 
