@@ -103,6 +103,7 @@ impl AreaScene {
 }
 
 impl Experiment for ContactArea {
+    const FAMILY: &'static str = "contact_area";
     type Scene = AreaScene;
     type Job = AreaJob;
     type JobResult = AreaResult;

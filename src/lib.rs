@@ -35,6 +35,7 @@
 //! * [`npy`], [`scene`], [`io`]: `.npy` fields, scene files, atomic writes.
 
 pub mod area;
+pub mod checkpoint;
 pub mod contact;
 pub mod elastic;
 pub mod error;
@@ -46,6 +47,7 @@ pub mod load;
 pub mod npy;
 pub mod persson;
 pub mod plot;
+pub mod reentry;
 pub mod reference;
 pub mod scene;
 pub mod solver;
@@ -53,6 +55,7 @@ pub mod spectrum;
 pub mod stats;
 pub mod surface;
 pub mod sweep;
+pub mod transition;
 pub mod validation;
 
 pub use error::{Error, Result};

@@ -287,6 +287,44 @@ fn warm_start_reaches_the_cold_solution() {
     }
 }
 
+/// A load doubled on a warm start puts thousands of points into contact at once; the
+/// preconditioned iteration must give them pressures in its own units (this case once
+/// oscillated without converging).
+#[test]
+fn warm_start_across_a_doubled_load_converges() {
+    let surface = Surface::generate(&SurfaceParams::new(256, 0.3, 128.0, 8.0, 1)).unwrap();
+    let model = Model::new(surface.grid().clone(), 1.0).unwrap();
+    let h = surface.heights_at(f64::INFINITY, &model.fft);
+    for kind in BOTH {
+        let mut solver = kind.build();
+        let opts = SolveOptions {
+            tol: 1e-8,
+            max_iter: 1000,
+        };
+        let lo = solver
+            .solve(
+                &ContactProblem::new(&model, &h, 0.12).unwrap(),
+                Start::Cold,
+                &opts,
+            )
+            .unwrap();
+        let hi = solver
+            .solve(
+                &ContactProblem::new(&model, &h, 0.25).unwrap(),
+                Start::Warm(&lo),
+                &opts,
+            )
+            .unwrap_or_else(|e| panic!("{}: {e}", kind.name()));
+        assert!(
+            hi.stats.iterations < 300,
+            "{}: {}",
+            kind.name(),
+            hi.stats.iterations
+        );
+        assert!(hi.contact_area() > lo.contact_area());
+    }
+}
+
 #[test]
 fn budget_exhaustion_is_an_error_with_the_residual() {
     let surface = Surface::generate(&SurfaceParams::new(64, 0.8, 32.0, 4.0, 2)).unwrap();

@@ -52,6 +52,42 @@ fn contact_area_law() {
 }
 
 #[test]
+fn a_diffusion_depends_on_pressure() {
+    let o = run_reduced("a_diffusion");
+    // Violated at p << p0/a_r; D_n / D_P ~ 1 (the original theory) at p >~ p0/a_r.
+    assert_eq!(o.verdict, Verdict::Violated);
+    assert!(
+        o.value > 1.0,
+        "low-pressure diffusion {} should exceed Persson's",
+        o.value
+    );
+    assert_eq!(o.reproduced, Some(true), "{:?}", o.checks);
+}
+
+#[test]
+fn b_drift_is_negative_in_contact() {
+    let o = run_reduced("b_drift");
+    // mu_c < 0 beyond three standard errors.
+    assert_eq!(o.verdict, Verdict::Violated);
+    assert!(
+        o.value + 3.0 * o.std_error < 0.0,
+        "mu_c = {} +- {}",
+        o.value,
+        o.std_error
+    );
+    assert_eq!(o.reproduced, Some(true), "{:?}", o.checks);
+}
+
+#[test]
+fn c_points_re_enter_contact() {
+    let o = run_reduced("c_reentry");
+    // A re-entry share clearly above 0, largest at the lowest load.
+    assert_eq!(o.verdict, Verdict::Violated);
+    assert!(o.value > 0.3, "re-entry share {}", o.value);
+    assert_eq!(o.reproduced, Some(true), "{:?}", o.checks);
+}
+
+#[test]
 fn built_in_definitions_are_the_files_in_validations() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("validations");
     let files = sources_in(&dir).unwrap();

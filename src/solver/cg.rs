@@ -5,12 +5,22 @@
 //! `u = K^-1 p` (zero mean) and the gap `g = u - h - gbar`, where the rigid shift `gbar` is
 //! the mean of `u - h` over the contact set `Ic = {p > 0}`. Each iteration:
 //!
-//! 1. `G = sum_Ic g^2`; search direction `t = g + delta (G / G_old) t` on `Ic`, 0 elsewhere;
+//! 1. `G = sum_Ic g z` with the preconditioned gap `z` (below; `z = g` without
+//!    preconditioning); search direction `t = z + delta (G / G_old) t` on `Ic`, 0 elsewhere;
 //! 2. `r = K^-1 t` (one forward and one inverse FFT), `rbar = mean_Ic r`;
 //! 3. step `tau = sum_Ic g t / sum_Ic (r - rbar) t`; `p <- max(p - tau t, 0)` on `Ic`;
-//! 4. points out of contact that penetrate (`p = 0`, `g < 0`) enter with `p = -tau g`, and
+//! 4. points out of contact that penetrate (`p = 0`, `g < 0`) enter with `p = -tau k g`
+//!    (`k = 1`, or with preconditioning the Rayleigh quotient `g.z / g.g`, the stiffness
+//!    the preconditioner applied, so that the entering pressure has the units of `t`), and
 //!    conjugacy is reset (`delta = 0`) when there are any;
 //! 5. `p <- p p0 / mean(p)` restores the load.
+//!
+//! Preconditioning (on by default; Vollebregt, J. Comput. Phys. 257, 333 (2014)): the
+//! Hessian of the complementary energy is the compliance `K^-1`, whose condition number
+//! grows like `N`; the search direction is built from `z = K g` (the stiffness applied to
+//! the gap, restricted to the contact set and made mean-free) instead of `g`, and `beta`
+//! from `g.z`. One more FFT pair per iteration buys a 3-6x smaller iteration count
+//! (256^2: 104 -> 37; 1024^2: 488 -> 85, H = 0.8, p0 = 0.1).
 //!
 //! The displacement is updated incrementally, `u <- u - tau r`, which is exact as long as
 //! step 3 clips nothing and step 4 adds nothing; otherwise `u = K^-1 p` is recomputed. Late
@@ -35,6 +45,9 @@ use rayon::prelude::*;
 pub struct ConstrainedCg {
     /// Recompute `u = K^-1 p` from scratch at least this often (iterations).
     pub refresh_every: usize,
+    /// Precondition the gap with the stiffness `K` (one more FFT pair per iteration).
+    pub preconditioned: bool,
+    z: Vec<f64>,
     p: Vec<f64>,
     u: Vec<f64>,
     t: Vec<f64>,
@@ -46,6 +59,8 @@ impl Default for ConstrainedCg {
     fn default() -> Self {
         Self {
             refresh_every: 50,
+            preconditioned: true,
+            z: Vec::new(),
             p: Vec::new(),
             u: Vec::new(),
             t: Vec::new(),
@@ -56,6 +71,9 @@ impl Default for ConstrainedCg {
 }
 
 const NAME: &str = "cg";
+/// Iterations without halving the residual estimate after which a preconditioned solve
+/// continues unpreconditioned.
+const STAGNATION: usize = 200;
 
 impl ConstrainedCg {
     fn run(
@@ -76,6 +94,9 @@ impl ConstrainedCg {
         ensure_len(&mut self.u, n2);
         ensure_len(&mut self.t, n2);
         ensure_len(&mut self.r, n2);
+        if self.preconditioned {
+            ensure_len(&mut self.z, n2);
+        }
         ensure_len(&mut self.spec, model.grid.modes());
 
         let warm = matches!(start, Start::Warm(_));
@@ -110,6 +131,8 @@ impl ConstrainedCg {
         let mut exact = true; // u == K^-1 p up to one transform's rounding
         let mut since_refresh = 0usize;
         let mut internal_tol = opts.tol;
+        let mut precond = self.preconditioned;
+        let (mut best, mut best_at) = (f64::INFINITY, 0usize);
 
         for it in 0..opts.max_iter {
             let (p, u) = (&self.p, &self.u);
@@ -165,6 +188,16 @@ impl ConstrainedCg {
                 iteration: it,
                 residual: estimate,
             });
+            // Safeguard: if the preconditioned iteration stops improving, finish this solve
+            // with plain Polonsky-Keer, which always converges (slowly).
+            if estimate < 0.5 * best {
+                best = estimate;
+                best_at = it;
+            } else if precond && it - best_at > STAGNATION {
+                precond = false;
+                conjugate = false;
+                best_at = it;
+            }
             if estimate <= internal_tol {
                 if !exact {
                     apply_compliance(model, &self.p, &mut self.u, &mut self.spec);
@@ -179,10 +212,50 @@ impl ConstrainedCg {
                 internal_tol *= 0.25;
             }
 
-            // Pass 3: search direction.
-            let beta = if conjugate { big_g / g_old } else { 0.0 };
-            g_old = big_g;
-            {
+            // Pass 3: search direction. `stiffness` converts a gap into the pressure that
+            // closes it in the search direction's units: 1 without preconditioning, the
+            // Rayleigh quotient g.Kg / g.g on the contact set with it.
+            let stiffness;
+            if precond {
+                {
+                    let (p, u) = (&self.p, &self.u);
+                    self.z.par_iter_mut().enumerate().for_each(|(i, zi)| {
+                        *zi = if p[i] > 0.0 { u[i] - h[i] - gbar } else { 0.0 };
+                    });
+                }
+                model.fft.forward(&self.z, &mut self.spec);
+                for (s, k) in self.spec.iter_mut().zip(model.halfspace.stiffness()) {
+                    *s *= *k;
+                }
+                model.fft.inverse_in_place(&mut self.spec, &mut self.r);
+                let (p, u, r) = (&self.p, &self.u, &self.r);
+                let [sz, rho] = reduce_chunks(n2, |rg| {
+                    let (mut sz, mut rho) = (0.0, 0.0);
+                    for i in rg {
+                        if p[i] > 0.0 {
+                            sz += r[i];
+                            rho += (u[i] - h[i] - gbar) * r[i];
+                        }
+                    }
+                    [sz, rho]
+                });
+                // g has zero mean on C, so subtracting zbar from z leaves g.z unchanged.
+                let zbar = sz / n_c;
+                let beta = if conjugate { rho / g_old } else { 0.0 };
+                g_old = rho;
+                stiffness = if big_g > 0.0 { rho / big_g } else { 1.0 };
+                let (p, r) = (&self.p, &self.r);
+                self.t.par_iter_mut().enumerate().for_each(|(i, ti)| {
+                    *ti = if p[i] > 0.0 {
+                        r[i] - zbar + beta * *ti
+                    } else {
+                        0.0
+                    };
+                });
+            } else {
+                let beta = if conjugate { big_g / g_old } else { 0.0 };
+                g_old = big_g;
+                stiffness = 1.0;
                 let (p, u) = (&self.p, &self.u);
                 self.t
                     .par_chunks_mut(CHUNK)
@@ -252,7 +325,7 @@ impl ConstrainedCg {
                             } else {
                                 let g = uc[k] - h[i] - gbar;
                                 if g < 0.0 {
-                                    pc[k] = -tau * g;
+                                    pc[k] = -tau * stiffness * g;
                                     enter += 1.0;
                                 }
                             }
@@ -271,6 +344,7 @@ impl ConstrainedCg {
                 acc
             };
             let projected = clipped + entered > 0.0;
+
             // Conjugacy survives only when no point entered contact (Polonsky & Keer).
             conjugate = entered == 0.0;
             let scale = p0 * n2 as f64 / new_sum_p;

@@ -11,12 +11,15 @@ use super::{Outcome, RunOptions, Source};
 use crate::error::{Error, Result};
 
 /// Experiment names accepted in a definition's `experiment` key.
-pub const EXPERIMENTS: &[&str] = &["contact_area"];
+pub const EXPERIMENTS: &[&str] = &["contact_area", "diffusion", "drift", "reentry"];
 
 /// Runs `source` with the experiment named `experiment`.
 pub fn dispatch(experiment: &str, source: &Source, opts: &RunOptions) -> Result<Outcome> {
     match experiment {
         "contact_area" => run_experiment::<crate::area::ContactArea>(source, opts),
+        "diffusion" => run_experiment::<crate::transition::Diffusion>(source, opts),
+        "drift" => run_experiment::<crate::transition::Drift>(source, opts),
+        "reentry" => run_experiment::<crate::reentry::Reentry>(source, opts),
         other => Err(Error::bad_file(
             &source.path,
             format!("experiment = \"{other}\" is unknown; expected one of {EXPERIMENTS:?}"),
@@ -25,10 +28,21 @@ pub fn dispatch(experiment: &str, source: &Source, opts: &RunOptions) -> Result<
 }
 
 /// The definitions compiled into this build: `(name, TOML text)`.
-pub const DEFINITIONS: &[(&str, &str)] = &[(
-    "contact_area",
-    include_str!("../../validations/contact_area.toml"),
-)];
+pub const DEFINITIONS: &[(&str, &str)] = &[
+    (
+        "a_diffusion",
+        include_str!("../../validations/a_diffusion.toml"),
+    ),
+    ("b_drift", include_str!("../../validations/b_drift.toml")),
+    (
+        "c_reentry",
+        include_str!("../../validations/c_reentry.toml"),
+    ),
+    (
+        "contact_area",
+        include_str!("../../validations/contact_area.toml"),
+    ),
+];
 
 /// The compiled-in definitions as sources.
 pub fn builtin_sources() -> Vec<Source> {

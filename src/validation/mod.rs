@@ -14,7 +14,9 @@
 //! ([`VerdictRule::judge`]) and writes `<name>.json`, `<name>.csv` and the figures.
 //!
 //! Every finished job is written to disk at once (atomically), so an interrupted ensemble
-//! resumes where it stopped (`--resume`), and re-runs only what is missing.
+//! resumes where it stopped (`--resume`), and re-runs only what is missing. Job results are
+//! filed under the experiment's family and a hash of scene and job, so validations that
+//! draw different statistics from the same runs (assumptions (a) and (b)) run them once.
 
 pub mod builtin;
 mod runner;
@@ -281,6 +283,10 @@ pub struct JobContext {
 
 /// The code behind a family of validations.
 pub trait Experiment {
+    /// Name of the job family: experiments that share a family share job results (two
+    /// validations that differ only in the statistic they draw from the same runs).
+    const FAMILY: &'static str;
+
     /// The scene (the `reduced` and `full` tables of a definition).
     type Scene: Serialize + DeserializeOwned + Sync + fmt::Debug;
     /// One independent unit of work (usually one realization).

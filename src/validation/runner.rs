@@ -1,7 +1,9 @@
 //! Runs validations: jobs in parallel, each job's result on disk as soon as it finishes,
 //! then the conclusion, the verdict and the output files.
 
+use std::collections::HashSet;
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
 use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
@@ -40,6 +42,26 @@ pub fn run_all(sources: &[Source], opts: &RunOptions) -> Vec<(PathBuf, Result<Ou
         .collect()
 }
 
+/// Job files written by this process: reused without `--resume`, since they hold this
+/// run's own results.
+static WRITTEN: Mutex<Option<HashSet<PathBuf>>> = Mutex::new(None);
+
+fn written_here(path: &Path) -> bool {
+    WRITTEN
+        .lock()
+        .expect("no panics while holding the lock")
+        .as_ref()
+        .is_some_and(|set| set.contains(path))
+}
+
+fn mark_written(path: PathBuf) {
+    WRITTEN
+        .lock()
+        .expect("no panics while holding the lock")
+        .get_or_insert_with(HashSet::new)
+        .insert(path);
+}
+
 /// A job's result as stored on disk.
 #[derive(Serialize, Deserialize)]
 struct Stored<J, R> {
@@ -66,8 +88,12 @@ pub(crate) fn run_experiment<E: Experiment>(source: &Source, opts: &RunOptions) 
     }
     let scene_json = serde_json::to_value(scene).expect("scenes serialise");
     let dir = opts.out.join(&def.name);
-    let state = dir.join("state").join(opts.scale.to_string());
-    let jobs_dir = state.join("jobs");
+    let state = opts
+        .out
+        .join("jobs")
+        .join(E::FAMILY)
+        .join(opts.scale.to_string());
+    let jobs_dir = state.clone();
     let ctx = JobContext {
         name: def.name.clone(),
         scale: opts.scale,
@@ -81,14 +107,14 @@ pub(crate) fn run_experiment<E: Experiment>(source: &Source, opts: &RunOptions) 
             let job_json = serde_json::to_string(job).expect("jobs serialise");
             let key = job_key(opts.scale, &scene_json, &job_json);
             let path = jobs_dir.join(format!("{key}.json"));
-            if opts.resume {
+            if opts.resume || written_here(&path) {
                 if let Some(result) = load::<E::Job, E::JobResult>(&path) {
                     bar.inc(1);
                     return Ok((job.clone(), result));
                 }
             }
             let mut job_ctx = ctx.clone();
-            job_ctx.state_dir = state.join("checkpoints").join(&key);
+            job_ctx.state_dir = state.join(format!("{key}.checkpoint"));
             let result = E::run_job(scene, job, &job_ctx).map_err(|e| {
                 Error::bad_file(
                     &source.path,
@@ -101,6 +127,7 @@ pub(crate) fn run_experiment<E: Experiment>(source: &Source, opts: &RunOptions) 
             };
             let bytes = serde_json::to_vec(&stored).expect("results serialise");
             crate::io::write_atomic(&path, &bytes)?;
+            mark_written(path);
             bar.inc(1);
             Ok((stored.job, stored.result))
         })
