@@ -381,18 +381,14 @@ impl AxisCoord {
         v.clamp(self.lo, self.hi)
     }
 
-    /// Tick positions on a logarithmic axis: powers of ten, filled in with 2 and 5 (or
-    /// every integer multiple) when few decades are shown; nice linear ticks when the range
-    /// spans less than a decade and holds fewer than two such values.
+    /// Tick positions on a logarithmic axis: powers of ten (every k-th decade when there are
+    /// many), filled in with 2 and 5 or with every integer multiple when that gives fewer
+    /// than four ticks; nice linear ticks when even those give fewer than three.
     fn log_ticks(&self, max_points: usize, light: bool) -> Vec<f64> {
         let (lo, hi) = (self.lo, self.hi);
         let (e0, e1) = (lo.log10().floor() as i32, hi.log10().ceil() as i32);
         let decades = (e1 - e0).max(1) as usize;
-        let sets: &[&[f64]] = if light {
-            &[&[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0], &[1.0]]
-        } else {
-            &[&[1.0, 2.0, 5.0], &[1.0]]
-        };
+        let sets: &[&[f64]] = &[&[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0], &[1.0]];
         let within = |mantissas: &[f64], step: i32| -> Vec<f64> {
             let mut out = Vec::new();
             let mut e = e0;
@@ -407,19 +403,34 @@ impl AxisCoord {
             }
             out
         };
-        for set in sets {
-            let ticks = within(set, 1);
-            if ticks.len() <= max_points.max(2) && ticks.len() >= 2 {
-                return ticks;
-            }
-        }
+        let max = max_points.max(2);
         let powers = within(&[1.0], 1);
-        if powers.len() > max_points.max(2) {
-            let step = decades.div_ceil(max_points.max(2)) as i32;
+        if powers.len() > max {
+            let step = decades.div_ceil(max) as i32;
             return within(&[1.0], step.max(1));
         }
-        if powers.len() >= 2 || light {
-            return powers;
+        if light {
+            return sets
+                .iter()
+                .map(|set| within(set, 1))
+                .find(|t| t.len() <= max)
+                .unwrap_or(powers);
+        }
+        // The sparsest set with at least four ticks, else the densest with three.
+        let candidates: Vec<Vec<f64>> = [
+            &[1.0][..],
+            &[1.0, 2.0, 5.0],
+            &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0],
+        ]
+        .iter()
+        .map(|set| within(set, 1))
+        .filter(|t| t.len() <= max)
+        .collect();
+        if let Some(t) = candidates.iter().find(|t| t.len() >= 4) {
+            return t.clone();
+        }
+        if let Some(t) = candidates.iter().rev().find(|t| t.len() >= 3) {
+            return t.clone();
         }
         // Less than a decade: plain nice ticks.
         RangedCoordf64::from(lo..hi).key_points(max_points)
@@ -1073,27 +1084,20 @@ mod tests {
         let fixed = AxisCoord::fit(&Axis::linear("x").with_range(0.0, 1.0), [5.0].into_iter());
         assert_eq!((fixed.lo, fixed.hi), (0.0, 1.0));
         // Log ticks: decades, filled in when few; nice ticks within one decade.
-        let ticks = AxisCoord {
-            lo: 1e-3,
-            hi: 1.0,
-            log: true,
-        }
-        .log_ticks(10, false);
-        assert_eq!(ticks.first(), Some(&1e-3));
-        assert!(ticks.contains(&0.02) && ticks.contains(&1.0), "{ticks:?}");
-        let wide = AxisCoord {
-            lo: 1e-12,
-            hi: 1.0,
-            log: true,
-        }
-        .log_ticks(5, false);
+        let ticks =
+            |lo: f64, hi: f64, max: usize| AxisCoord { lo, hi, log: true }.log_ticks(max, false);
+        assert_eq!(ticks(1e-3, 1.0, 10), vec![1e-3, 1e-2, 0.1, 1.0]);
+        let two = ticks(0.01, 1.0, 10);
+        assert!(
+            two.len() == 7 && two.contains(&0.02) && two.contains(&0.5),
+            "{two:?}"
+        );
+        let short = ticks(0.19, 0.52, 10);
+        assert_eq!(short.len(), 4, "{short:?}");
+        assert!((short[0] - 0.2).abs() < 1e-12 && (short[3] - 0.5).abs() < 1e-12);
+        let wide = ticks(1e-12, 1.0, 5);
         assert!(wide.len() <= 5 && wide.len() >= 2, "{wide:?}");
-        let narrow = AxisCoord {
-            lo: 0.3,
-            hi: 0.8,
-            log: true,
-        }
-        .log_ticks(8, false);
+        let narrow = ticks(0.3, 0.45, 8);
         assert!(
             narrow.len() >= 2 && narrow.iter().all(|&t| (0.3..=0.8).contains(&t)),
             "{narrow:?}"
