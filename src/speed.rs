@@ -608,7 +608,8 @@ impl SpeedStudy {
         Ok(bytes)
     }
 
-    /// The study's figures: error against time, and iterations against grid size.
+    /// The study's figures: energy error against time (the contact-area error, quantised in
+    /// steps of `1/N^2`, is in the table), and iterations against grid size.
     pub fn figures(&self) -> Vec<Figure> {
         let mut error_fig = Figure {
             name: "speed_error".into(),
@@ -624,30 +625,19 @@ impl SpeedStudy {
             ),
             x: Axis::log("wall time (s)"),
             y: Axis::log("relative energy error |E - E_ref| / E_ref"),
-            y2: Some(Axis::log("contact-area error |a_r - a_ref|")),
+            y2: None,
             series: Vec::new(),
         };
         for kind in SOLVERS {
-            let rows: Vec<&ToleranceRow> =
-                self.tolerance.iter().filter(|r| r.solver == kind).collect();
-            let pts = |sel: fn(&ToleranceRow) -> Option<f64>| -> Vec<(f64, f64)> {
-                rows.iter()
-                    .filter_map(|r| Some((r.wall_s?, sel(r)?)))
-                    .collect()
-            };
-            error_fig.series.push(Series::xy(
-                format!("{}: energy error", kind.name()),
-                Style::LinePoints,
-                pts(|r| r.energy_error),
-            ));
-            error_fig.series.push(
-                Series::xy(
-                    format!("{}: area error", kind.name()),
-                    Style::Dashed,
-                    pts(|r| r.area_error),
-                )
-                .on_right(),
-            );
+            let pts: Vec<(f64, f64)> = self
+                .tolerance
+                .iter()
+                .filter(|r| r.solver == kind)
+                .filter_map(|r| Some((r.wall_s?, r.energy_error?)))
+                .collect();
+            error_fig
+                .series
+                .push(Series::xy(kind.name().to_string(), Style::LinePoints, pts));
         }
         let mut size_fig = Figure {
             name: "speed_iterations".into(),
