@@ -42,6 +42,7 @@ pub mod npy;
 pub mod plot;
 pub mod provenance;
 pub mod reference;
+pub mod report;
 pub mod scene;
 pub mod solver;
 pub mod spectrum;
