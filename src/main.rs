@@ -5,6 +5,8 @@
 //!                        [--zeta Z] --out FILE.npy
 //! persson-check solve    (--heights FILE.npy | --scene FILE.toml) (--p0 P | --contact-area A)
 //!                        [--zeta Z] [--solver gfmd|cg] [--tol T] --out DIR
+//! persson-check validate [NAME ...] [--full] --out DIR
+//! persson-check report   [--from DIR] --out FILE.md [--golden DIR] [--no-speed] [--speed-n N]
 //! ```
 //!
 //! Exit code 0 on success; otherwise a message on stderr and a non-zero code, and no
@@ -35,6 +37,8 @@ enum Command {
     Solve(commands::solve::Args),
     /// Run named validations (all by default) and write their outcomes.
     Validate(commands::validate::Args),
+    /// Write the scorecard of the outcomes in a folder, with the speed-against-error study.
+    Report(commands::report::Args),
 }
 
 fn main() -> ExitCode {
@@ -52,6 +56,7 @@ fn main() -> ExitCode {
         Command::Surface(args) => commands::surface::run(args),
         Command::Solve(args) => commands::solve::run(args),
         Command::Validate(args) => commands::validate::run(args),
+        Command::Report(args) => commands::report::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

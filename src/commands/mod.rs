@@ -1,6 +1,7 @@
 //! One module per subcommand; each parses nothing itself (clap does) and writes its
 //! outputs only once everything has been computed.
 
+pub mod report;
 pub mod solve;
 pub mod surface;
 pub mod validate;

@@ -1,0 +1,204 @@
+//! Markdown and number formatting for the scorecard.
+
+use std::path::{Component, Path, PathBuf};
+
+/// Escapes text for Markdown (table cells and paragraphs): characters that start emphasis,
+/// strike-through, code, links or HTML, and the table's `|`. Newlines become spaces.
+pub fn md(text: &str) -> String {
+    let mut out = String::with_capacity(text.len() + 8);
+    for c in text.chars() {
+        match c {
+            '\\' | '`' | '*' | '_' | '~' | '|' | '<' | '>' | '[' | ']' => {
+                out.push('\\');
+                out.push(c);
+            }
+            '\n' | '\r' => out.push(' '),
+            _ => out.push(c),
+        }
+    }
+    out
+}
+
+/// A Markdown table from a header and rows (cells already escaped).
+pub fn table(header: &[&str], rows: &[Vec<String>]) -> String {
+    let mut s = format!("| {} |\n", header.join(" | "));
+    s.push_str(&format!("|{}\n", "---|".repeat(header.len())));
+    for row in rows {
+        s.push_str(&format!("| {} |\n", row.join(" | ")));
+    }
+    s
+}
+
+/// A number to four significant digits (exponent form below 1e-3 and from 1e5), "n/a"
+/// for NaN.
+pub fn num(x: f64) -> String {
+    sig(x, 4)
+}
+
+/// A number to `digits` significant digits.
+pub fn sig(x: f64, digits: usize) -> String {
+    if x.is_nan() {
+        return "n/a".into();
+    }
+    if x.is_infinite() {
+        return if x > 0.0 { "inf".into() } else { "-inf".into() };
+    }
+    if x == 0.0 {
+        return "0".into();
+    }
+    let digits = digits.max(1);
+    let a = x.abs();
+    if !(1e-3..1e5).contains(&a) {
+        let s = format!("{x:.*e}", digits - 1);
+        let (mantissa, exp) = s.split_once('e').unwrap_or((&s, "0"));
+        return format!("{}e{exp}", trim_zeros(mantissa));
+    }
+    let decimals = (digits as i32 - 1 - a.log10().floor() as i32).max(0) as usize;
+    trim_zeros(&format!("{x:.decimals$}"))
+}
+
+fn trim_zeros(s: &str) -> String {
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s.to_string()
+    }
+}
+
+/// `value ± error`, the error to two significant digits and the value to the same decimal
+/// place; the value alone, marked, when there is no error estimate.
+pub fn pm(value: f64, error: f64) -> String {
+    if !value.is_finite() {
+        return num(value);
+    }
+    if !error.is_finite() {
+        return format!("{} (no error estimate)", num(value));
+    }
+    if error == 0.0 {
+        return format!("{} ± 0", num(value));
+    }
+    let e_exp = error.abs().log10().floor() as i32;
+    let decimals = 1 - e_exp;
+    if !(0..=6).contains(&decimals) || value.abs() >= 1e5 {
+        return format!("{} ± {}", sig(value, 4), sig(error, 2));
+    }
+    let d = decimals as usize;
+    format!("{value:.d$} ± {error:.d$}")
+}
+
+/// A duration in seconds: `0.42 s`, `22.5 s`, `3 min 05 s`, `2 h 03 min`.
+pub fn duration(s: f64) -> String {
+    if !s.is_finite() || s < 0.0 {
+        return "n/a".into();
+    }
+    if s < 60.0 {
+        return format!("{} s", sig(s, 3));
+    }
+    let total = s.round() as u64;
+    if total < 3600 {
+        format!("{} min {:02} s", total / 60, total % 60)
+    } else {
+        format!("{} h {:02} min", total / 3600, total % 3600 / 60)
+    }
+}
+
+/// A list of integers as ranges: `[1, 2, 3, 4, 7]` -> `1-4, 7`.
+pub fn ranges(values: &[i64]) -> String {
+    let mut v = values.to_vec();
+    v.sort_unstable();
+    v.dedup();
+    let mut parts = Vec::new();
+    let mut k = 0;
+    while k < v.len() {
+        let start = v[k];
+        while k + 1 < v.len() && v[k + 1] == v[k] + 1 {
+            k += 1;
+        }
+        parts.push(if v[k] == start {
+            start.to_string()
+        } else {
+            format!("{start}-{}", v[k])
+        });
+        k += 1;
+    }
+    parts.join(", ")
+}
+
+/// `path` lexically resolved against the current directory (`.` and `..` removed).
+pub fn absolute(path: &Path) -> PathBuf {
+    let abs = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
+    let mut out = PathBuf::new();
+    for c in abs.components() {
+        match c {
+            Component::CurDir => {}
+            Component::ParentDir => {
+                out.pop();
+            }
+            other => out.push(other),
+        }
+    }
+    out
+}
+
+/// A Markdown link target for `target`, relative to the folder `base`, with `/`
+/// separators and spaces and parentheses percent-encoded.
+pub fn link(base: &Path, target: &Path) -> String {
+    let (base, target) = (absolute(base), absolute(target));
+    let b: Vec<Component> = base.components().collect();
+    let t: Vec<Component> = target.components().collect();
+    let common = b.iter().zip(&t).take_while(|(x, y)| x == y).count();
+    let mut parts: Vec<String> = vec!["..".to_string(); b.len() - common];
+    parts.extend(
+        t[common..]
+            .iter()
+            .map(|c| c.as_os_str().to_string_lossy().to_string()),
+    );
+    let joined = if parts.is_empty() {
+        ".".to_string()
+    } else {
+        parts.join("/")
+    };
+    joined
+        .replace('%', "%25")
+        .replace(' ', "%20")
+        .replace('(', "%28")
+        .replace(')', "%29")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_are_short_and_honest() {
+        assert_eq!(num(2.2211127811008033), "2.221");
+        assert_eq!(num(9.980083908407236e-9), "9.98e-9");
+        assert_eq!(num(f64::NAN), "n/a");
+        assert_eq!(num(1234567.0), "1.235e6");
+        assert_eq!(pm(2.2211127811008033, 0.04666613918698152), "2.221 ± 0.047");
+        assert_eq!(pm(0.5, f64::NAN), "0.5 (no error estimate)");
+        assert_eq!(pm(12.0, 3.4), "12.0 ± 3.4");
+        assert_eq!(pm(1.0e-6, 2.0e-8), "1e-6 ± 2e-8");
+        assert_eq!(duration(22.49), "22.5 s");
+        assert_eq!(duration(185.0), "3 min 05 s");
+        assert_eq!(duration(7390.0), "2 h 03 min");
+        assert_eq!(ranges(&[4, 1, 2, 3, 7, 9, 10]), "1-4, 7, 9-10");
+    }
+
+    #[test]
+    fn markdown_is_escaped() {
+        assert_eq!(md("a_r | p~0 *E*"), "a\\_r \\| p\\~0 \\*E\\*");
+        assert_eq!(md("two\nlines"), "two lines");
+    }
+
+    #[test]
+    fn links_are_relative_to_the_scorecard() {
+        let base = Path::new("/w/out");
+        assert_eq!(link(base, Path::new("/w/out/a/b.png")), "a/b.png");
+        assert_eq!(
+            link(Path::new("/w/report"), Path::new("/w/out/a b.png")),
+            "../out/a%20b.png"
+        );
+        assert_eq!(link(base, Path::new("/w/out/./x/../c.csv")), "c.csv");
+    }
+}
