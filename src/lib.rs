@@ -30,6 +30,7 @@
 //! * [`sweep`]: magnification sweeps with warm starts;
 //! * [`validation`], [`area`]: named validations with verdicts, and the experiments
 //!   behind them;
+//! * [`modes`]: the single-mode elastic energy, Persson's assumptions (d) and (e);
 //! * [`stats`], [`plot`]: estimates with error bars, and figures;
 //! * [`crate::reference`]: closed-form solutions the solvers are tested against;
 //! * [`npy`], [`scene`], [`io`]: `.npy` fields, scene files, atomic writes.
@@ -43,6 +44,7 @@ pub mod field;
 pub mod grid;
 pub mod io;
 pub mod load;
+pub mod modes;
 pub mod npy;
 pub mod persson;
 pub mod plot;

@@ -52,6 +52,29 @@ fn contact_area_law() {
 }
 
 #[test]
+fn mode_onset_populates_modes_before_resolution() {
+    let o = run_reduced("d_onset");
+    // Persson's zero below resolution is violated: bands hold a sizeable share of their
+    // resolved energy before any of their modes is resolved.
+    assert_eq!(o.verdict, Verdict::Violated);
+    assert!(
+        o.value > 0.1 && o.value < 0.5,
+        "E_norm below resolution {}",
+        o.value
+    );
+    assert_eq!(o.reproduced, Some(true), "{:?}", o.checks);
+}
+
+#[test]
+fn mode_frozen_long_wavelengths_recede_at_low_load() {
+    let o = run_reduced("e_frozen");
+    // A resolved long-wavelength band loses energy as finer roughness is added.
+    assert_eq!(o.verdict, Verdict::Violated);
+    assert!(o.value < -0.05, "change after resolution {}", o.value);
+    assert_eq!(o.reproduced, Some(true), "{:?}", o.checks);
+}
+
+#[test]
 fn built_in_definitions_are_the_files_in_validations() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("validations");
     let files = sources_in(&dir).unwrap();

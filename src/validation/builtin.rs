@@ -11,12 +11,14 @@ use super::{Outcome, RunOptions, Source};
 use crate::error::{Error, Result};
 
 /// Experiment names accepted in a definition's `experiment` key.
-pub const EXPERIMENTS: &[&str] = &["contact_area"];
+pub const EXPERIMENTS: &[&str] = &["contact_area", "mode_onset", "mode_frozen"];
 
 /// Runs `source` with the experiment named `experiment`.
 pub fn dispatch(experiment: &str, source: &Source, opts: &RunOptions) -> Result<Outcome> {
     match experiment {
         "contact_area" => run_experiment::<crate::area::ContactArea>(source, opts),
+        "mode_onset" => run_experiment::<crate::modes::ModeOnset>(source, opts),
+        "mode_frozen" => run_experiment::<crate::modes::ModeFrozen>(source, opts),
         other => Err(Error::bad_file(
             &source.path,
             format!("experiment = \"{other}\" is unknown; expected one of {EXPERIMENTS:?}"),
@@ -25,10 +27,14 @@ pub fn dispatch(experiment: &str, source: &Source, opts: &RunOptions) -> Result<
 }
 
 /// The definitions compiled into this build: `(name, TOML text)`.
-pub const DEFINITIONS: &[(&str, &str)] = &[(
-    "contact_area",
-    include_str!("../../validations/contact_area.toml"),
-)];
+pub const DEFINITIONS: &[(&str, &str)] = &[
+    (
+        "contact_area",
+        include_str!("../../validations/contact_area.toml"),
+    ),
+    ("d_onset", include_str!("../../validations/d_onset.toml")),
+    ("e_frozen", include_str!("../../validations/e_frozen.toml")),
+];
 
 /// The compiled-in definitions as sources.
 pub fn builtin_sources() -> Vec<Source> {
