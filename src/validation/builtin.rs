@@ -11,7 +11,7 @@ use super::{Outcome, RunOptions, Source};
 use crate::error::{Error, Result};
 
 /// Experiment names accepted in a definition's `experiment` key.
-pub const EXPERIMENTS: &[&str] = &["contact_area", "mode_onset", "mode_frozen"];
+pub const EXPERIMENTS: &[&str] = &["contact_area", "mode_onset", "mode_frozen", "total_energy"];
 
 /// Runs `source` with the experiment named `experiment`.
 pub fn dispatch(experiment: &str, source: &Source, opts: &RunOptions) -> Result<Outcome> {
@@ -19,6 +19,7 @@ pub fn dispatch(experiment: &str, source: &Source, opts: &RunOptions) -> Result<
         "contact_area" => run_experiment::<crate::area::ContactArea>(source, opts),
         "mode_onset" => run_experiment::<crate::modes::ModeOnset>(source, opts),
         "mode_frozen" => run_experiment::<crate::modes::ModeFrozen>(source, opts),
+        "total_energy" => run_experiment::<crate::energy::TotalEnergy>(source, opts),
         other => Err(Error::bad_file(
             &source.path,
             format!("experiment = \"{other}\" is unknown; expected one of {EXPERIMENTS:?}"),
@@ -34,6 +35,10 @@ pub const DEFINITIONS: &[(&str, &str)] = &[
     ),
     ("d_onset", include_str!("../../validations/d_onset.toml")),
     ("e_frozen", include_str!("../../validations/e_frozen.toml")),
+    (
+        "total_energy",
+        include_str!("../../validations/total_energy.toml"),
+    ),
 ];
 
 /// The compiled-in definitions as sources.
