@@ -744,6 +744,59 @@ mod tests {
     }
 
     #[test]
+    fn ratios_and_increments_of_known_energies() {
+        // E_P = zeta, E_c = 0.8 zeta, E_exa = 0.72 zeta: E_exa / E_c = 0.9, E_exa / E_P =
+        // 0.72, and every increment S~ = 0.72.
+        let def: Definition<EnergyScene> = crate::validation::builtin::builtin_sources()
+            .into_iter()
+            .find(|s| s.header().unwrap().0 == "total_energy")
+            .unwrap()
+            .parse()
+            .unwrap();
+        let scene = &def.reduced;
+        let zetas = ladder(scene.zeta_start, scene.zeta_max(), 2, &[]);
+        let n = zetas.len();
+        let results: Vec<(EnergyJob, EnergyResult)> = scene
+            .contact_areas
+            .iter()
+            .flat_map(|&a| scene.seeds.iter().map(move |&seed| (seed, a)))
+            .map(|(seed, a)| {
+                let wobble = 1.0 + 0.01 * seed as f64;
+                (
+                    EnergyJob {
+                        seed,
+                        contact_area: a,
+                    },
+                    EnergyResult {
+                        p0: 0.1,
+                        zetas: zetas.clone(),
+                        contact_area: vec![a; n],
+                        e_exa: zetas.iter().map(|z| 0.72 * z * wobble).collect(),
+                        e_p: zetas.iter().map(|z| z * wobble).collect(),
+                        e_c: zetas.iter().map(|z| 0.8 * z * wobble).collect(),
+                        area_original: vec![a; n],
+                        area_corrected: vec![a; n],
+                        windows: vec![vec![1, 2, 3]; scene.increments_at.len()],
+                        max_residual: 1e-9,
+                    },
+                )
+            })
+            .collect();
+        let c = TotalEnergy::conclude(&def, scene, &results).unwrap();
+        let m = c.measured.unwrap();
+        assert!(
+            (m.value - 0.9).abs() < 1e-12 && m.std_error < 1e-12,
+            "{m:?}"
+        );
+        for d in c.details.iter().filter(|d| d.name.starts_with("S~")) {
+            assert!((d.value.value - 0.72).abs() < 1e-12, "{d:?}");
+        }
+        // The correction brings the energy closer (0.9 against 0.72).
+        assert!(c.checks[0].passed);
+        assert_eq!(c.figures.len(), 3);
+    }
+
+    #[test]
     fn increment_windows_are_consecutive_shells() {
         let surface = Surface::generate(&SurfaceParams::new(64, 0.8, 32.0, 4.0, 1)).unwrap();
         let scene = EnergyScene {

@@ -1110,6 +1110,109 @@ mod tests {
         }
     }
 
+    /// A built-in definition of the single-mode experiments.
+    fn definition(name: &str) -> Definition<ModeScene> {
+        crate::validation::builtin::builtin_sources()
+            .into_iter()
+            .find(|s| s.header().unwrap().0 == name)
+            .unwrap()
+            .parse()
+            .unwrap()
+    }
+
+    /// Synthetic sweeps with known answers: at load `l` the contact area falls as
+    /// `a_r = a_l (zeta / zeta_end)^(-x_l)`, every band holds `onset` below resolution and
+    /// `K1 exp(-K2 x_l) + b / zeta` in the frozen window.
+    fn synthetic(
+        scene: &ModeScene,
+        k: (f64, f64),
+        b: f64,
+        onset: f64,
+    ) -> Vec<(ModeJob, ModeResult)> {
+        let zetas = scene.steps();
+        let mut out = Vec::new();
+        for (l, &a_l) in scene.contact_areas.iter().enumerate() {
+            let x = 0.1 * (l + 1) as f64;
+            let area: Vec<f64> = zetas
+                .iter()
+                .map(|z| a_l * (z / scene.zeta_end).powf(-x))
+                .collect();
+            for &seed in &scene.seeds {
+                let band_energy = scene
+                    .targets
+                    .iter()
+                    .map(|&zt| {
+                        let a_t = area[step_of(&zetas, zt)];
+                        zetas
+                            .iter()
+                            .map(|&z| {
+                                let e = if z < zt {
+                                    onset
+                                } else {
+                                    k.0 * (-k.1 * x).exp() + b / z
+                                };
+                                // E_norm = energy / (a_r(zeta_t) nominal), nominal = 2.
+                                e * a_t * 2.0
+                            })
+                            .collect()
+                    })
+                    .collect();
+                out.push((
+                    ModeJob {
+                        seed,
+                        contact_area: a_l,
+                    },
+                    ModeResult {
+                        p0: 0.1,
+                        zetas: zetas.clone(),
+                        contact_area: area.clone(),
+                        band_energy,
+                        band_nominal: vec![2.0; scene.targets.len()],
+                        max_residual: 1e-9,
+                    },
+                ));
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn frozen_statistics_recover_a_known_asymptote_law() {
+        let def = definition("e_frozen");
+        let scene = &def.reduced;
+        let (k, b) = ((0.9, 1.0), 0.8);
+        let results = synthetic(scene, k, b, 0.0);
+        let c = ModeFrozen::conclude(&def, scene, &results).unwrap();
+        // Headline: first target, lowest load, from frozen_from zeta_t to zeta_end.
+        let zt = scene.targets[0];
+        let expect = b / scene.zeta_end - b / (scene.frozen_from * zt);
+        let m = c.measured.unwrap();
+        assert!((m.value - expect).abs() < 1e-12, "{m:?} vs {expect}");
+        let k1 = c.details.iter().find(|d| d.name.starts_with("K1")).unwrap();
+        let k2 = c.details.iter().find(|d| d.name.starts_with("K2")).unwrap();
+        assert!((k1.value.value - k.0).abs() < 1e-9, "{k1:?}");
+        assert!((k2.value.value - k.1).abs() < 1e-9, "{k2:?}");
+        // The figure of each load carries the contact area on the right axis.
+        let fig = &c.figures[0];
+        assert!(fig.y2.is_some());
+        assert!(fig
+            .series
+            .iter()
+            .any(|s| s.side == crate::plot::Side::Right));
+    }
+
+    #[test]
+    fn onset_statistic_is_the_band_energy_below_resolution() {
+        let def = definition("d_onset");
+        let scene = &def.reduced;
+        let results = synthetic(scene, (0.9, 1.0), 0.0, 0.25);
+        let c = ModeOnset::conclude(&def, scene, &results).unwrap();
+        let m = c.measured.unwrap();
+        assert!((m.value - 0.25).abs() < 1e-12, "{m:?}");
+        // Equal onset at every load: it does not grow as contact becomes partial.
+        assert!(!c.checks[1].passed, "{:?}", c.checks[1]);
+    }
+
     #[test]
     fn band_energy_is_the_full_contact_energy_of_its_shells() {
         let surface = Surface::generate(&SurfaceParams::new(64, 0.5, 32.0, 4.0, 5)).unwrap();
