@@ -797,6 +797,26 @@ mod tests {
     }
 
     #[test]
+    fn shipped_scenes_are_valid_and_ranges_are_named() {
+        let def: Definition<EnergyScene> = crate::validation::builtin::builtin_sources()
+            .into_iter()
+            .find(|s| s.header().unwrap().0 == "total_energy")
+            .unwrap()
+            .parse()
+            .unwrap();
+        TotalEnergy::validate(&def.reduced).unwrap();
+        TotalEnergy::validate(&def.full).unwrap();
+        let mut scene = def.reduced.clone();
+        scene.headline_contact_area = 0.25;
+        let e = TotalEnergy::validate(&scene).unwrap_err().to_string();
+        assert!(e.contains("headline_contact_area"), "{e}");
+        scene = def.reduced.clone();
+        scene.increments_at = vec![100.0];
+        let e = TotalEnergy::validate(&scene).unwrap_err().to_string();
+        assert!(e.contains("increments_at"), "{e}");
+    }
+
+    #[test]
     fn increment_windows_are_consecutive_shells() {
         let surface = Surface::generate(&SurfaceParams::new(64, 0.8, 32.0, 4.0, 1)).unwrap();
         let scene = EnergyScene {

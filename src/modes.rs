@@ -1177,6 +1177,27 @@ mod tests {
     }
 
     #[test]
+    fn shipped_scenes_are_valid_at_both_scales() {
+        for (name, frozen) in [("d_onset", false), ("e_frozen", true)] {
+            let def = definition(name);
+            for scene in [&def.reduced, &def.full] {
+                if frozen {
+                    ModeFrozen::validate(scene).unwrap();
+                } else {
+                    ModeOnset::validate(scene).unwrap();
+                }
+            }
+        }
+        let mut scene = definition("e_frozen").reduced;
+        scene.frozen_from = 1.05;
+        let e = ModeFrozen::validate(&scene).unwrap_err().to_string();
+        assert!(e.contains("frozen_from"), "{e}");
+        scene.frozen_from = 5.0;
+        let e = ModeFrozen::validate(&scene).unwrap_err().to_string();
+        assert!(e.contains("targets") && e.contains("zeta_end"), "{e}");
+    }
+
+    #[test]
     fn frozen_statistics_recover_a_known_asymptote_law() {
         let def = definition("e_frozen");
         let scene = &def.reduced;
