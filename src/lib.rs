@@ -30,6 +30,8 @@
 //! * [`sweep`]: magnification sweeps with warm starts;
 //! * [`validation`], [`area`]: named validations with verdicts, and the experiments
 //!   behind them;
+//! * [`modes`]: the single-mode elastic energy, Persson's assumptions (d) and (e);
+//! * [`energy`]: the total elastic energy and the incremental correction factor;
 //! * [`stats`], [`plot`]: estimates with error bars, and figures;
 //! * [`crate::reference`]: closed-form solutions the solvers are tested against;
 //! * [`npy`], [`scene`], [`io`]: `.npy` fields, scene files, atomic writes.
@@ -38,12 +40,14 @@ pub mod area;
 pub mod checkpoint;
 pub mod contact;
 pub mod elastic;
+pub mod energy;
 pub mod error;
 pub mod fft;
 pub mod field;
 pub mod grid;
 pub mod io;
 pub mod load;
+pub mod modes;
 pub mod npy;
 pub mod persson;
 pub mod plot;

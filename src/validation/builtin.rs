@@ -11,7 +11,15 @@ use super::{Outcome, RunOptions, Source};
 use crate::error::{Error, Result};
 
 /// Experiment names accepted in a definition's `experiment` key.
-pub const EXPERIMENTS: &[&str] = &["contact_area", "diffusion", "drift", "reentry"];
+pub const EXPERIMENTS: &[&str] = &[
+    "contact_area",
+    "diffusion",
+    "drift",
+    "mode_frozen",
+    "mode_onset",
+    "reentry",
+    "total_energy",
+];
 
 /// Runs `source` with the experiment named `experiment`.
 pub fn dispatch(experiment: &str, source: &Source, opts: &RunOptions) -> Result<Outcome> {
@@ -20,6 +28,9 @@ pub fn dispatch(experiment: &str, source: &Source, opts: &RunOptions) -> Result<
         "diffusion" => run_experiment::<crate::transition::Diffusion>(source, opts),
         "drift" => run_experiment::<crate::transition::Drift>(source, opts),
         "reentry" => run_experiment::<crate::reentry::Reentry>(source, opts),
+        "mode_onset" => run_experiment::<crate::modes::ModeOnset>(source, opts),
+        "mode_frozen" => run_experiment::<crate::modes::ModeFrozen>(source, opts),
+        "total_energy" => run_experiment::<crate::energy::TotalEnergy>(source, opts),
         other => Err(Error::bad_file(
             &source.path,
             format!("experiment = \"{other}\" is unknown; expected one of {EXPERIMENTS:?}"),
@@ -41,6 +52,12 @@ pub const DEFINITIONS: &[(&str, &str)] = &[
     (
         "contact_area",
         include_str!("../../validations/contact_area.toml"),
+    ),
+    ("d_onset", include_str!("../../validations/d_onset.toml")),
+    ("e_frozen", include_str!("../../validations/e_frozen.toml")),
+    (
+        "total_energy",
+        include_str!("../../validations/total_energy.toml"),
     ),
 ];
 
