@@ -11,6 +11,7 @@
 //! pool; the result does not depend on the number of threads (every 1D transform is the
 //! same computation whichever thread runs it).
 
+use std::cell::RefCell;
 use std::sync::Arc;
 
 use rayon::prelude::*;
@@ -38,6 +39,27 @@ impl std::fmt::Debug for Fft2 {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Fft2").field("n", &self.n).finish()
     }
+}
+
+/// Per-thread work space, kept between calls: allocating and zeroing scratch for every
+/// task of every transform cost more than a tenth of a solve.
+#[derive(Default)]
+struct Scratch {
+    real: Vec<f64>,
+    complex: Vec<Complex64>,
+    block: Vec<Complex64>,
+}
+
+thread_local! {
+    static SCRATCH: RefCell<Scratch> = RefCell::new(Scratch::default());
+}
+
+/// Grows `v` to at least `len` elements (contents unspecified) and returns that prefix.
+fn at_least<T: Clone + Default>(v: &mut Vec<T>, len: usize) -> &mut [T] {
+    if v.len() < len {
+        v.resize(len, T::default());
+    }
+    &mut v[..len]
 }
 
 /// A raw pointer that may be shared between rayon tasks that touch disjoint elements.
@@ -93,17 +115,20 @@ impl Fft2 {
         let rows = rows_per_task(n);
         spec.par_chunks_mut(m * rows)
             .zip(field.par_chunks(n * rows))
-            .for_each_init(
-                || (vec![0.0; n], self.r2c.make_scratch_vec()),
-                |(row, scratch), (out, input)| {
+            .for_each(|(out, input)| {
+                SCRATCH.with(|cell| {
+                    let mut guard = cell.borrow_mut();
+                    let Scratch { real, complex, .. } = &mut *guard;
+                    let row = at_least(real, n);
+                    let scratch = at_least(complex, self.r2c.get_scratch_len());
                     for (o, i) in out.chunks_exact_mut(m).zip(input.chunks_exact(n)) {
                         row.copy_from_slice(i);
                         self.r2c
                             .process_with_scratch(row, o, scratch)
                             .expect("r2c lengths are planned");
                     }
-                },
-            );
+                })
+            });
         let scale = 1.0 / (n as f64 * n as f64);
         self.columns(spec, &self.col_fwd, scale);
     }
@@ -122,9 +147,10 @@ impl Fft2 {
         let even = n % 2 == 0;
         spec.par_chunks_mut(m * rows)
             .zip(field.par_chunks_mut(n * rows))
-            .for_each_init(
-                || self.c2r.make_scratch_vec(),
-                |scratch, (input, out)| {
+            .for_each(|(input, out)| {
+                SCRATCH.with(|cell| {
+                    let mut guard = cell.borrow_mut();
+                    let scratch = at_least(&mut guard.complex, self.c2r.get_scratch_len());
                     for (i, o) in input.chunks_exact_mut(m).zip(out.chunks_exact_mut(n)) {
                         i[0].im = 0.0;
                         if even {
@@ -134,8 +160,8 @@ impl Fft2 {
                             .process_with_scratch(i, o, scratch)
                             .expect("c2r lengths are planned and edge imaginary parts zeroed");
                     }
-                },
-            );
+                })
+            });
     }
 
     /// `field = F^-1[spec]`, keeping `spec`; `work` is resized and used as scratch.
@@ -145,22 +171,197 @@ impl Fft2 {
         self.inverse_in_place(work, field);
     }
 
+    /// A fused convolution `out = F^-1[kernel F[x]]`, with `x` generated row by row.
+    ///
+    /// `input(i, row, side)` writes row `i` of `x` into `row` (and may write the matching
+    /// row of `side`, a second field it keeps, e.g. a search direction) and returns a
+    /// value; `output(i, row, side)` sees row `i` of the result once it is in `out`, with the
+    /// same row of `side` (empty without one), and returns a value. Both lists of values come back in row order, so reductions over them do not
+    /// depend on the number of threads. `kernel` is real, on the half spectrum; `spec` is
+    /// work space. Each row is generated, and consumed, while it is in cache: the input
+    /// and output passes of a solver iteration cost no extra sweep over memory.
+    #[allow(clippy::too_many_arguments)]
+    pub fn convolve<A, B, I, O>(
+        &self,
+        kernel: &[f64],
+        spec: &mut [Complex64],
+        side: Option<&mut [f64]>,
+        input: I,
+        out: &mut [f64],
+        output: O,
+    ) -> (Vec<B>, Vec<A>)
+    where
+        A: Send,
+        B: Send,
+        I: Fn(usize, &mut [f64], &mut [f64]) -> B + Sync,
+        O: Fn(usize, &[f64], &[f64]) -> A + Sync,
+    {
+        let (n, m) = (self.n, self.m);
+        assert_eq!(kernel.len(), n * m, "kernel length");
+        assert_eq!(spec.len(), n * m, "spectrum length");
+        assert_eq!(out.len(), n * n, "output length");
+        let rows = rows_per_task(n);
+        let mut none: Vec<f64> = Vec::new();
+        let (side, side_rows) = match side {
+            Some(s) => {
+                assert_eq!(s.len(), n * n, "side length");
+                (s, n)
+            }
+            None => (&mut none[..], 0),
+        };
+        let side_chunk = (side_rows * rows).max(1);
+        let forward = |c: usize, spec_chunk: &mut [Complex64], side_chunk: &mut [f64]| {
+            SCRATCH.with(|cell| {
+                let mut guard = cell.borrow_mut();
+                let Scratch { real, complex, .. } = &mut *guard;
+                let row = at_least(real, n);
+                let scratch = at_least(complex, self.r2c.get_scratch_len());
+                let mut values = Vec::with_capacity(rows);
+                for (k, o) in spec_chunk.chunks_exact_mut(m).enumerate() {
+                    let i = c * rows + k;
+                    let side_row: &mut [f64] = if side_rows > 0 {
+                        &mut side_chunk[k * n..(k + 1) * n]
+                    } else {
+                        &mut []
+                    };
+                    values.push(input(i, row, side_row));
+                    self.r2c
+                        .process_with_scratch(row, o, scratch)
+                        .expect("r2c lengths are planned");
+                }
+                values
+            })
+        };
+        let generated: Vec<Vec<B>> = if side_rows > 0 {
+            spec.par_chunks_mut(m * rows)
+                .zip(side.par_chunks_mut(side_chunk))
+                .enumerate()
+                .map(|(c, (a, b))| forward(c, a, b))
+                .collect()
+        } else {
+            spec.par_chunks_mut(m * rows)
+                .enumerate()
+                .map(|(c, chunk)| forward(c, chunk, &mut []))
+                .collect()
+        };
+        self.columns_with(spec, kernel);
+        let even = n % 2 == 0;
+        let backward =
+            |c: usize, spec_chunk: &mut [Complex64], out_chunk: &mut [f64], side_chunk: &[f64]| {
+                SCRATCH.with(|cell| {
+                    let mut guard = cell.borrow_mut();
+                    let scratch = at_least(&mut guard.complex, self.c2r.get_scratch_len());
+                    let mut values = Vec::with_capacity(rows);
+                    for (k, (i_row, o)) in spec_chunk
+                        .chunks_exact_mut(m)
+                        .zip(out_chunk.chunks_exact_mut(n))
+                        .enumerate()
+                    {
+                        i_row[0].im = 0.0;
+                        if even {
+                            i_row[m - 1].im = 0.0;
+                        }
+                        self.c2r
+                            .process_with_scratch(i_row, o, scratch)
+                            .expect("c2r lengths are planned and edge imaginary parts zeroed");
+                        let side_row: &[f64] = if side_rows > 0 {
+                            &side_chunk[k * n..(k + 1) * n]
+                        } else {
+                            &[]
+                        };
+                        values.push(output(c * rows + k, o, side_row));
+                    }
+                    values
+                })
+            };
+        let consumed: Vec<Vec<A>> = if side_rows > 0 {
+            spec.par_chunks_mut(m * rows)
+                .zip(out.par_chunks_mut(n * rows))
+                .zip(side.par_chunks(side_chunk))
+                .enumerate()
+                .map(|(c, ((a, b), d))| backward(c, a, b, d))
+                .collect()
+        } else {
+            spec.par_chunks_mut(m * rows)
+                .zip(out.par_chunks_mut(n * rows))
+                .enumerate()
+                .map(|(c, (a, b))| backward(c, a, b, &[]))
+                .collect()
+        };
+        (
+            generated.into_iter().flatten().collect(),
+            consumed.into_iter().flatten().collect(),
+        )
+    }
+
+    /// Column pass of a convolution: forward transform, multiplication by `kernel / N^2`,
+    /// inverse transform, block by block.
+    fn columns_with(&self, spec: &mut [Complex64], kernel: &[f64]) {
+        let (n, m, block) = (self.n, self.m, self.block);
+        let blocks = m.div_ceil(block);
+        let base = SharedMut(spec.as_mut_ptr());
+        let norm = 1.0 / (n as f64 * n as f64);
+        (0..blocks).into_par_iter().for_each(|b| {
+            SCRATCH.with(|cell| {
+                let mut guard = cell.borrow_mut();
+                let Scratch {
+                    complex,
+                    block: buf,
+                    ..
+                } = &mut *guard;
+                let c0 = b * block;
+                let width = block.min(m - c0);
+                let buf = at_least(buf, width * n);
+                let len = self
+                    .col_fwd
+                    .get_inplace_scratch_len()
+                    .max(self.col_inv.get_inplace_scratch_len());
+                let scratch = at_least(complex, len);
+                // SAFETY: as in `columns`: block `b` owns its columns.
+                unsafe {
+                    for ky in 0..n {
+                        let row = base.get().add(ky * m + c0);
+                        for c in 0..width {
+                            *buf.get_unchecked_mut(c * n + ky) = *row.add(c);
+                        }
+                    }
+                }
+                self.col_fwd.process_with_scratch(buf, scratch);
+                for c in 0..width {
+                    for ky in 0..n {
+                        buf[c * n + ky] *= kernel[ky * m + c0 + c] * norm;
+                    }
+                }
+                self.col_inv.process_with_scratch(buf, scratch);
+                unsafe {
+                    for ky in 0..n {
+                        let row = base.get().add(ky * m + c0);
+                        for c in 0..width {
+                            *row.add(c) = *buf.get_unchecked(c * n + ky);
+                        }
+                    }
+                }
+            })
+        });
+    }
+
     /// Transforms every column of the half spectrum with `fft`, scaling by `scale`.
     fn columns(&self, spec: &mut [Complex64], fft: &Arc<dyn Fft<f64>>, scale: f64) {
         let (n, m, block) = (self.n, self.m, self.block);
         let blocks = m.div_ceil(block);
         let base = SharedMut(spec.as_mut_ptr());
-        (0..blocks).into_par_iter().for_each_init(
-            || {
-                (
-                    vec![Complex64::new(0.0, 0.0); block * n],
-                    vec![Complex64::new(0.0, 0.0); fft.get_inplace_scratch_len()],
-                )
-            },
-            |(buf, scratch), b| {
+        (0..blocks).into_par_iter().for_each(|b| {
+            SCRATCH.with(|cell| {
+                let mut guard = cell.borrow_mut();
+                let Scratch {
+                    complex,
+                    block: buf,
+                    ..
+                } = &mut *guard;
                 let c0 = b * block;
                 let width = block.min(m - c0);
-                let buf = &mut buf[..width * n];
+                let buf = at_least(buf, width * n);
+                let scratch = at_least(complex, fft.get_inplace_scratch_len());
                 // SAFETY: block `b` owns columns c0..c0+width of every row; no other task
                 // touches them, and `spec` outlives this loop.
                 unsafe {
@@ -180,8 +381,8 @@ impl Fft2 {
                         }
                     }
                 }
-            },
-        );
+            })
+        });
     }
 }
 
@@ -234,6 +435,53 @@ mod tests {
             fft.inverse_in_place(&mut spec, &mut back);
             for (a, b) in back.iter().zip(&field) {
                 assert!((a - b).abs() < 1e-14, "n = {n}: round trip");
+            }
+        }
+    }
+
+    #[test]
+    fn fused_convolution_equals_transform_multiply_transform() {
+        for n in [8usize, 9, 16, 30] {
+            let grid = Grid::new(n, 1.0).unwrap();
+            let fft = Fft2::new(&grid);
+            let mut rng = ChaCha8Rng::seed_from_u64(n as u64);
+            let x: Vec<f64> = (0..n * n).map(|_| rng.random::<f64>() - 0.5).collect();
+            let kernel: Vec<f64> = (0..grid.modes()).map(|s| 1.0 + grid.q(s)).collect();
+            // Reference: forward, multiply, inverse.
+            let mut spec = fft.new_spectrum();
+            fft.forward(&x, &mut spec);
+            for (c, k) in spec.iter_mut().zip(&kernel) {
+                *c *= *k;
+            }
+            let mut want = vec![0.0; n * n];
+            fft.inverse_in_place(&mut spec, &mut want);
+            // Fused, with the input kept in `side` and row sums returned.
+            let mut side = vec![0.0; n * n];
+            let mut got = vec![0.0; n * n];
+            let (ins, outs) = fft.convolve(
+                &kernel,
+                &mut spec,
+                Some(&mut side),
+                |i, row, keep| {
+                    row.copy_from_slice(&x[i * n..(i + 1) * n]);
+                    keep.copy_from_slice(row);
+                    i
+                },
+                &mut got,
+                |i, row, kept| {
+                    assert_eq!(kept, &x[i * n..(i + 1) * n]);
+                    (i, row.iter().sum::<f64>())
+                },
+            );
+            assert_eq!(side, x);
+            assert_eq!(ins, (0..n).collect::<Vec<_>>());
+            for (a, b) in got.iter().zip(&want) {
+                assert!((a - b).abs() < 1e-13, "n = {n}");
+            }
+            for (i, (k, s)) in outs.iter().enumerate() {
+                assert_eq!(*k, i);
+                let direct: f64 = got[i * n..(i + 1) * n].iter().sum();
+                assert_eq!(*s, direct);
             }
         }
     }

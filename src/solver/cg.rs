@@ -12,7 +12,8 @@
 //! 4. points out of contact that penetrate (`p = 0`, `g < 0`) enter with `p = -tau k g`
 //!    (`k = 1`, or with preconditioning the Rayleigh quotient `g.z / g.g`, the stiffness
 //!    the preconditioner applied, so that the entering pressure has the units of `t`), and
-//!    conjugacy is reset (`delta = 0`) when there are any;
+//!    conjugacy is reset (`delta = 0`) when more than 1% of the contact set enters
+//!    (Polonsky & Keer reset it when any point enters; see [`KEEP_CONJUGACY`]);
 //! 5. `p <- p p0 / mean(p)` restores the load.
 //!
 //! Preconditioning (on by default; Vollebregt, J. Comput. Phys. 257, 333 (2014)): the
@@ -23,21 +24,29 @@
 //! (256^2: 104 -> 37; 1024^2: 488 -> 85, H = 0.8, p0 = 0.1).
 //!
 //! The displacement is updated incrementally, `u <- u - tau r`, which is exact as long as
-//! step 3 clips nothing and step 4 adds nothing; otherwise `u = K^-1 p` is recomputed. Late
-//! iterations, where the contact set has settled, therefore cost one FFT pair each. `u` is
-//! also recomputed every [`ConstrainedCg::refresh_every`] iterations and before the final
-//! residual, so rounding in the incremental update never reaches a result.
+//! step 3 clips nothing and step 4 adds nothing; otherwise `u = K^-1 p` is recomputed. `u`
+//! is also recomputed every [`ConstrainedCg::refresh_every`] iterations and before the
+//! final residual, so rounding in the incremental update never reaches a result. The load
+//! rescaling of step 5 is applied lazily (a scale factor read with `p` and `u`), and the
+//! rigid shift of the next iteration is summed in the same sweep that updates `p`.
+//!
+//! # Cost
+//!
+//! An iteration is two fused convolutions ([`crate::fft::Fft2::convolve`]) and one update
+//! sweep: the gap and the search direction are generated row by row as the transforms read
+//! them, and the sums the step needs are taken row by row as the inverse transforms write
+//! them, so apart from the FFTs the iteration reads and writes each field about once.
 
 use std::time::Instant;
 
 use rustfft::num_complex::Complex64;
 
-use super::{apply_compliance, ensure_len};
+use super::ensure_len;
 use crate::contact::{
     ContactProblem, ContactSolution, Progress, Residual, SolveOptions, SolveStats, Solver, Start,
 };
 use crate::error::{Error, Result};
-use crate::field::{fold_chunks, reduce_chunks, CHUNK};
+use crate::field::{fold_chunks, CHUNK};
 use rayon::prelude::*;
 
 /// Constrained conjugate-gradient solver with its work buffers.
@@ -74,6 +83,111 @@ const NAME: &str = "cg";
 /// Iterations without halving the residual estimate after which a preconditioned solve
 /// continues unpreconditioned.
 const STAGNATION: usize = 200;
+/// Polonsky & Keer reset conjugacy whenever a point enters contact. Late in a solve a few
+/// points enter or leave at every iteration, so that rule turns CG into steepest descent;
+/// resetting only when more than this fraction of the contact set enters keeps the
+/// conjugate directions through those small changes (1024^2, H = 0.8, p0 = 0.1: 83 -> 50
+/// iterations; 0 restores the original rule).
+const KEEP_CONJUGACY: f64 = 0.01;
+
+/// Sums over the gap: `sum_Ic g^2`, `sum_Ic p |g|`, `sum_Ic p`, and the largest
+/// penetration `max(-g)` outside contact.
+#[derive(Debug, Clone, Copy, Default)]
+struct GapSums {
+    gg: f64,
+    pg: f64,
+    sp: f64,
+    pen: f64,
+}
+
+impl GapSums {
+    fn add(self, o: Self) -> Self {
+        Self {
+            gg: self.gg + o.gg,
+            pg: self.pg + o.pg,
+            sp: self.sp + o.sp,
+            pen: self.pen.max(o.pen),
+        }
+    }
+}
+
+/// Adds `K`-vectors of partial sums in order.
+fn add_all<const K: usize>(parts: impl IntoIterator<Item = [f64; K]>) -> [f64; K] {
+    let mut acc = [0.0; K];
+    for part in parts {
+        for (a, v) in acc.iter_mut().zip(part) {
+            *a += v;
+        }
+    }
+    acc
+}
+
+/// The fields of the iteration, read with the lazy load scale: true `p = scale p_s` and
+/// `u = scale u_s`.
+#[derive(Clone, Copy)]
+struct View<'a> {
+    p: &'a [f64],
+    u: &'a [f64],
+    h: &'a [f64],
+    scale: f64,
+    gbar: f64,
+}
+
+impl View<'_> {
+    /// Row `i` (of length `n`) of `p`, `u` and `h`.
+    #[inline]
+    fn row(&self, i: usize, n: usize) -> (&[f64], &[f64], &[f64]) {
+        let r = i * n..(i + 1) * n;
+        (&self.p[r.clone()], &self.u[r.clone()], &self.h[r])
+    }
+
+    /// Gap sums over a range; the masked gap (`g` in contact, 0 outside) goes to `out`
+    /// when given.
+    fn gap_sums_into(&self, range: std::ops::Range<usize>, out: Option<&mut [f64]>) -> GapSums {
+        let (s, gbar) = (self.scale, self.gbar);
+        let (p, u, h) = (
+            &self.p[range.clone()],
+            &self.u[range.clone()],
+            &self.h[range],
+        );
+        let mut acc = [0.0f64; 3];
+        let mut pen = f64::NEG_INFINITY;
+        let mut step = |pk: f64, uk: f64, hk: f64| -> f64 {
+            let g = s * uk - hk - gbar;
+            let pk = s * pk;
+            let contact = pk > 0.0;
+            let gm = if contact { g } else { 0.0 };
+            acc[0] += gm * gm;
+            // p = 0 outside contact: these need no mask.
+            acc[1] += pk * g.abs();
+            acc[2] += pk;
+            pen = pen.max(if contact { f64::NEG_INFINITY } else { -g });
+            gm
+        };
+        match out {
+            Some(o) => {
+                for (((ok, &pk), &uk), &hk) in o.iter_mut().zip(p).zip(u).zip(h) {
+                    *ok = step(pk, uk, hk);
+                }
+            }
+            None => {
+                for ((&pk, &uk), &hk) in p.iter().zip(u).zip(h) {
+                    step(pk, uk, hk);
+                }
+            }
+        }
+        GapSums {
+            gg: acc[0],
+            pg: acc[1],
+            sp: acc[2],
+            pen: pen.max(0.0),
+        }
+    }
+
+    fn gap_sums(&self, range: std::ops::Range<usize>) -> GapSums {
+        self.gap_sums_into(range, None)
+    }
+}
 
 impl ConstrainedCg {
     fn run(
@@ -86,17 +200,18 @@ impl ConstrainedCg {
         opts.validate()?;
         let timer = Instant::now();
         let model = problem.model;
+        let n = model.grid.n();
         let n2 = model.grid.points();
         let h = problem.heights;
         let p0 = problem.p0;
         let ell = problem.length_scale;
+        let stiffness_table = model.halfspace.stiffness();
+        let compliance_table = model.halfspace.compliance();
         ensure_len(&mut self.p, n2);
         ensure_len(&mut self.u, n2);
         ensure_len(&mut self.t, n2);
         ensure_len(&mut self.r, n2);
-        if self.preconditioned {
-            ensure_len(&mut self.z, n2);
-        }
+        ensure_len(&mut self.z, n2);
         ensure_len(&mut self.spec, model.grid.modes());
 
         let warm = matches!(start, Start::Warm(_));
@@ -115,18 +230,17 @@ impl ConstrainedCg {
                     .zip(&prev.pressure)
                     .for_each(|(p, &q)| *p = q.max(0.0));
                 let mean = crate::field::mean(&self.p);
-                if mean > 0.0 && mean.is_finite() {
-                    let c = p0 / mean;
-                    self.p.par_iter_mut().for_each(|p| *p *= c);
-                } else {
+                if !(mean > 0.0 && mean.is_finite()) {
                     self.p.fill(p0);
                 }
             }
         }
-        apply_compliance(model, &self.p, &mut self.u, &mut self.spec);
+        // The load scale that makes mean(p) = p0.
+        let mut scale = p0 / crate::field::mean(&self.p);
+        let mut gbar = self.exact_displacement(problem, &mut scale);
         self.t.fill(0.0);
 
-        let mut g_old = 1.0;
+        let mut rho_old = 1.0;
         let mut conjugate = false;
         let mut exact = true; // u == K^-1 p up to one transform's rounding
         let mut since_refresh = 0usize;
@@ -135,55 +249,55 @@ impl ConstrainedCg {
         let (mut best, mut best_at) = (f64::INFINITY, 0usize);
 
         for it in 0..opts.max_iter {
-            let (p, u) = (&self.p, &self.u);
-            // Pass 1: the rigid shift, mean of u - h over the contact set.
-            let [sum_d, n_c] = reduce_chunks(n2, |rg| {
-                let (mut s, mut c) = (0.0, 0.0);
-                for i in rg {
-                    if p[i] > 0.0 {
-                        s += u[i] - h[i];
-                        c += 1.0;
-                    }
-                }
-                [s, c]
-            });
-            if n_c == 0.0 {
-                return Err(Error::NonFinite {
-                    solver: NAME,
-                    what: "contact set (empty)",
-                    iteration: it,
-                });
-            }
-            let gbar = sum_d / n_c;
-            // Pass 2: G, and the parts of the residual that CG does not satisfy by
-            // construction: gap inside contact and penetration outside.
-            let (big_g, p_gap, sum_p, penetration) = fold_chunks(
-                n2,
-                (0.0, 0.0, 0.0, 0.0f64),
-                |rg| {
-                    let (mut gg, mut pg, mut sp, mut pen) = (0.0, 0.0, 0.0, 0.0f64);
-                    for i in rg {
-                        let g = u[i] - h[i] - gbar;
-                        if p[i] > 0.0 {
-                            gg += g * g;
-                            pg += p[i] * g.abs();
-                            sp += p[i];
-                        } else {
-                            pen = pen.max(-g);
-                        }
-                    }
-                    (gg, pg, sp, pen)
-                },
-                |a, b| (a.0 + b.0, a.1 + b.1, a.2 + b.2, a.3.max(b.3)),
-            );
-            if !big_g.is_finite() || !gbar.is_finite() {
+            if !gbar.is_finite() || !scale.is_finite() {
                 return Err(Error::NonFinite {
                     solver: NAME,
                     what: "gap",
                     iteration: it,
                 });
             }
-            let estimate = (p_gap / (ell * sum_p)).max(penetration / ell);
+            // 1. The gap and the preconditioned gap z = K g (or z = g).
+            let view = View {
+                p: &self.p,
+                u: &self.u,
+                h,
+                scale,
+                gbar,
+            };
+            let (gap, sz, rho) = if precond {
+                let (rows, outs) = model.fft.convolve(
+                    stiffness_table,
+                    &mut self.spec,
+                    None,
+                    |i, row, _| view.gap_sums_into(i * n..(i + 1) * n, Some(row)),
+                    &mut self.z,
+                    |i, z, _| {
+                        let (p, u, h) = view.row(i, n);
+                        let (s, gbar) = (view.scale, view.gbar);
+                        let (mut sz, mut gz) = (0.0, 0.0);
+                        for (((&zk, &pk), &uk), &hk) in z.iter().zip(p).zip(u).zip(h) {
+                            let zm = if pk > 0.0 { zk } else { 0.0 };
+                            sz += zm;
+                            gz += (s * uk - hk - gbar) * zm;
+                        }
+                        [sz, gz]
+                    },
+                );
+                let gap = rows.into_iter().fold(GapSums::default(), GapSums::add);
+                let [sz, gz] = add_all(outs);
+                (gap, sz, gz)
+            } else {
+                let gap = fold_chunks(n2, GapSums::default(), |rg| view.gap_sums(rg), GapSums::add);
+                (gap, 0.0, gap.gg)
+            };
+            if !(gap.gg.is_finite() && rho.is_finite()) {
+                return Err(Error::NonFinite {
+                    solver: NAME,
+                    what: "gap",
+                    iteration: it,
+                });
+            }
+            let estimate = (gap.pg / (ell * gap.sp)).max(gap.pen / ell);
             monitor(Progress {
                 iteration: it,
                 residual: estimate,
@@ -200,94 +314,78 @@ impl ConstrainedCg {
             }
             if estimate <= internal_tol {
                 if !exact {
-                    apply_compliance(model, &self.p, &mut self.u, &mut self.spec);
+                    gbar = self.exact_displacement(problem, &mut scale);
                     exact = true;
                     since_refresh = 0;
                     continue;
                 }
-                let solution = self.finish(problem, gbar, it, warm, timer)?;
+                let solution = self.finish(problem, scale, gbar, it, warm, timer);
                 if solution.stats.residual.value() <= opts.tol {
                     return Ok(solution);
                 }
                 internal_tol *= 0.25;
             }
 
-            // Pass 3: search direction. `stiffness` converts a gap into the pressure that
-            // closes it in the search direction's units: 1 without preconditioning, the
-            // Rayleigh quotient g.Kg / g.g on the contact set with it.
-            let stiffness;
-            if precond {
-                {
-                    let (p, u) = (&self.p, &self.u);
-                    self.z.par_iter_mut().enumerate().for_each(|(i, zi)| {
-                        *zi = if p[i] > 0.0 { u[i] - h[i] - gbar } else { 0.0 };
-                    });
-                }
-                model.fft.forward(&self.z, &mut self.spec);
-                for (s, k) in self.spec.iter_mut().zip(model.halfspace.stiffness()) {
-                    *s *= *k;
-                }
-                model.fft.inverse_in_place(&mut self.spec, &mut self.r);
-                let (p, u, r) = (&self.p, &self.u, &self.r);
-                let [sz, rho] = reduce_chunks(n2, |rg| {
-                    let (mut sz, mut rho) = (0.0, 0.0);
-                    for i in rg {
-                        if p[i] > 0.0 {
-                            sz += r[i];
-                            rho += (u[i] - h[i] - gbar) * r[i];
-                        }
-                    }
-                    [sz, rho]
-                });
-                // g has zero mean on C, so subtracting zbar from z leaves g.z unchanged.
-                let zbar = sz / n_c;
-                let beta = if conjugate { rho / g_old } else { 0.0 };
-                g_old = rho;
-                stiffness = if big_g > 0.0 { rho / big_g } else { 1.0 };
-                let (p, r) = (&self.p, &self.r);
-                self.t.par_iter_mut().enumerate().for_each(|(i, ti)| {
-                    *ti = if p[i] > 0.0 {
-                        r[i] - zbar + beta * *ti
-                    } else {
-                        0.0
-                    };
-                });
+            // 2. Search direction t (kept in self.t) and r = K^-1 t, with the step's sums.
+            let n_c = count_contact(&self.p);
+            let zbar = if precond { sz / n_c } else { 0.0 };
+            let beta = if conjugate { rho / rho_old } else { 0.0 };
+            rho_old = rho;
+            // Gap-to-pressure conversion for points entering contact (see step 4).
+            let stiffness = if precond && gap.gg > 0.0 {
+                rho / gap.gg
             } else {
-                let beta = if conjugate { big_g / g_old } else { 0.0 };
-                g_old = big_g;
-                stiffness = 1.0;
-                let (p, u) = (&self.p, &self.u);
-                self.t
-                    .par_chunks_mut(CHUNK)
-                    .enumerate()
-                    .for_each(|(c, tc)| {
-                        let base = c * CHUNK;
-                        for (k, ti) in tc.iter_mut().enumerate() {
-                            let i = base + k;
-                            *ti = if p[i] > 0.0 {
-                                u[i] - h[i] - gbar + beta * *ti
-                            } else {
-                                0.0
-                            };
+                1.0
+            };
+            let view = View {
+                p: &self.p,
+                u: &self.u,
+                h,
+                scale,
+                gbar,
+            };
+            let z = &self.z;
+            let (_, outs) = model.fft.convolve(
+                compliance_table,
+                &mut self.spec,
+                Some(&mut self.t),
+                |i, row, t| {
+                    let (p, u, h) = view.row(i, n);
+                    let (s, gbar) = (view.scale, view.gbar);
+                    if precond {
+                        let z = &z[i * n..(i + 1) * n];
+                        for (((x, tk), &zk), &pk) in row.iter_mut().zip(t.iter_mut()).zip(z).zip(p)
+                        {
+                            let d = zk - zbar + beta * *tk;
+                            *tk = if pk > 0.0 { d } else { 0.0 };
+                            *x = *tk;
                         }
-                    });
-            }
-            apply_compliance(model, &self.t, &mut self.r, &mut self.spec);
-            // Pass 4: step length.
-            let (p, u, t, r) = (&self.p, &self.u, &self.t, &self.r);
-            let [sum_r, sum_t, gt, rt] = reduce_chunks(n2, |rg| {
-                let (mut sr, mut st, mut gt, mut rt) = (0.0, 0.0, 0.0, 0.0);
-                for i in rg {
-                    if p[i] > 0.0 {
-                        let g = u[i] - h[i] - gbar;
-                        sr += r[i];
-                        st += t[i];
-                        gt += g * t[i];
-                        rt += r[i] * t[i];
+                    } else {
+                        for ((((x, tk), &pk), &uk), &hk) in
+                            row.iter_mut().zip(t.iter_mut()).zip(p).zip(u).zip(h)
+                        {
+                            let d = s * uk - hk - gbar + beta * *tk;
+                            *tk = if pk > 0.0 { d } else { 0.0 };
+                            *x = *tk;
+                        }
                     }
-                }
-                [sr, st, gt, rt]
-            });
+                },
+                &mut self.r,
+                |i, r, t| {
+                    let (p, u, h) = view.row(i, n);
+                    let (s, gbar) = (view.scale, view.gbar);
+                    let (mut sr, mut st, mut gt, mut rt) = (0.0, 0.0, 0.0, 0.0);
+                    // t = 0 outside contact: only the sum of r needs a mask.
+                    for ((((&rk, &tk), &pk), &uk), &hk) in r.iter().zip(t).zip(p).zip(u).zip(h) {
+                        sr += if pk > 0.0 { rk } else { 0.0 };
+                        st += tk;
+                        gt += (s * uk - hk - gbar) * tk;
+                        rt += rk * tk;
+                    }
+                    [sr, st, gt, rt]
+                },
+            );
+            let [sum_r, sum_t, gt, rt] = add_all(outs);
             let denom = rt - sum_r / n_c * sum_t;
             let tau = gt / denom;
             if !(denom > 0.0 && tau.is_finite()) {
@@ -301,54 +399,55 @@ impl ConstrainedCg {
                     iteration: it,
                 });
             }
-            // Pass 5: update pressure and (incrementally) displacement.
-            let [new_sum_p, clipped, entered] = {
-                let (t, r) = (&self.t, &self.r);
-                let parts: Vec<[f64; 3]> = self
-                    .p
-                    .par_chunks_mut(CHUNK)
-                    .zip(self.u.par_chunks_mut(CHUNK))
-                    .enumerate()
-                    .map(|(c, (pc, uc))| {
-                        let base = c * CHUNK;
-                        let (mut sp, mut clip, mut enter) = (0.0, 0.0, 0.0);
-                        for k in 0..pc.len() {
-                            let i = base + k;
-                            if pc[k] > 0.0 {
-                                let q = pc[k] - tau * t[i];
-                                if q > 0.0 {
-                                    pc[k] = q;
-                                } else {
-                                    pc[k] = 0.0;
-                                    clip += 1.0;
-                                }
-                            } else {
-                                let g = uc[k] - h[i] - gbar;
-                                if g < 0.0 {
-                                    pc[k] = -tau * stiffness * g;
-                                    enter += 1.0;
-                                }
-                            }
-                            uc[k] -= tau * r[i];
-                            sp += pc[k];
-                        }
-                        [sp, clip, enter]
-                    })
-                    .collect();
-                let mut acc = [0.0; 3];
-                for part in &parts {
-                    for (a, v) in acc.iter_mut().zip(part) {
-                        *a += v;
-                    }
-                }
-                acc
-            };
-            let projected = clipped + entered > 0.0;
 
-            // Conjugacy survives only when no point entered contact (Polonsky & Keer).
-            conjugate = entered == 0.0;
-            let scale = p0 * n2 as f64 / new_sum_p;
-            if !scale.is_finite() {
+            // 3-4. Update p and (incrementally) u, counting projections, and sum what the
+            // next rigid shift needs: sum_Ic u, sum_Ic h, |Ic| of the new contact set.
+            let (t, r) = (&self.t, &self.r);
+            let parts: Vec<[f64; 6]> = self
+                .p
+                .par_chunks_mut(CHUNK)
+                .zip(self.u.par_chunks_mut(CHUNK))
+                .enumerate()
+                .map(|(c, (pc, uc))| {
+                    let range = c * CHUNK..c * CHUNK + pc.len();
+                    let (t, r, h) = (&t[range.clone()], &r[range.clone()], &h[range]);
+                    let (mut sp, mut clip, mut enter) = (0.0, 0.0, 0.0);
+                    let (mut su, mut sh, mut cnt) = (0.0, 0.0, 0.0);
+                    for ((((pk, uk), &tk), &rk), &hk) in
+                        pc.iter_mut().zip(uc.iter_mut()).zip(t).zip(r).zip(h)
+                    {
+                        let p_true = scale * *pk;
+                        let u_true = scale * *uk;
+                        let g = u_true - hk - gbar;
+                        let stepped = p_true - tau * tk;
+                        let entering = -tau * stiffness * g;
+                        let was_in = p_true > 0.0;
+                        let q = if was_in {
+                            stepped.max(0.0)
+                        } else if g < 0.0 {
+                            entering
+                        } else {
+                            0.0
+                        };
+                        clip += f64::from(u8::from(was_in && stepped <= 0.0));
+                        enter += f64::from(u8::from(!was_in && g < 0.0));
+                        let u_new = u_true - tau * rk;
+                        *pk = q;
+                        *uk = u_new;
+                        sp += q;
+                        let w = if q > 0.0 { 1.0 } else { 0.0 };
+                        su += w * u_new;
+                        sh += w * hk;
+                        cnt += w;
+                    }
+                    [sp, clip, enter, su, sh, cnt]
+                })
+                .collect();
+            let [new_sum_p, clipped, entered, su, sh, cnt] = add_all(parts);
+            // Conjugacy survives when few points entered contact (see KEEP_CONJUGACY).
+            conjugate = entered <= KEEP_CONJUGACY * cnt;
+            scale = p0 * n2 as f64 / new_sum_p;
+            if !scale.is_finite() || cnt == 0.0 {
                 return Err(Error::NonFinite {
                     solver: NAME,
                     what: "pressure",
@@ -356,26 +455,18 @@ impl ConstrainedCg {
                 });
             }
             since_refresh += 1;
-            if projected || since_refresh >= self.refresh_every {
-                self.p.par_iter_mut().for_each(|x| *x *= scale);
-                apply_compliance(model, &self.p, &mut self.u, &mut self.spec);
+            if clipped + entered > 0.0 || since_refresh >= self.refresh_every {
+                gbar = self.exact_displacement(problem, &mut scale);
                 exact = true;
                 since_refresh = 0;
             } else {
-                self.p
-                    .par_iter_mut()
-                    .zip(self.u.par_iter_mut())
-                    .for_each(|(x, y)| {
-                        *x *= scale;
-                        *y *= scale;
-                    });
+                gbar = (scale * su - sh) / cnt;
                 exact = false;
             }
         }
         // Budget exhausted: report the residual of the exact state.
-        apply_compliance(model, &self.p, &mut self.u, &mut self.spec);
-        let gbar = contact_shift(&self.p, &self.u, h);
-        let solution = self.finish(problem, gbar, opts.max_iter, warm, timer)?;
+        gbar = self.exact_displacement(problem, &mut scale);
+        let solution = self.finish(problem, scale, gbar, opts.max_iter, warm, timer);
         Err(Error::NotConverged {
             solver: NAME,
             iterations: opts.max_iter,
@@ -384,17 +475,57 @@ impl ConstrainedCg {
         })
     }
 
-    /// Packs the current state (with rigid shift `gbar`) into a solution with its residual.
+    /// Applies the load scale to `p` (leaving `scale = 1`), recomputes `u = K^-1 p`, and
+    /// returns the rigid shift: the mean of `u - h` over the contact set.
+    fn exact_displacement(&mut self, problem: &ContactProblem, scale: &mut f64) -> f64 {
+        let model = problem.model;
+        let n = model.grid.n();
+        let h = problem.heights;
+        let s = *scale;
+        let (_, outs) = model.fft.convolve(
+            model.halfspace.compliance(),
+            &mut self.spec,
+            Some(&mut self.p),
+            |_, row, p| {
+                for (x, pj) in row.iter_mut().zip(p.iter_mut()) {
+                    *pj *= s;
+                    *x = *pj;
+                }
+            },
+            &mut self.u,
+            |i, u, p| {
+                let (mut su, mut cnt) = (0.0, 0.0);
+                for (j, (&uj, &pj)) in u.iter().zip(p).enumerate() {
+                    if pj > 0.0 {
+                        su += uj - h[i * n + j];
+                        cnt += 1.0;
+                    }
+                }
+                [su, cnt]
+            },
+        );
+        *scale = 1.0;
+        let [su, cnt] = add_all(outs);
+        if cnt > 0.0 {
+            su / cnt
+        } else {
+            f64::NAN
+        }
+    }
+
+    /// Packs the current state (load scale `scale`, rigid shift `gbar`) into a solution
+    /// with its residual.
     fn finish(
         &mut self,
         problem: &ContactProblem,
+        scale: f64,
         gbar: f64,
         iterations: usize,
         warm: bool,
         timer: Instant,
-    ) -> Result<ContactSolution> {
-        let displacement: Vec<f64> = self.u.par_iter().map(|u| u - gbar).collect();
-        let pressure = self.p.clone();
+    ) -> ContactSolution {
+        let displacement: Vec<f64> = self.u.par_iter().map(|u| scale * u - gbar).collect();
+        let pressure: Vec<f64> = self.p.par_iter().map(|p| scale * p).collect();
         let residual = Residual::evaluate(
             problem,
             &pressure,
@@ -402,7 +533,7 @@ impl ConstrainedCg {
             &mut self.spec,
             &mut self.r,
         );
-        Ok(ContactSolution {
+        ContactSolution {
             pressure,
             displacement,
             p0: problem.p0,
@@ -413,27 +544,16 @@ impl ConstrainedCg {
                 wall_s: timer.elapsed().as_secs_f64(),
                 warm,
             },
-        })
+        }
     }
 }
 
-/// Mean of `u - h` over the contact set.
-fn contact_shift(p: &[f64], u: &[f64], h: &[f64]) -> f64 {
-    let [s, c] = reduce_chunks(p.len(), |rg| {
-        let (mut s, mut c) = (0.0, 0.0);
-        for i in rg {
-            if p[i] > 0.0 {
-                s += u[i] - h[i];
-                c += 1.0;
-            }
-        }
-        [s, c]
+/// Number of points in contact.
+fn count_contact(p: &[f64]) -> f64 {
+    let [c] = crate::field::reduce_chunks(p.len(), |rg| {
+        [p[rg].iter().filter(|&&x| x > 0.0).count() as f64]
     });
-    if c > 0.0 {
-        s / c
-    } else {
-        0.0
-    }
+    c
 }
 
 impl Solver for ConstrainedCg {

@@ -17,10 +17,9 @@ mod gfmd;
 pub use cg::ConstrainedCg;
 pub use gfmd::{FireParams, Gfmd};
 
-use rustfft::num_complex::Complex64;
 use serde::{Deserialize, Serialize};
 
-use crate::contact::{Model, Solver};
+use crate::contact::Solver;
 
 /// The solvers by name, for scenes and the command line.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default, clap::ValueEnum)]
@@ -49,16 +48,6 @@ impl SolverKind {
             SolverKind::Cg => "cg",
         }
     }
-}
-
-/// `out = K^-1 x`: the zero-mean displacement produced by the pressure field `x`.
-/// `spec` is work space.
-pub(crate) fn apply_compliance(model: &Model, x: &[f64], out: &mut [f64], spec: &mut [Complex64]) {
-    model.fft.forward(x, spec);
-    for (s, c) in spec.iter_mut().zip(model.halfspace.compliance()) {
-        *s *= *c;
-    }
-    model.fft.inverse_in_place(spec, out);
 }
 
 /// Resizes `v` to `len` (contents unspecified).
