@@ -13,7 +13,10 @@
 //!    (`k = 1`, or with preconditioning the Rayleigh quotient `g.z / g.g`, the stiffness
 //!    the preconditioner applied, so that the entering pressure has the units of `t`), and
 //!    conjugacy is reset (`delta = 0`) when more than 1% of the contact set enters
-//!    (Polonsky & Keer reset it when any point enters; see [`KEEP_CONJUGACY`]);
+//!    (Polonsky & Keer reset it when any point enters; see [`KEEP_CONJUGACY`]). When the
+//!    gap vanishes on the contact set (a lone contact point), `t = 0` and `tau` is `0/0`:
+//!    then `p` stays and the penetrating points enter with `p = -g / G(0)`, `G(0)` the
+//!    displacement of a point under unit pressure on it alone;
 //! 5. `p <- p p0 / mean(p)` restores the load.
 //!
 //! Preconditioning (on by default; Vollebregt, J. Comput. Phys. 257, 333 (2014)): the
@@ -29,6 +32,15 @@
 //! final residual, so rounding in the incremental update never reaches a result. The load
 //! rescaling of step 5 is applied lazily (a scale factor read with `p` and `u`), and the
 //! rigid shift of the next iteration is summed in the same sweep that updates `p`.
+//!
+//! Stopping: the iteration watches an estimate of the residual (complementarity and
+//! penetration); when it falls below the tolerance the full [`Residual`] is evaluated, and
+//! if that is still above, the estimate's target is lowered and the solve goes on. The
+//! full residual has a rounding floor: its equilibrium part compares `K u`, rounded at the
+//! scale of the heights, with pressures that shrink with the load (about `1e-12` at
+//! `a_r = 2e-4` on 128^2). A tolerance below that floor cannot be met: once the
+//! estimate is below the tolerance and stops improving (see [`STAGNATION`]), the solve
+//! fails with the smallest residual it reached instead of spending its whole budget.
 //!
 //! # Cost
 //!
@@ -81,7 +93,9 @@ impl Default for ConstrainedCg {
 
 const NAME: &str = "cg";
 /// Iterations without halving the residual estimate after which a preconditioned solve
-/// continues unpreconditioned.
+/// continues unpreconditioned, and after which an unpreconditioned solve whose estimate
+/// is already below the tolerance gives up (see "Stopping" in the module docs): iterating
+/// on at rounding level only lets the conjugate directions drift away from the solution.
 const STAGNATION: usize = 200;
 /// Polonsky & Keer reset conjugacy whenever a point enters contact. Late in a solve a few
 /// points enter or leave at every iteration, so that rule turns CG into steepest descent;
@@ -247,6 +261,9 @@ impl ConstrainedCg {
         let mut internal_tol = opts.tol;
         let mut precond = self.preconditioned;
         let (mut best, mut best_at) = (f64::INFINITY, 0usize);
+        // Smallest full residual evaluated, and the iterations spent.
+        let mut reached = f64::INFINITY;
+        let mut spent = opts.max_iter;
 
         for it in 0..opts.max_iter {
             if !gbar.is_finite() || !scale.is_finite() {
@@ -307,10 +324,15 @@ impl ConstrainedCg {
             if estimate < 0.5 * best {
                 best = estimate;
                 best_at = it;
-            } else if precond && it - best_at > STAGNATION {
-                precond = false;
-                conjugate = false;
-                best_at = it;
+            } else if it - best_at > STAGNATION {
+                if precond {
+                    precond = false;
+                    conjugate = false;
+                    best_at = it;
+                } else if internal_tol < opts.tol {
+                    spent = it;
+                    break;
+                }
             }
             if estimate <= internal_tol {
                 if !exact {
@@ -323,6 +345,7 @@ impl ConstrainedCg {
                 if solution.stats.residual.value() <= opts.tol {
                     return Ok(solution);
                 }
+                reached = reached.min(solution.stats.residual.value());
                 internal_tol *= 0.25;
             }
 
@@ -386,19 +409,29 @@ impl ConstrainedCg {
                 },
             );
             let [sum_r, sum_t, gt, rt] = add_all(outs);
-            let denom = rt - sum_r / n_c * sum_t;
-            let tau = gt / denom;
-            if !(denom > 0.0 && tau.is_finite()) {
-                if conjugate {
-                    conjugate = false;
-                    continue;
+            // Pressure per unit penetration given to points entering contact (step 4).
+            let (tau, admit) = if gap.gg == 0.0 {
+                // The gap vanishes on the contact set (always so for a lone contact
+                // point), so t = 0 and the step length is 0/0: the contact set is at rest
+                // and only penetrating points can move the solve on. They enter with the
+                // pressure that would lift a lone point by its penetration.
+                (0.0, 1.0 / point_compliance(model))
+            } else {
+                let denom = rt - sum_r / n_c * sum_t;
+                let tau = gt / denom;
+                if !(denom > 0.0 && tau.is_finite()) {
+                    if conjugate {
+                        conjugate = false;
+                        continue;
+                    }
+                    return Err(Error::NonFinite {
+                        solver: NAME,
+                        what: "step length",
+                        iteration: it,
+                    });
                 }
-                return Err(Error::NonFinite {
-                    solver: NAME,
-                    what: "step length",
-                    iteration: it,
-                });
-            }
+                (tau, tau * stiffness)
+            };
 
             // 3-4. Update p and (incrementally) u, counting projections, and sum what the
             // next rigid shift needs: sum_Ic u, sum_Ic h, |Ic| of the new contact set.
@@ -420,7 +453,7 @@ impl ConstrainedCg {
                         let u_true = scale * *uk;
                         let g = u_true - hk - gbar;
                         let stepped = p_true - tau * tk;
-                        let entering = -tau * stiffness * g;
+                        let entering = -admit * g;
                         let was_in = p_true > 0.0;
                         let q = if was_in {
                             stepped.max(0.0)
@@ -444,8 +477,9 @@ impl ConstrainedCg {
                 })
                 .collect();
             let [new_sum_p, clipped, entered, su, sh, cnt] = add_all(parts);
-            // Conjugacy survives when few points entered contact (see KEEP_CONJUGACY).
-            conjugate = entered <= KEEP_CONJUGACY * cnt;
+            // Conjugacy survives when few points entered contact (see KEEP_CONJUGACY), and
+            // never a step without a direction (rho = 0 would make the next beta 0/0).
+            conjugate = tau != 0.0 && entered <= KEEP_CONJUGACY * cnt;
             scale = p0 * n2 as f64 / new_sum_p;
             if !scale.is_finite() || cnt == 0.0 {
                 return Err(Error::NonFinite {
@@ -464,13 +498,17 @@ impl ConstrainedCg {
                 exact = false;
             }
         }
-        // Budget exhausted: report the residual of the exact state.
+        // Budget exhausted or stalled: the last step may have converged; if not, report
+        // the smallest residual reached, the exact state's or an earlier one's.
         gbar = self.exact_displacement(problem, &mut scale);
-        let solution = self.finish(problem, scale, gbar, opts.max_iter, warm, timer);
+        let solution = self.finish(problem, scale, gbar, spent, warm, timer);
+        if solution.stats.residual.value() <= opts.tol {
+            return Ok(solution);
+        }
         Err(Error::NotConverged {
             solver: NAME,
-            iterations: opts.max_iter,
-            residual: solution.stats.residual.value(),
+            iterations: spent,
+            residual: solution.stats.residual.value().min(reached),
             tol: opts.tol,
         })
     }
@@ -546,6 +584,20 @@ impl ConstrainedCg {
             },
         }
     }
+}
+
+/// The displacement of a point under unit pressure on that point alone,
+/// `N^-2 sum_q 2 / (q E*)` (the diagonal of the compliance in real space).
+fn point_compliance(model: &crate::contact::Model) -> f64 {
+    let grid = &model.grid;
+    let sum: f64 = model
+        .halfspace
+        .compliance()
+        .iter()
+        .enumerate()
+        .map(|(s, c)| grid.weight_of(s) * c)
+        .sum();
+    sum / grid.points() as f64
 }
 
 /// Number of points in contact.

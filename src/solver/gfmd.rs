@@ -266,7 +266,19 @@ impl Gfmd {
                     }
                 });
         }
+        // Budget exhausted: the state the last step reached (its stress recomputed, step 3
+        // having overwritten it) may have converged; if not, report its residual.
+        if !self.forces(problem).2 {
+            return Err(Error::NonFinite {
+                solver: NAME,
+                what: "stress",
+                iteration: opts.max_iter,
+            });
+        }
         let solution = self.finish(problem, opts.max_iter, warm, timer);
+        if solution.stats.residual.value() <= opts.tol {
+            return Ok(solution);
+        }
         Err(Error::NotConverged {
             solver: NAME,
             iterations: opts.max_iter,
