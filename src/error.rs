@@ -86,6 +86,20 @@ impl Error {
         }
     }
 
+    /// The same error with an [`Error::InvalidInput`]'s field renamed to `field` (for
+    /// example to the command-line flag or the scene key the value came from); other
+    /// errors are returned unchanged.
+    pub fn with_field(self, field: &str) -> Self {
+        match self {
+            Error::InvalidInput { value, allowed, .. } => Error::InvalidInput {
+                field: field.to_string(),
+                value,
+                allowed,
+            },
+            other => other,
+        }
+    }
+
     /// An [`Error::Io`] for `path`.
     pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
         Error::Io {

@@ -23,7 +23,12 @@ use clap::{Parser, Subcommand};
 #[command(name = "persson-check", version, about, long_about = None)]
 struct Cli {
     /// Worker threads (default: all cores).
-    #[arg(long, global = true, value_parser = clap::value_parser!(u16).range(1..=1024))]
+    #[arg(
+        long,
+        global = true,
+        allow_negative_numbers = true,
+        value_parser = clap::value_parser!(u16).range(1..=1024)
+    )]
     threads: Option<u16>,
     #[command(subcommand)]
     command: Command,

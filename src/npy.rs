@@ -2,8 +2,9 @@
 //!
 //! Reading checks everything a field must satisfy and names what is wrong: a file that is
 //! not `.npy`, truncated data, another dtype, another rank, a non-square or empty array,
-//! and NaN or infinite entries (with their row and column). Fortran-ordered arrays are
-//! accepted and transposed. Writing is atomic ([`crate::io`]).
+//! NaN or infinite entries (with their row and column), and bytes left over after the
+//! data. Fortran-ordered arrays are accepted and transposed. Writing is atomic
+//! ([`crate::io`]).
 
 use std::path::Path;
 
@@ -28,7 +29,8 @@ pub fn read_field(path: &Path) -> Result<Field> {
 /// Parses a square float64 field from the bytes of a `.npy` file; the error says what is
 /// wrong.
 pub fn parse_field(bytes: &[u8]) -> std::result::Result<Field, String> {
-    let npy = npyz::NpyFile::new(bytes).map_err(|e| format!("not a valid .npy file ({e})"))?;
+    let mut rest = bytes;
+    let npy = npyz::NpyFile::new(&mut rest).map_err(|e| header_error(&e))?;
     let dtype = npy.dtype();
     let is_f64 = matches!(&dtype, npyz::DType::Plain(t)
         if t.type_char() == npyz::TypeChar::Float && t.size_field() == 8);
@@ -65,6 +67,13 @@ pub fn parse_field(bytes: &[u8]) -> std::result::Result<Field, String> {
             n * n
         )
     })?;
+    if !rest.is_empty() {
+        return Err(format!(
+            "{} bytes follow the {n} x {n} float64 values (the header's shape is wrong or \
+             the file is damaged)",
+            rest.len()
+        ));
+    }
     if values.len() != n * n {
         return Err(format!(
             "data holds {} values, expected {}",
@@ -90,6 +99,22 @@ pub fn parse_field(bytes: &[u8]) -> std::result::Result<Field, String> {
         ));
     }
     Ok(Field { n, values })
+}
+
+/// The reader's complaint about a header, on one short line.
+fn header_error(e: &std::io::Error) -> String {
+    if e.kind() == std::io::ErrorKind::UnexpectedEof {
+        return "not a valid .npy file (the header is truncated)".to_string();
+    }
+    let text = e.to_string();
+    let first: String = text
+        .lines()
+        .next()
+        .unwrap_or("")
+        .chars()
+        .take(160)
+        .collect();
+    format!("not a valid .npy file ({})", first.trim_end())
 }
 
 /// Writes a square float64 field to `path` atomically.

@@ -25,7 +25,8 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use crate::error::{Error, Result};
+use crate::contact::SolveOptions;
+use crate::error::{check_open, check_positive, Error, Result};
 use crate::grid::Grid;
 use crate::solver::SolverKind;
 use crate::spectrum::SelfAffine;
@@ -109,6 +110,38 @@ pub struct SolveScene {
     pub e_star: Option<f64>,
 }
 
+impl SolveScene {
+    /// Checks every range given, with `zeta_max` the surface's largest magnification;
+    /// errors name the key as `solve.KEY`.
+    pub fn validate(&self, zeta_max: f64) -> Result<()> {
+        if let Some(zeta) = self.zeta {
+            check_zeta(zeta, zeta_max).map_err(|e| e.with_field("solve.zeta"))?;
+        }
+        if let Some(p0) = self.p0 {
+            check_positive("solve.p0", p0)?;
+        }
+        if let Some(a) = self.contact_area {
+            check_open("solve.contact_area", a, 0.0, 1.0)?;
+        }
+        if self.p0.is_some() && self.contact_area.is_some() {
+            return Err(Error::invalid(
+                "solve",
+                "both p0 and contact_area",
+                "one of p0 or contact_area",
+            ));
+        }
+        if let Some(tol) = self.tol {
+            SolveOptions::with_tol(tol)
+                .validate()
+                .map_err(|e| e.with_field("solve.tol"))?;
+        }
+        match self.e_star {
+            Some(e_star) => check_positive("solve.e_star", e_star),
+            None => Ok(()),
+        }
+    }
+}
+
 /// A scene file.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -120,22 +153,61 @@ pub struct Scene {
     pub solve: SolveScene,
 }
 
+impl Scene {
+    /// Checks every range: the surface's, then the solve's against the surface's
+    /// `zeta_max`.
+    pub fn validate(&self) -> Result<()> {
+        self.surface.validate()?;
+        self.solve.validate(self.surface.zeta_max())
+    }
+}
+
 /// Reads and checks a scene file.
 pub fn read_scene(path: &Path) -> Result<Scene> {
     let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
-    parse_toml::<Scene>(path, &text).and_then(|scene| {
-        scene
-            .surface
-            .validate()
-            .map_err(|e| Error::bad_file(path, e.to_string()))?;
-        Ok(scene)
-    })
+    parse_scene(&text, path)
 }
 
-/// Parses TOML text into `T`, naming the file in the error (the `toml` crate's message
-/// names the key, the line and what was expected).
+/// Parses and checks the text of a scene file; errors name `origin` (the file).
+pub fn parse_scene(text: &str, origin: &Path) -> Result<Scene> {
+    let scene = parse_toml::<Scene>(origin, text)?;
+    scene
+        .validate()
+        .map_err(|e| Error::bad_file(origin, e.to_string()))?;
+    Ok(scene)
+}
+
+/// Parses TOML text into `T`, naming the file in the error.
 pub fn parse_toml<T: serde::de::DeserializeOwned>(path: &Path, text: &str) -> Result<T> {
-    toml::from_str(text).map_err(|e| Error::bad_file(path, e.to_string().trim_end().to_string()))
+    toml::from_str(text).map_err(|e| Error::bad_file(path, toml_message(text, &e)))
+}
+
+/// The `toml` crate's error on one line: where (line number and that line's text, which
+/// names the key), then what is wrong and what was expected.
+fn toml_message(text: &str, e: &toml::de::Error) -> String {
+    let message = e.message().trim_end().replace('\n', " ");
+    let Some(span) = e.span() else {
+        return message;
+    };
+    let start = span.start.min(text.len());
+    let line = text.as_bytes()[..start]
+        .iter()
+        .filter(|&&b| b == b'\n')
+        .count();
+    let source: String = text
+        .lines()
+        .nth(line)
+        .unwrap_or("")
+        .trim()
+        .chars()
+        .take(60)
+        .map(|c| if c.is_control() { '\u{fffd}' } else { c })
+        .collect();
+    if source.is_empty() {
+        format!("line {}: {message}", line + 1)
+    } else {
+        format!("line {}: `{source}`: {message}", line + 1)
+    }
 }
 
 /// Checks a magnification against `[1, zeta_max]`.
@@ -156,8 +228,7 @@ mod tests {
     use super::*;
 
     fn parse(text: &str) -> Result<Scene> {
-        parse_toml::<Scene>(Path::new("scene.toml"), text)
-            .and_then(|s| s.surface.validate().map(|_| s))
+        parse_scene(text, Path::new("scene.toml"))
     }
 
     #[test]

@@ -10,7 +10,7 @@ use clap::Args as ClapArgs;
 use persson_check::error::{Error, Result};
 use persson_check::scene::{read_scene, Scene, SurfaceScene};
 use persson_check::surface::{Amplitudes, Surface};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Surface given on the command line or by a scene file.
 #[derive(ClapArgs, Debug, Clone)]
@@ -19,19 +19,19 @@ pub struct SurfaceArgs {
     #[arg(long, conflicts_with_all = ["n", "hurst", "lambda_l", "lambda_s"])]
     pub scene: Option<PathBuf>,
     /// Points per side.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub n: Option<usize>,
     /// Hurst exponent, in (0, 1).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub hurst: Option<f64>,
     /// Long-wavelength cutoff (grid units), at most N.
-    #[arg(long = "lambda-l")]
+    #[arg(long = "lambda-l", allow_negative_numbers = true)]
     pub lambda_l: Option<f64>,
     /// Short-wavelength cutoff (grid units), at least 2.
-    #[arg(long = "lambda-s")]
+    #[arg(long = "lambda-s", allow_negative_numbers = true)]
     pub lambda_s: Option<f64>,
     /// Seed of the realization (overrides the scene's).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub seed: Option<u64>,
 }
 
@@ -54,7 +54,7 @@ impl SurfaceArgs {
                     rms_gradient: 1.0,
                     seed: None,
                 };
-                surface.validate()?;
+                surface.validate().map_err(as_flag)?;
                 Scene {
                     surface,
                     solve: Default::default(),
@@ -72,10 +72,48 @@ impl SurfaceArgs {
         Ok((scene, seed))
     }
 
-    /// The generated surface.
+    /// The generated surface (after checking every range).
     pub fn generate(&self) -> Result<(Scene, Surface)> {
         let (scene, seed) = self.resolve()?;
         let surface = Surface::generate(&scene.surface.params(seed))?;
         Ok((scene, surface))
     }
+}
+
+/// A range error from parameters given as flags, with the field named as its flag
+/// (`lambda_l` -> `--lambda-l`).
+pub fn as_flag(e: Error) -> Error {
+    match &e {
+        Error::InvalidInput { field, .. } => {
+            let flag = format!("--{}", field.replace('_', "-"));
+            e.with_field(&flag)
+        }
+        _ => e,
+    }
+}
+
+/// Checks, before any work, that `--out` can become a folder (it is one, or does not
+/// exist yet).
+pub fn check_out_dir(out: &Path) -> Result<()> {
+    if out.exists() && !out.is_dir() {
+        return Err(Error::invalid(
+            "--out",
+            out.display(),
+            "a folder (this path exists and is not one)",
+        ));
+    }
+    Ok(())
+}
+
+/// Checks, before any work, that `--out` can become a file (it is one, or does not exist
+/// yet).
+pub fn check_out_file(out: &Path) -> Result<()> {
+    if out.is_dir() {
+        return Err(Error::invalid(
+            "--out",
+            out.display(),
+            "a file (this path is a folder)",
+        ));
+    }
+    Ok(())
 }

@@ -26,11 +26,19 @@ pub struct Args {
     #[arg(long = "no-speed")]
     no_speed: bool,
     /// Points per side of the speed study's grid (its size study uses N/4 ... 2N).
-    #[arg(long = "speed-n", default_value_t = 256)]
+    #[arg(long = "speed-n", default_value_t = 256, allow_negative_numbers = true)]
     speed_n: usize,
 }
 
 pub fn run(args: Args) -> Result<()> {
+    if !args.from.is_dir() {
+        return Err(Error::invalid(
+            "--from",
+            args.from.display(),
+            "an existing folder of outcomes (<name>.json), as written by `validate --out`",
+        ));
+    }
+    super::check_out_file(&args.out)?;
     let golden = match args.golden {
         Some(dir) if dir.is_dir() => Some(dir),
         Some(dir) => {
@@ -51,7 +59,8 @@ pub fn run(args: Args) -> Result<()> {
         SpeedChoice::Skip
     } else {
         let opts = SpeedOptions::with_n(args.speed_n);
-        opts.validate()?;
+        // Everything the study's options hold derives from --speed-n.
+        opts.validate().map_err(|e| e.with_field("--speed-n"))?;
         SpeedChoice::Run(opts)
     };
     let opts = ReportOptions {

@@ -16,7 +16,7 @@ use persson_check::scene::{check_zeta, SolveScene};
 use persson_check::solver::SolverKind;
 use persson_check::surface::Surface;
 
-use super::SurfaceArgs;
+use super::{as_flag, check_out_dir, SurfaceArgs};
 
 /// Arguments of `solve`.
 #[derive(ClapArgs, Debug)]
@@ -25,27 +25,35 @@ pub struct Args {
     #[arg(long, conflicts_with_all = ["scene", "n", "hurst", "lambda_l", "lambda_s", "seed"])]
     heights: Option<PathBuf>,
     /// With --heights: the wavelength that defines zeta = |q| / q_l (default: the box size).
-    #[arg(long = "file-lambda-l", requires = "heights")]
+    #[arg(
+        long = "file-lambda-l",
+        requires = "heights",
+        allow_negative_numbers = true
+    )]
     file_lambda_l: Option<f64>,
     #[command(flatten)]
     surface: SurfaceArgs,
     /// Mean pressure p0 (units of E*).
-    #[arg(long, conflicts_with = "contact_area")]
+    #[arg(long, conflicts_with = "contact_area", allow_negative_numbers = true)]
     p0: Option<f64>,
     /// Target relative contact area, in (0, 1): p0 is found by root finding.
-    #[arg(long = "contact-area")]
+    #[arg(long = "contact-area", allow_negative_numbers = true)]
     contact_area: Option<f64>,
     /// Magnification (default: full resolution).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     zeta: Option<f64>,
     /// Solver.
     #[arg(long, value_enum)]
     solver: Option<SolverKind>,
     /// Residual tolerance, in [1e-14, 1).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     tol: Option<f64>,
     /// Iteration budget per solve.
-    #[arg(long = "max-iter", default_value_t = 100_000)]
+    #[arg(
+        long = "max-iter",
+        default_value_t = 100_000,
+        allow_negative_numbers = true
+    )]
     max_iter: usize,
     /// Output directory: summary.json, summary.csv, pressure.npy, displacement.npy, gap.npy.
     #[arg(long)]
@@ -76,12 +84,11 @@ struct Summary {
 }
 
 pub fn run(args: Args) -> Result<()> {
+    check_flags(&args)?;
+    check_out_dir(&args.out)?;
     let (surface, settings, source) = match &args.heights {
         Some(path) => {
-            let field = persson_check::npy::read_field(path)?;
-            let grid = Grid::new(field.n, 1.0)?;
-            let surface = Surface::from_heights(grid, &field.values, args.file_lambda_l)
-                .map_err(|e| Error::bad_file(path, e.to_string()))?;
+            let surface = read_heights(path, args.file_lambda_l)?;
             (surface, SolveScene::default(), path.display().to_string())
         }
         None => {
@@ -95,7 +102,13 @@ pub fn run(args: Args) -> Result<()> {
     };
     let zeta_max = surface.zeta_max().max(1.0);
     let zeta = args.zeta.or(settings.zeta).unwrap_or(zeta_max);
-    check_zeta(zeta, zeta_max)?;
+    check_zeta(zeta, zeta_max).map_err(|e| {
+        e.with_field(if args.zeta.is_some() {
+            "--zeta"
+        } else {
+            "solve.zeta"
+        })
+    })?;
     let kind = args.solver.or(settings.solver).unwrap_or_default();
     let opts = SolveOptions {
         tol: args.tol.or(settings.tol).unwrap_or(1e-8),
@@ -103,18 +116,15 @@ pub fn run(args: Args) -> Result<()> {
     };
     opts.validate()?;
     let e_star = settings.e_star.unwrap_or(1.0);
-    let load = match (
-        args.p0.or(settings.p0),
-        args.contact_area.or(settings.contact_area),
-    ) {
-        (Some(p0), None) => {
-            check_positive("p0", p0)?;
-            Load::Pressure(p0)
-        }
-        (None, Some(a)) => {
-            check_open("contact_area", a, 0.0, 1.0)?;
-            Load::Area(a)
-        }
+    // A load given on the command line replaces the scene's (both were checked).
+    let load = if args.p0.is_some() || args.contact_area.is_some() {
+        (args.p0, args.contact_area)
+    } else {
+        (settings.p0, settings.contact_area)
+    };
+    let load = match load {
+        (Some(p0), None) => Load::Pressure(p0),
+        (None, Some(a)) => Load::Area(a),
         (Some(_), Some(_)) => {
             return Err(Error::invalid(
                 "load",
@@ -145,6 +155,14 @@ pub fn run(args: Args) -> Result<()> {
             (solver.solve(&problem, Start::Cold, &opts)?, 1)
         }
         Load::Area(a) => {
+            if g_bar <= 0.0 {
+                return Err(Error::invalid(
+                    "contact_area",
+                    a,
+                    "reachable: the surface is flat (zero rms gradient), so contact is \
+                     complete at any load; give --p0 instead",
+                ));
+            }
             let target = AreaTarget {
                 contact_area: a,
                 p0_guess: persson_load_guess(a, g_bar.max(1e-300), e_star),
@@ -181,6 +199,46 @@ pub fn run(args: Args) -> Result<()> {
         source: source.clone(),
         residual_components: s.stats.residual,
         tamaas_error: s.stats.residual.tamaas,
+    })
+}
+
+/// Checks the ranges of the flags given, before any work; errors name the flag (`--zeta`
+/// gets its upper bound once the surface is known).
+fn check_flags(args: &Args) -> Result<()> {
+    if let Some(p0) = args.p0 {
+        check_positive("--p0", p0)?;
+    }
+    if let Some(a) = args.contact_area {
+        check_open("--contact-area", a, 0.0, 1.0)?;
+    }
+    if let Some(zeta) = args.zeta {
+        if !(zeta.is_finite() && zeta >= 1.0) {
+            return Err(Error::invalid(
+                "--zeta",
+                zeta,
+                "in [1, zeta_max = lambda_l / lambda_s]",
+            ));
+        }
+    }
+    if let Some(lambda) = args.file_lambda_l {
+        check_positive("--file-lambda-l", lambda)?;
+    }
+    SolveOptions {
+        tol: args.tol.unwrap_or(1e-8),
+        max_iter: args.max_iter,
+    }
+    .validate()
+    .map_err(as_flag)
+}
+
+/// The surface of a heights file; a `--file-lambda-l` beyond the box is named as the flag,
+/// anything else as the file.
+fn read_heights(path: &std::path::Path, file_lambda_l: Option<f64>) -> Result<Surface> {
+    let field = persson_check::npy::read_field(path)?;
+    let grid = Grid::new(field.n, 1.0).map_err(|e| Error::bad_file(path, e.to_string()))?;
+    Surface::from_heights(grid, &field.values, file_lambda_l).map_err(|e| match &e {
+        Error::InvalidInput { field, .. } if field == "lambda_l" => e.with_field("--file-lambda-l"),
+        _ => Error::bad_file(path, e.to_string()),
     })
 }
 

@@ -6,8 +6,9 @@ use clap::Args as ClapArgs;
 use persson_check::error::Result;
 use persson_check::fft::Fft2;
 use persson_check::scene::check_zeta;
+use persson_check::surface::Surface;
 
-use super::SurfaceArgs;
+use super::{check_out_file, SurfaceArgs};
 
 /// Arguments of `surface`.
 #[derive(ClapArgs, Debug)]
@@ -15,7 +16,7 @@ pub struct Args {
     #[command(flatten)]
     surface: SurfaceArgs,
     /// Magnification: keep modes with |q| <= zeta q_l (default: full resolution).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     zeta: Option<f64>,
     /// Output .npy file (float64, N x N).
     #[arg(long)]
@@ -23,9 +24,11 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> Result<()> {
-    let (scene, surface) = args.surface.generate()?;
+    check_out_file(&args.out)?;
+    let (scene, seed) = args.surface.resolve()?;
     let zeta = args.zeta.unwrap_or(scene.surface.zeta_max());
-    check_zeta(zeta, scene.surface.zeta_max())?;
+    check_zeta(zeta, scene.surface.zeta_max()).map_err(|e| e.with_field("--zeta"))?;
+    let surface = Surface::generate(&scene.surface.params(seed))?;
     let fft = Fft2::new(surface.grid());
     let h = surface.heights_at(zeta, &fft);
     persson_check::npy::write_field(&args.out, surface.grid().n(), &h)?;

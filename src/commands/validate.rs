@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use clap::Args as ClapArgs;
 use persson_check::error::{Error, Result};
-use persson_check::validation::builtin::{builtin_sources, select, sources_in};
+use persson_check::validation::builtin::{builtin_sources, check, select, sources_in};
 use persson_check::validation::{run_all, RunOptions, Scale};
 
 /// Arguments of `validate`.
@@ -27,11 +27,16 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> Result<()> {
+    super::check_out_dir(&args.out)?;
     let sources = match &args.dir {
-        Some(dir) => sources_in(dir)?,
+        Some(dir) => definitions_in(dir)?,
         None => builtin_sources(),
     };
     let sources = select(sources, &args.names)?;
+    // Every definition is checked before any runs: bad input writes nothing.
+    for source in &sources {
+        check(source)?;
+    }
     let opts = RunOptions {
         scale: if args.full {
             Scale::Full
@@ -75,4 +80,24 @@ pub fn run(args: Args) -> Result<()> {
             format!("all to run ({})", failed.join(", ")),
         ))
     }
+}
+
+/// The definitions in `--dir` (at least one).
+fn definitions_in(dir: &std::path::Path) -> Result<Vec<persson_check::validation::Source>> {
+    let sources = sources_in(dir).map_err(|e| match e {
+        Error::Io { path, source } if path == dir => Error::invalid(
+            "--dir",
+            format!("{} ({source})", dir.display()),
+            "a readable folder of validation definitions (*.toml)",
+        ),
+        e => e,
+    })?;
+    if sources.is_empty() {
+        return Err(Error::invalid(
+            "--dir",
+            format!("{} (no *.toml files)", dir.display()),
+            "a folder of validation definitions (*.toml)",
+        ));
+    }
+    Ok(sources)
 }

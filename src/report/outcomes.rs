@@ -26,8 +26,9 @@ pub struct Loaded {
 }
 
 /// Reads every outcome (`<name>.json` with `name`, `statistic` and `verdict` keys) directly
-/// in `dir`, sorted by name. Other JSON files are skipped; an outcome that does not parse
-/// is an error naming the file.
+/// in `dir`, sorted by name. Other JSON files are skipped; an outcome that does not parse,
+/// or a `.json` file that is not JSON at all (a damaged outcome must not silently drop out
+/// of the scorecard), is an error naming the file.
 pub fn read_outcomes(dir: &Path) -> Result<Vec<Loaded>> {
     let mut paths: Vec<PathBuf> = std::fs::read_dir(dir)
         .map_err(|e| Error::io(dir, e))?
@@ -38,9 +39,12 @@ pub fn read_outcomes(dir: &Path) -> Result<Vec<Loaded>> {
     let mut out = Vec::new();
     for path in paths {
         let bytes = std::fs::read(&path).map_err(|e| Error::io(&path, e))?;
-        let Ok(value) = serde_json::from_slice::<Value>(&bytes) else {
-            continue; // not JSON we know (a partial file from another tool)
-        };
+        let value: Value = serde_json::from_slice(&bytes).map_err(|e| {
+            Error::bad_file(
+                &path,
+                format!("not valid JSON ({e}); re-run the validation or remove the file"),
+            )
+        })?;
         if !looks_like_outcome(&value) {
             continue;
         }

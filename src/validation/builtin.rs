@@ -6,7 +6,7 @@
 
 use std::path::{Path, PathBuf};
 
-use super::runner::run_experiment;
+use super::runner::{check_experiment, run_experiment};
 use super::{Outcome, RunOptions, Source};
 use crate::error::{Error, Result};
 
@@ -31,11 +31,31 @@ pub fn dispatch(experiment: &str, source: &Source, opts: &RunOptions) -> Result<
         "mode_onset" => run_experiment::<crate::modes::ModeOnset>(source, opts),
         "mode_frozen" => run_experiment::<crate::modes::ModeFrozen>(source, opts),
         "total_energy" => run_experiment::<crate::energy::TotalEnergy>(source, opts),
-        other => Err(Error::bad_file(
-            &source.path,
-            format!("experiment = \"{other}\" is unknown; expected one of {EXPERIMENTS:?}"),
-        )),
+        other => Err(unknown_experiment(source, other)),
     }
+}
+
+/// Checks `source` without running it: its header, the experiment it names, and the
+/// ranges of both of its scenes. Errors name the file, the scene's table and the field.
+pub fn check(source: &Source) -> Result<()> {
+    let (_, experiment) = source.header()?;
+    match experiment.as_str() {
+        "contact_area" => check_experiment::<crate::area::ContactArea>(source),
+        "diffusion" => check_experiment::<crate::transition::Diffusion>(source),
+        "drift" => check_experiment::<crate::transition::Drift>(source),
+        "reentry" => check_experiment::<crate::reentry::Reentry>(source),
+        "mode_onset" => check_experiment::<crate::modes::ModeOnset>(source),
+        "mode_frozen" => check_experiment::<crate::modes::ModeFrozen>(source),
+        "total_energy" => check_experiment::<crate::energy::TotalEnergy>(source),
+        other => Err(unknown_experiment(source, other)),
+    }
+}
+
+fn unknown_experiment(source: &Source, experiment: &str) -> Error {
+    Error::bad_file(
+        &source.path,
+        format!("experiment = \"{experiment}\" is unknown; expected one of {EXPERIMENTS:?}"),
+    )
 }
 
 /// The definitions compiled into this build: `(name, TOML text)`.

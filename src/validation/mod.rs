@@ -277,7 +277,9 @@ pub struct JobContext {
     pub name: String,
     /// The scale being run.
     pub scale: Scale,
-    /// Directory for per-job state that must survive interruption (checkpoints).
+    /// Directory for per-job state that must survive interruption (checkpoints). The
+    /// runner empties it before a run without `--resume` and removes it once the job's
+    /// result is stored; a job only reads and writes it.
     pub state_dir: PathBuf,
 }
 
@@ -387,8 +389,7 @@ impl Source {
 
     /// The `name` and `experiment` keys, read before the file is parsed in full.
     pub fn header(&self) -> Result<(String, String)> {
-        let table: toml::Table = toml::from_str(&self.text)
-            .map_err(|e| Error::bad_file(&self.path, e.to_string().trim_end().to_string()))?;
+        let table: toml::Table = crate::scene::parse_toml(&self.path, &self.text)?;
         let get = |key: &str| -> Result<String> {
             match table.get(key) {
                 Some(toml::Value::String(s)) => Ok(s.clone()),

@@ -1,5 +1,10 @@
 //! Runs validations: jobs in parallel, each job's result on disk as soon as it finishes,
 //! then the conclusion, the verdict and the output files.
+//!
+//! A job's state directory ([`JobContext::state_dir`]) belongs to the runner: it is emptied
+//! before a job runs without `--resume` (so a fresh run never continues a stale sweep),
+//! left alone with `--resume` (so the job continues from its last checkpoint), and removed
+//! once the job's result is stored, never before.
 
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
@@ -11,7 +16,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 
-use super::{builtin, Experiment, JobContext, Outcome, Scale, Source, Verdict};
+use super::{builtin, Definition, Experiment, JobContext, Outcome, Scale, Source, Verdict};
 use crate::error::{Error, Result};
 
 /// How to run validations.
@@ -73,19 +78,7 @@ struct Stored<J, R> {
 pub(crate) fn run_experiment<E: Experiment>(source: &Source, opts: &RunOptions) -> Result<Outcome> {
     let timer = Instant::now();
     let def = source.parse::<E::Scene>()?;
-    let scene = match opts.scale {
-        Scale::Reduced => &def.reduced,
-        Scale::Full => &def.full,
-    };
-    E::validate(scene)
-        .map_err(|e| Error::bad_file(&source.path, format!("[{}] {e}", opts.scale)))?;
-    let jobs = E::jobs(scene);
-    if jobs.is_empty() {
-        return Err(Error::bad_file(
-            &source.path,
-            format!("[{}] the scene has no jobs (no seeds?)", opts.scale),
-        ));
-    }
+    let (scene, jobs) = checked_scene::<E>(source, &def, opts.scale)?;
     let scene_json = serde_json::to_value(scene).expect("scenes serialise");
     let dir = opts.out.join(&def.name);
     let state = opts
@@ -107,14 +100,21 @@ pub(crate) fn run_experiment<E: Experiment>(source: &Source, opts: &RunOptions) 
             let job_json = serde_json::to_string(job).expect("jobs serialise");
             let key = job_key(opts.scale, &scene_json, &job_json);
             let path = jobs_dir.join(format!("{key}.json"));
+            let mut job_ctx = ctx.clone();
+            job_ctx.state_dir = state.join(format!("{key}.checkpoint"));
             if opts.resume || written_here(&path) {
                 if let Some(result) = load::<E::Job, E::JobResult>(&path) {
+                    // Checkpoints of a run killed after storing this result are spent.
+                    remove_state(&job_ctx.state_dir).ok();
                     bar.inc(1);
                     return Ok((job.clone(), result));
                 }
             }
-            let mut job_ctx = ctx.clone();
-            job_ctx.state_dir = state.join(format!("{key}.checkpoint"));
+            if !opts.resume {
+                // A fresh run recomputes the job from the start: checkpoints an interrupted
+                // run left behind are continued only on request.
+                remove_state(&job_ctx.state_dir)?;
+            }
             let result = E::run_job(scene, job, &job_ctx).map_err(|e| {
                 Error::bad_file(
                     &source.path,
@@ -127,6 +127,10 @@ pub(crate) fn run_experiment<E: Experiment>(source: &Source, opts: &RunOptions) 
             };
             let bytes = serde_json::to_vec(&stored).expect("results serialise");
             crate::io::write_atomic(&path, &bytes)?;
+            // Only now that the result is stored are the job's checkpoints dispensable; a
+            // run killed before this point resumes from them. A leftover is harmless (the
+            // next run of the job removes it), hence `ok()`.
+            remove_state(&job_ctx.state_dir).ok();
             mark_written(path);
             bar.inc(1);
             Ok((stored.job, stored.result))
@@ -202,6 +206,38 @@ pub(crate) fn run_experiment<E: Experiment>(source: &Source, opts: &RunOptions) 
     Ok(outcome)
 }
 
+/// Parses `source` as a definition of experiment `E` and checks both of its scenes,
+/// without running anything (called through [`builtin::check`]).
+pub(crate) fn check_experiment<E: Experiment>(source: &Source) -> Result<()> {
+    let def = source.parse::<E::Scene>()?;
+    for scale in [Scale::Reduced, Scale::Full] {
+        checked_scene::<E>(source, &def, scale)?;
+    }
+    Ok(())
+}
+
+/// The scene of `def` at `scale` with its jobs, once its ranges are checked and it has
+/// at least one job; errors name the file and the scene's table.
+fn checked_scene<'a, E: Experiment>(
+    source: &Source,
+    def: &'a Definition<E::Scene>,
+    scale: Scale,
+) -> Result<(&'a E::Scene, Vec<E::Job>)> {
+    let scene = match scale {
+        Scale::Reduced => &def.reduced,
+        Scale::Full => &def.full,
+    };
+    E::validate(scene).map_err(|e| Error::bad_file(&source.path, format!("[{scale}] {e}")))?;
+    let jobs = E::jobs(scene);
+    if jobs.is_empty() {
+        return Err(Error::bad_file(
+            &source.path,
+            format!("[{scale}] the scene has no jobs (no seeds?)"),
+        ));
+    }
+    Ok((scene, jobs))
+}
+
 /// A short hash of everything that determines a job's result.
 fn job_key(scale: Scale, scene: &serde_json::Value, job: &str) -> String {
     let mut h = Sha256::new();
@@ -213,6 +249,14 @@ fn job_key(scale: Scale, scene: &serde_json::Value, job: &str) -> String {
         .take(8)
         .map(|b| format!("{b:02x}"))
         .collect()
+}
+
+/// Removes a job's state directory (its checkpoints), if there is one.
+fn remove_state(dir: &Path) -> Result<()> {
+    match std::fs::remove_dir_all(dir) {
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => Err(Error::io(dir, e)),
+        _ => Ok(()),
+    }
 }
 
 /// A stored result, if present and readable (a damaged file is recomputed).
