@@ -165,4 +165,54 @@ mod tests {
         r.clear();
         assert!(!dir.path().join("ck").exists());
     }
+
+    #[test]
+    fn a_save_cut_short_leaves_the_previous_generation_whole() {
+        let dir = tempfile::tempdir().unwrap();
+        let ck = dir.path().join("ck");
+        let mut c = Checkpoints::new(&ck);
+        c.save(
+            &1u32,
+            &[("a", Array::F64(&[1.0; 4])), ("b", Array::U8(&[1; 4]))],
+        )
+        .unwrap();
+        // Killed while saving generation 2, between the array writes and the header: `a`
+        // written (same file name and path as `save` uses), `b` half-written (a temporary
+        // never renamed), the header still naming generation 1.
+        crate::io::write_atomic_with(&c.array_path(2, "a"), |w| {
+            write_npy(w, &Array::F64(&[2.0; 4]))
+        })
+        .unwrap();
+        std::fs::write(ck.join("b.2.npy.tmp.4294967295.0"), b"\x93NUMPY\x01\x00v").unwrap();
+        let mut r = Checkpoints::new(&ck);
+        assert_eq!(r.load_meta::<u32>(), Some(1));
+        assert_eq!(r.load_f64("a").unwrap(), vec![1.0; 4]);
+        assert_eq!(r.load_u8("b").unwrap(), vec![1; 4]);
+
+        // The resumed sweep saves over the debris, and readers follow the new header.
+        r.save(
+            &2u32,
+            &[("a", Array::F64(&[3.0; 4])), ("b", Array::U8(&[3; 4]))],
+        )
+        .unwrap();
+        let mut r = Checkpoints::new(&ck);
+        assert_eq!(r.load_meta::<u32>(), Some(2));
+        assert_eq!(r.load_f64("a").unwrap(), vec![3.0; 4]);
+        assert_eq!(r.load_u8("b").unwrap(), vec![3; 4]);
+
+        // Killed after the header, before the previous arrays were deleted: the reader
+        // sees the new generation.
+        let stale = c.array_path(2, "a");
+        let copy = ck.join("stale.npy");
+        std::fs::copy(&stale, &copy).unwrap();
+        r.save(
+            &3u32,
+            &[("a", Array::F64(&[4.0; 4])), ("b", Array::U8(&[4; 4]))],
+        )
+        .unwrap();
+        std::fs::rename(&copy, &stale).unwrap();
+        let mut r = Checkpoints::new(&ck);
+        assert_eq!(r.load_meta::<u32>(), Some(3));
+        assert_eq!(r.load_f64("a").unwrap(), vec![4.0; 4]);
+    }
 }

@@ -1,12 +1,14 @@
 //! Atomic file writes: results appear whole or not at all.
 //!
-//! A file is written to a temporary sibling (`NAME.tmp.PID`), flushed to disk, and renamed
-//! over its final name; a run killed halfway leaves the previous file (or none) in place,
-//! never a truncated one.
+//! A file is written to a temporary sibling (`NAME.tmp.PID.K`, unique to the process and
+//! the call, so that threads writing the same file never share one), flushed to disk, and
+//! renamed over its final name; a run killed halfway leaves the previous file (or none) in
+//! place, never a truncated one.
 
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
 
 use crate::error::{Error, Result};
 
@@ -45,8 +47,10 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
 }
 
 fn temp_name(path: &Path) -> PathBuf {
+    static CALLS: AtomicU64 = AtomicU64::new(0);
+    let k = CALLS.fetch_add(1, Ordering::Relaxed);
     let mut name = path.file_name().unwrap_or_default().to_os_string();
-    name.push(format!(".tmp.{}", std::process::id()));
+    name.push(format!(".tmp.{}.{k}", std::process::id()));
     path.with_file_name(name)
 }
 
@@ -65,6 +69,30 @@ mod tests {
         });
         assert!(err.is_err());
         assert_eq!(std::fs::read(&path).unwrap(), b"first");
+        assert_eq!(
+            std::fs::read_dir(dir.path()).unwrap().count(),
+            1,
+            "no temporary left"
+        );
+    }
+
+    #[test]
+    fn threads_writing_one_file_leave_one_whole_version() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("shared.txt");
+        let versions: Vec<Vec<u8>> = (0..8u8).map(|k| vec![b'a' + k; 1 << 16]).collect();
+        std::thread::scope(|s| {
+            for v in &versions {
+                let path = &path;
+                s.spawn(move || {
+                    for _ in 0..20 {
+                        write_atomic(path, v).unwrap();
+                    }
+                });
+            }
+        });
+        let got = std::fs::read(&path).unwrap();
+        assert!(versions.contains(&got), "a mixed or truncated file");
         assert_eq!(
             std::fs::read_dir(dir.path()).unwrap().count(),
             1,

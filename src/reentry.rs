@@ -22,8 +22,9 @@
 //!   of contact and never back; blue, out of contact after having come back at least once.
 //!
 //! The sweep checkpoints its state every `checkpoint_seconds` ([`crate::checkpoint`]); a run
-//! killed mid-sweep resumes from the last checkpoint and ends with the same numbers as an
-//! uninterrupted run (solves are deterministic, and the warm start is part of the state).
+//! killed mid-sweep resumes (`--resume`) from the last checkpoint and ends with the same
+//! numbers as an uninterrupted run (solves are deterministic, and the warm start is part of
+//! the state). A run without `--resume` starts every sweep afresh.
 
 use std::time::Instant;
 
@@ -399,7 +400,8 @@ fn run_history(
         map: keep_maps.then(|| pack_categories(&history.categories())),
         flux_map: keep_maps.then(|| pack_categories(&flux_map)),
     };
-    checkpoints.clear();
+    // The checkpoints stay until the runner has stored the result (it then removes them):
+    // a run killed in between still resumes from the last one.
     Ok(result)
 }
 
