@@ -12,6 +12,7 @@
 //! same computation whichever thread runs it).
 
 use std::cell::RefCell;
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 
 use rayon::prelude::*;
@@ -23,8 +24,9 @@ use crate::grid::Grid;
 
 /// Precomputed plans for real 2D transforms on one grid size.
 ///
-/// The plans are shared, immutable tables; every call allocates only small per-task
-/// scratch (a row or a block of columns).
+/// The plans are shared, immutable tables; per-thread scratch (a row or a block of
+/// columns) is kept between calls. Every 2D transform is counted ([`Fft2::transforms`]),
+/// so that the cost of a solver can be stated in FFT pairs.
 pub struct Fft2 {
     n: usize,
     m: usize,
@@ -33,6 +35,7 @@ pub struct Fft2 {
     col_fwd: Arc<dyn Fft<f64>>,
     col_inv: Arc<dyn Fft<f64>>,
     block: usize,
+    transforms: AtomicU64,
 }
 
 impl std::fmt::Debug for Fft2 {
@@ -94,7 +97,18 @@ impl Fft2 {
             col_fwd: planner.plan_fft_forward(n),
             col_inv: planner.plan_fft_inverse(n),
             block,
+            transforms: AtomicU64::new(0),
         }
+    }
+
+    /// 2D transforms (forward or inverse) done with these plans so far; a convolution
+    /// counts two.
+    pub fn transforms(&self) -> u64 {
+        self.transforms.load(Ordering::Relaxed)
+    }
+
+    fn count(&self, k: u64) {
+        self.transforms.fetch_add(k, Ordering::Relaxed);
     }
 
     /// Length of a half spectrum, `n (n/2 + 1)`.
@@ -112,6 +126,7 @@ impl Fft2 {
         let (n, m) = (self.n, self.m);
         assert_eq!(field.len(), n * n, "field length");
         assert_eq!(spec.len(), n * m, "spectrum length");
+        self.count(1);
         let rows = rows_per_task(n);
         spec.par_chunks_mut(m * rows)
             .zip(field.par_chunks(n * rows))
@@ -142,6 +157,7 @@ impl Fft2 {
         let (n, m) = (self.n, self.m);
         assert_eq!(field.len(), n * n, "field length");
         assert_eq!(spec.len(), n * m, "spectrum length");
+        self.count(1);
         self.columns(spec, &self.col_inv, 1.0);
         let rows = rows_per_task(n);
         let even = n % 2 == 0;
@@ -200,6 +216,7 @@ impl Fft2 {
         assert_eq!(kernel.len(), n * m, "kernel length");
         assert_eq!(spec.len(), n * m, "spectrum length");
         assert_eq!(out.len(), n * n, "output length");
+        self.count(2);
         let rows = rows_per_task(n);
         let mut none: Vec<f64> = Vec::new();
         let (side, side_rows) = match side {

@@ -7,6 +7,7 @@
 //!                        [--zeta Z] [--solver gfmd|cg] [--tol T] --out DIR
 //! persson-check validate [NAME ...] [--full] --out DIR
 //! persson-check report   [--from DIR] --out FILE.md [--golden DIR] [--no-speed] [--speed-n N]
+//! persson-check speed    [--n N] [--floor-n N ...] [--repeats K] --out DIR
 //! ```
 //!
 //! Exit code 0 on success; otherwise a message on stderr and a non-zero code, and no
@@ -44,6 +45,8 @@ enum Command {
     Validate(commands::validate::Args),
     /// Write the scorecard of the outcomes in a folder, with the speed-against-error study.
     Report(commands::report::Args),
+    /// Run the speed-against-error study alone (floor and warm starts on chosen grids).
+    Speed(commands::speed::Args),
 }
 
 fn main() -> ExitCode {
@@ -62,6 +65,7 @@ fn main() -> ExitCode {
         Command::Solve(args) => commands::solve::run(args),
         Command::Validate(args) => commands::validate::run(args),
         Command::Report(args) => commands::report::run(args),
+        Command::Speed(args) => commands::speed::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

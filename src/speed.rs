@@ -11,7 +11,16 @@
 //!   exponent of `iterations ~ N^k`. The paper's argument for GFMD in reciprocal space is
 //!   that mass weighting lowers critical slowing-down from `O(L^2)` (plain damped dynamics)
 //!   to `O(L^(1/2))`;
-//! * **threads**: the same solve in rayon pools of 1, 2 (and all available) threads.
+//! * **threads**: the same solve in rayon pools of 1, 2 (and all available) threads;
+//! * **floor**: on each grid of `floor_sizes`, the time of one forward + inverse 2D FFT
+//!   pair (the floor of an iteration's cost) and each solver's cold solve in units of it:
+//!   the FFT pairs the solve used per iteration (counted by [`crate::fft::Fft2`]), its cost
+//!   per iteration in pairs, and the cost of each pair it used (1 would be nothing but
+//!   FFTs);
+//! * **warm**: on the same grids, each solver re-solving from a converged solution after a
+//!   1% load change, and after adding one magnification shell (the last shell at or below
+//!   `shell_zeta`, warm-started from the solution one shell lower), against a cold solve of
+//!   the same problem.
 //!
 //! Times are wall-clock times of single runs (the fastest of `repeats`) on whatever machine
 //! runs the study, which may be shared with other work: ratios between rows mean more than
@@ -31,8 +40,9 @@ use crate::error::{check_positive, Error, Result};
 use crate::plot::{Axis, Figure, Series, Style};
 use crate::provenance::Machine;
 use crate::solver::SolverKind;
-use crate::stats::LineFit;
+use crate::stats::{round_sig, LineFit};
 use crate::surface::{Surface, SurfaceParams};
+use crate::sweep::shell_steps;
 
 /// The solvers compared, in table order.
 pub const SOLVERS: [SolverKind; 2] = [SolverKind::Cg, SolverKind::Gfmd];
@@ -52,6 +62,10 @@ pub struct SpeedOptions {
     pub size_tol: f64,
     /// Pool sizes of the thread study.
     pub threads: Vec<usize>,
+    /// Grids of the floor and warm-start studies.
+    pub floor_sizes: Vec<usize>,
+    /// Magnification near which the warm-start study adds one shell.
+    pub shell_zeta: f64,
     /// Timed solves per row; the fastest counts.
     pub repeats: usize,
     /// Hurst exponent.
@@ -72,7 +86,8 @@ impl Default for SpeedOptions {
 
 impl SpeedOptions {
     /// The standard study on an `n x n` grid: sizes `n/4, n/2, n, 2n`, tolerances
-    /// `1e-4 ... 1e-10`, pools of 1, 2 and all available threads.
+    /// `1e-4 ... 1e-10`, pools of 1, 2 and all available threads, floor and warm starts on
+    /// `n` and `2n` with one shell added near `zeta = 32`.
     pub fn with_n(n: usize) -> Self {
         let avail = std::thread::available_parallelism()
             .map(|k| k.get())
@@ -87,6 +102,8 @@ impl SpeedOptions {
             reference_tol: 1e-12,
             size_tol: 1e-8,
             threads,
+            floor_sizes: vec![n, 2 * n],
+            shell_zeta: 32.0,
             repeats: 3,
             hurst: 0.8,
             lambda_s: 8.0,
@@ -122,6 +139,20 @@ impl SpeedOptions {
         }
         if self.repeats == 0 {
             return Err(Error::invalid("speed repeats", 0, ">= 1"));
+        }
+        for &n in &self.floor_sizes {
+            crate::grid::Grid::new(n, 1.0)
+                .and_then(|g| self.params(n).spectrum.validate(&g))
+                .map_err(|e| {
+                    Error::invalid(
+                        "speed floor sizes",
+                        n,
+                        format!("grids that fit the scene ({e})"),
+                    )
+                })?;
+        }
+        if !(self.shell_zeta.is_finite() && self.shell_zeta > 1.0) {
+            return Err(Error::invalid("speed shell zeta", self.shell_zeta, "> 1"));
         }
         check_positive("speed p0", self.p0)
     }
@@ -235,6 +266,53 @@ pub struct ThreadRow {
     pub error: Option<String>,
 }
 
+/// The cost floor on one grid: one FFT pair, and a cold solve in units of it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FloorRow {
+    /// Solver.
+    pub solver: SolverKind,
+    /// Points per side.
+    pub n: usize,
+    /// Wall time of one forward + inverse 2D FFT pair, seconds (fastest batch mean).
+    pub fft_pair_s: f64,
+    /// Iterations of the cold solve (at the size study's tolerance).
+    pub iterations: Option<usize>,
+    /// Wall time of the cold solve (fastest of the repeats), seconds.
+    pub wall_s: Option<f64>,
+    /// FFT pairs the solve used per iteration (refreshes and the final residual included).
+    pub pairs_per_iteration: Option<f64>,
+    /// Cost of an iteration in FFT pairs, `wall / (iterations fft_pair_s)`.
+    pub iteration_in_pairs: Option<f64>,
+    /// Cost of each FFT pair the solve used, in FFT pairs, `wall / (pairs fft_pair_s)`:
+    /// 1 would be nothing but transforms.
+    pub overhead: Option<f64>,
+    /// Why the solve failed, if it did.
+    pub error: Option<String>,
+}
+
+/// A warm re-solve on one grid, against a cold solve of the same problem.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct WarmRow {
+    /// Solver.
+    pub solver: SolverKind,
+    /// Points per side.
+    pub n: usize,
+    /// What changed since the solution the warm solve starts from.
+    pub change: String,
+    /// Iterations of the cold solve.
+    pub cold_iterations: Option<usize>,
+    /// Wall time of the cold solve, seconds.
+    pub cold_wall_s: Option<f64>,
+    /// Iterations of the warm solve.
+    pub warm_iterations: Option<usize>,
+    /// Wall time of the warm solve, seconds.
+    pub warm_wall_s: Option<f64>,
+    /// `warm_wall_s / cold_wall_s`.
+    pub ratio: Option<f64>,
+    /// Why a solve failed, if one did.
+    pub error: Option<String>,
+}
+
 /// The whole study, as written to `speed.json`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SpeedStudy {
@@ -260,10 +338,17 @@ pub struct SpeedStudy {
     pub fits: Vec<SizeFit>,
     /// Thread study.
     pub threads_study: Vec<ThreadRow>,
+    /// Floor study (absent in studies written before it existed).
+    #[serde(default)]
+    pub floor: Vec<FloorRow>,
+    /// Warm-start study (absent in studies written before it existed).
+    #[serde(default)]
+    pub warm: Vec<WarmRow>,
 }
 
-/// One prepared scene: the surface's heights and the model.
+/// One prepared scene: the surface, its heights at full resolution, and the model.
 struct Scene {
+    surface: Surface,
     model: Model,
     heights: Vec<f64>,
     p0: f64,
@@ -275,31 +360,196 @@ impl Scene {
         let model = Model::new(surface.grid().clone(), 1.0)?;
         let heights = surface.heights_at(f64::INFINITY, &model.fft);
         Ok(Self {
+            surface,
             model,
             heights,
             p0: opts.p0,
         })
     }
 
-    /// A cold solve with a fresh solver; returns the solution and its wall time.
-    fn solve(&self, kind: SolverKind, tol: f64) -> Result<(ContactSolution, f64)> {
-        let problem = ContactProblem::new(&self.model, &self.heights, self.p0)?;
+    /// A solve of `heights` at `p0` from `start` with a fresh solver; returns the solution
+    /// and its wall time.
+    fn solve_with(
+        &self,
+        kind: SolverKind,
+        heights: &[f64],
+        p0: f64,
+        start: Start,
+        tol: f64,
+    ) -> Result<(ContactSolution, f64)> {
+        let problem = ContactProblem::new(&self.model, heights, p0)?;
         let mut solver = kind.build();
         let timer = Instant::now();
-        let solution = solver.solve(&problem, Start::Cold, &SolveOptions::with_tol(tol))?;
+        let solution = solver.solve(&problem, start, &SolveOptions::with_tol(tol))?;
         Ok((solution, timer.elapsed().as_secs_f64()))
     }
 
-    /// The fastest of `repeats` cold solves.
-    fn timed(&self, kind: SolverKind, tol: f64, repeats: usize) -> Result<(ContactSolution, f64)> {
-        let (mut best, mut t) = self.solve(kind, tol)?;
+    /// The fastest of `repeats` solves of `heights` at `p0` from `start`.
+    fn timed_with(
+        &self,
+        kind: SolverKind,
+        heights: &[f64],
+        p0: f64,
+        start: Start,
+        tol: f64,
+        repeats: usize,
+    ) -> Result<(ContactSolution, f64)> {
+        let (mut best, mut t) = self.solve_with(kind, heights, p0, start, tol)?;
         for _ in 1..repeats {
-            let (s, dt) = self.solve(kind, tol)?;
+            let (s, dt) = self.solve_with(kind, heights, p0, start, tol)?;
             if dt < t {
                 (best, t) = (s, dt);
             }
         }
         Ok((best, t))
+    }
+
+    /// The fastest of `repeats` cold solves of the scene.
+    fn timed(&self, kind: SolverKind, tol: f64, repeats: usize) -> Result<(ContactSolution, f64)> {
+        self.timed_with(kind, &self.heights, self.p0, Start::Cold, tol, repeats)
+    }
+
+    /// A cold solve of the scene; returns the solution and its wall time.
+    fn solve(&self, kind: SolverKind, tol: f64) -> Result<(ContactSolution, f64)> {
+        self.solve_with(kind, &self.heights, self.p0, Start::Cold, tol)
+    }
+
+    /// Mean wall time of one forward + inverse FFT pair: the fastest of a few batches, each
+    /// long enough (about 0.1 s) to be timed reliably.
+    fn fft_pair_s(&self) -> f64 {
+        let fft = &self.model.fft;
+        let mut field = self.heights.clone();
+        let mut spec = fft.new_spectrum();
+        let mut pair = || {
+            fft.forward(&field, &mut spec);
+            fft.inverse_in_place(&mut spec, &mut field);
+        };
+        let timer = Instant::now();
+        pair();
+        let once = timer.elapsed().as_secs_f64().max(1e-7);
+        let per_batch = ((0.1 / once).ceil() as usize).clamp(1, 10_000);
+        (0..5)
+            .map(|_| {
+                let timer = Instant::now();
+                for _ in 0..per_batch {
+                    pair();
+                }
+                timer.elapsed().as_secs_f64() / per_batch as f64
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// The floor row of one solver: a cold solve counted in FFT pairs.
+    fn floor(&self, kind: SolverKind, fft_pair_s: f64, tol: f64, repeats: usize) -> FloorRow {
+        let n = self.model.grid.n();
+        let before = self.model.fft.transforms();
+        let result = self.solve(kind, tol).and_then(|(s, _)| {
+            let pairs = (self.model.fft.transforms() - before) as f64 / 2.0;
+            let (_, t) = self.timed(kind, tol, repeats)?;
+            Ok((s.stats.iterations, t, pairs))
+        });
+        match result {
+            Ok((it, t, pairs)) => FloorRow {
+                solver: kind,
+                n,
+                fft_pair_s,
+                iterations: Some(it),
+                wall_s: Some(t),
+                pairs_per_iteration: Some(pairs / it.max(1) as f64),
+                iteration_in_pairs: Some(t / (it.max(1) as f64 * fft_pair_s)),
+                overhead: Some(t / (pairs * fft_pair_s)),
+                error: None,
+            },
+            Err(e) => FloorRow {
+                solver: kind,
+                n,
+                fft_pair_s,
+                iterations: None,
+                wall_s: None,
+                pairs_per_iteration: None,
+                iteration_in_pairs: None,
+                overhead: None,
+                error: Some(e.to_string()),
+            },
+        }
+    }
+
+    /// Warm re-solves of one solver: after a 1% load change, and after adding the last
+    /// shell at or below `shell_zeta`.
+    fn warm(&self, kind: SolverKind, shell_zeta: f64, tol: f64, repeats: usize) -> Vec<WarmRow> {
+        let n = self.model.grid.n();
+        let row =
+            |change: String, r: Result<((ContactSolution, f64), (ContactSolution, f64))>| match r {
+                Ok(((cold, tc), (warm, tw))) => WarmRow {
+                    solver: kind,
+                    n,
+                    change,
+                    cold_iterations: Some(cold.stats.iterations),
+                    cold_wall_s: Some(tc),
+                    warm_iterations: Some(warm.stats.iterations),
+                    warm_wall_s: Some(tw),
+                    ratio: Some(tw / tc),
+                    error: None,
+                },
+                Err(e) => WarmRow {
+                    solver: kind,
+                    n,
+                    change,
+                    cold_iterations: None,
+                    cold_wall_s: None,
+                    warm_iterations: None,
+                    warm_wall_s: None,
+                    ratio: None,
+                    error: Some(e.to_string()),
+                },
+            };
+        let mut rows = Vec::new();
+        // Load +1%, from the converged solution at p0.
+        let p1 = 1.01 * self.p0;
+        let load = self.solve(kind, tol).and_then(|(from, _)| {
+            let cold = self.timed_with(kind, &self.heights, p1, Start::Cold, tol, repeats)?;
+            let warm =
+                self.timed_with(kind, &self.heights, p1, Start::Warm(&from), tol, repeats)?;
+            Ok((cold, warm))
+        });
+        rows.push(row("load +1%".into(), load));
+        // One shell: the last at or below shell_zeta, from the solution one shell lower.
+        let top = shell_zeta.min(self.surface.zeta_max());
+        let steps = shell_steps(&self.surface, 1.0, top);
+        match steps.as_slice() {
+            [.., below, at] => {
+                let h_below = self.surface.heights_at(*below, &self.model.fft);
+                let h_at = self.surface.heights_at(*at, &self.model.fft);
+                let shell = self
+                    .solve_with(kind, &h_below, self.p0, Start::Cold, tol)
+                    .and_then(|(from, _)| {
+                        let cold =
+                            self.timed_with(kind, &h_at, self.p0, Start::Cold, tol, repeats)?;
+                        let warm = self.timed_with(
+                            kind,
+                            &h_at,
+                            self.p0,
+                            Start::Warm(&from),
+                            tol,
+                            repeats,
+                        )?;
+                        Ok((cold, warm))
+                    });
+                rows.push(row(
+                    format!("one shell at zeta = {}", round_sig(*at, 4)),
+                    shell,
+                ));
+            }
+            _ => rows.push(row(
+                format!("one shell below zeta = {top}"),
+                Err(Error::invalid(
+                    "speed shell zeta",
+                    shell_zeta,
+                    "a magnification with at least two shells below it",
+                )),
+            )),
+        }
+        rows
     }
 }
 
@@ -444,6 +694,28 @@ pub fn run(opts: &SpeedOptions, progress: &mut dyn FnMut(&str)) -> Result<SpeedS
         }
     }
 
+    let mut floor = Vec::new();
+    let mut warm = Vec::new();
+    for &n in &opts.floor_sizes {
+        let scene = Scene::new(opts, n)?;
+        progress(&format!("floor: FFT pair, N = {n}"));
+        let pair = scene.fft_pair_s();
+        for kind in SOLVERS {
+            progress(&format!(
+                "floor: {}, N = {n}, tol = {:e}",
+                kind.name(),
+                opts.size_tol
+            ));
+            floor.push(scene.floor(kind, pair, opts.size_tol, opts.repeats));
+            progress(&format!(
+                "warm: {}, N = {n}, tol = {:e}",
+                kind.name(),
+                opts.size_tol
+            ));
+            warm.extend(scene.warm(kind, opts.shell_zeta, opts.size_tol, opts.repeats));
+        }
+    }
+
     Ok(SpeedStudy {
         options: opts.clone(),
         machine: Machine::detect(),
@@ -456,6 +728,8 @@ pub fn run(opts: &SpeedOptions, progress: &mut dyn FnMut(&str)) -> Result<SpeedS
         sizes,
         fits,
         threads_study,
+        floor,
+        warm,
     })
 }
 
@@ -506,7 +780,8 @@ impl SpeedStudy {
         serde_json::from_slice(&bytes).map_err(|e| Error::bad_file(path, e.to_string()))
     }
 
-    /// One CSV with a `study` column: `reference`, `tolerance`, `size`, `threads`.
+    /// One CSV with a `study` column: `reference`, `tolerance`, `size`, `threads`, `floor`,
+    /// `warm`.
     fn csv_bytes(&self, path: &Path) -> Result<Vec<u8>> {
         let f = |v: Option<f64>| v.map(|x| format!("{x}")).unwrap_or_default();
         let u = |v: Option<usize>| v.map(|x| x.to_string()).unwrap_or_default();
@@ -526,12 +801,26 @@ impl SpeedStudy {
             "energy_error",
             "speedup",
             "error",
+            "fft_pair_s",
+            "pairs_per_iteration",
+            "iteration_in_pairs",
+            "overhead",
+            "change",
+            "cold_wall_s",
+            "cold_iterations",
+            "warm_over_cold",
         ])
         .map_err(to_io)?;
+        // Rows of the first four studies leave the floor and warm columns empty.
+        let pad = |base: [&str; 13]| {
+            let mut v: Vec<String> = base.iter().map(|x| x.to_string()).collect();
+            v.resize(21, String::new());
+            v
+        };
         let n = self.options.n.to_string();
         let pool = self.threads.to_string();
         let r = &self.reference;
-        w.write_record([
+        w.write_record(pad([
             "reference",
             r.solver.name(),
             &n,
@@ -545,10 +834,10 @@ impl SpeedStudy {
             "0",
             "",
             "",
-        ])
+        ]))
         .map_err(to_io)?;
         for t in &self.tolerance {
-            w.write_record([
+            w.write_record(pad([
                 "tolerance",
                 t.solver.name(),
                 &n,
@@ -562,11 +851,11 @@ impl SpeedStudy {
                 &f(t.energy_error),
                 "",
                 t.error.as_deref().unwrap_or(""),
-            ])
+            ]))
             .map_err(to_io)?;
         }
         for s in &self.sizes {
-            w.write_record([
+            w.write_record(pad([
                 "size",
                 s.solver.name(),
                 &s.n.to_string(),
@@ -580,11 +869,11 @@ impl SpeedStudy {
                 "",
                 "",
                 s.error.as_deref().unwrap_or(""),
-            ])
+            ]))
             .map_err(to_io)?;
         }
         for t in &self.threads_study {
-            w.write_record([
+            w.write_record(pad([
                 "threads",
                 t.solver.name(),
                 &n,
@@ -598,6 +887,58 @@ impl SpeedStudy {
                 "",
                 &f(t.speedup),
                 t.error.as_deref().unwrap_or(""),
+            ]))
+            .map_err(to_io)?;
+        }
+        for r in &self.floor {
+            w.write_record([
+                "floor".to_string(),
+                r.solver.name().to_string(),
+                r.n.to_string(),
+                pool.clone(),
+                format!("{}", self.options.size_tol),
+                f(r.wall_s),
+                u(r.iterations),
+                String::new(),
+                String::new(),
+                String::new(),
+                String::new(),
+                String::new(),
+                r.error.clone().unwrap_or_default(),
+                format!("{}", r.fft_pair_s),
+                f(r.pairs_per_iteration),
+                f(r.iteration_in_pairs),
+                f(r.overhead),
+                String::new(),
+                String::new(),
+                String::new(),
+                String::new(),
+            ])
+            .map_err(to_io)?;
+        }
+        for r in &self.warm {
+            w.write_record([
+                "warm".to_string(),
+                r.solver.name().to_string(),
+                r.n.to_string(),
+                pool.clone(),
+                format!("{}", self.options.size_tol),
+                f(r.warm_wall_s),
+                u(r.warm_iterations),
+                String::new(),
+                String::new(),
+                String::new(),
+                String::new(),
+                String::new(),
+                r.error.clone().unwrap_or_default(),
+                String::new(),
+                String::new(),
+                String::new(),
+                String::new(),
+                r.change.clone(),
+                f(r.cold_wall_s),
+                u(r.cold_iterations),
+                f(r.ratio),
             ])
             .map_err(to_io)?;
         }
@@ -691,6 +1032,7 @@ mod tests {
             tols: vec![1e-4, 1e-8],
             reference_tol: 1e-11,
             threads: vec![1, 2],
+            floor_sizes: vec![32],
             repeats: 1,
             ..SpeedOptions::with_n(32)
         }
@@ -741,6 +1083,34 @@ mod tests {
             assert_eq!(fit.std_error, None, "two points give no error bar");
         }
         assert_eq!(study.threads_study[0].speedup, Some(1.0));
+        // Floor: CG uses two FFT pairs an iteration (the preconditioner's and the
+        // compliance's) and a third when the contact set changed (u = K^-1 p recomputed);
+        // GFMD two (the stress and the mass filter); both plus the set-up and the final
+        // residual.
+        assert_eq!(study.floor.len(), 2);
+        for row in &study.floor {
+            assert!(row.error.is_none(), "{row:?}");
+            let pairs = row.pairs_per_iteration.unwrap();
+            assert!((2.0..=3.2).contains(&pairs), "{row:?}");
+            assert!(
+                row.overhead.unwrap() > 0.0 && row.fft_pair_s > 0.0,
+                "{row:?}"
+            );
+        }
+        // Warm starts: a load change and one shell, each solver, never slower in
+        // iterations than a cold solve of the same problem.
+        assert_eq!(study.warm.len(), 4);
+        for row in &study.warm {
+            assert!(row.error.is_none(), "{row:?}");
+            assert!(
+                row.warm_iterations.unwrap() <= row.cold_iterations.unwrap(),
+                "{row:?}"
+            );
+        }
+        assert!(study
+            .warm
+            .iter()
+            .any(|r| r.change.starts_with("one shell at zeta = ")));
 
         let dir = tempfile::tempdir().unwrap();
         let written = study.write(dir.path()).unwrap();
@@ -750,7 +1120,8 @@ mod tests {
         let csv = std::fs::read_to_string(dir.path().join("speed.csv")).unwrap();
         let lines: Vec<&str> = csv.lines().collect();
         assert!(lines[0].starts_with("study,solver,n,threads,tol"));
-        assert_eq!(lines.len(), 1 + 1 + 4 + 4 + 4, "{csv}");
+        assert_eq!(lines.len(), 1 + 1 + 4 + 4 + 4 + 2 + 4, "{csv}");
+        assert!(lines.iter().any(|l| l.starts_with("warm,cg,32,")), "{csv}");
         assert!(
             lines.iter().any(|l| l.starts_with("size,gfmd,64,")),
             "{csv}"

@@ -3,6 +3,7 @@
 
 pub mod report;
 pub mod solve;
+pub mod speed;
 pub mod surface;
 pub mod validate;
 

@@ -913,6 +913,9 @@ impl Scorecard<'_> {
         s.push_str(&table(&header_refs, &rows));
         s.push('\n');
 
+        self.floor_table(s, study);
+        self.warm_table(s, study);
+
         let dir = self.opts.from.join(SpeedStudy::FIGURES);
         for name in ["speed_error", "speed_iterations"] {
             let png = dir.join(format!("{name}.png"));
@@ -924,6 +927,103 @@ impl Scorecard<'_> {
         if csv.exists() {
             let _ = writeln!(s, "All rows: [speed.csv]({}).\n", self.link_to(&csv));
         }
+    }
+
+    /// The cost of a cold solve in FFT pairs, grid by grid.
+    fn floor_table(&self, s: &mut String, study: &SpeedStudy) {
+        if study.floor.is_empty() {
+            return;
+        }
+        let _ = writeln!(
+            s,
+            "**The floor** (tol {}): one forward + inverse 2D FFT pair bounds the cost of an \
+             iteration from below. \"Pairs / iteration\" counts the transforms each solve \
+             made (set-up and the final residual included); \"iteration in pairs\" is the \
+             solve's wall time over (iterations × pair); \"each pair\" is its wall time over \
+             (pairs used × pair), 1 meaning nothing but transforms.\n",
+            sig(study.options.size_tol, 2)
+        );
+        let rows: Vec<Vec<String>> = study
+            .floor
+            .iter()
+            .map(|r| {
+                let opt = |v: Option<f64>| v.map_or_else(|| "—".into(), |x| sig(x, 3));
+                let mut row = vec![
+                    r.solver.name().to_string(),
+                    r.n.to_string(),
+                    duration(r.fft_pair_s),
+                    r.iterations.map_or_else(|| "—".into(), |i| i.to_string()),
+                    r.wall_s.map_or_else(|| "—".into(), duration),
+                    opt(r.pairs_per_iteration),
+                    opt(r.iteration_in_pairs),
+                    opt(r.overhead),
+                ];
+                if let Some(e) = &r.error {
+                    row[4] = format!("**failed**: {}", md(e));
+                }
+                row
+            })
+            .collect();
+        s.push_str(&table(
+            &[
+                "solver",
+                "N",
+                "FFT pair",
+                "iterations",
+                "cold solve",
+                "pairs / iteration",
+                "iteration in pairs",
+                "each pair",
+            ],
+            &rows,
+        ));
+        s.push('\n');
+    }
+
+    /// Warm re-solves against cold solves of the same problem.
+    fn warm_table(&self, s: &mut String, study: &SpeedStudy) {
+        if study.warm.is_empty() {
+            return;
+        }
+        let _ = writeln!(
+            s,
+            "**Warm starts** (tol {}): a re-solve from a converged solution after a 1% load \
+             change, and after adding one magnification shell (from the solution one shell \
+             lower), against a cold solve of the same problem.\n",
+            sig(study.options.size_tol, 2)
+        );
+        let rows: Vec<Vec<String>> = study
+            .warm
+            .iter()
+            .map(|r| {
+                let it = |v: Option<usize>| v.map_or_else(|| "—".into(), |i| i.to_string());
+                let t = |v: Option<f64>| v.map_or_else(|| "—".into(), duration);
+                let mut row = vec![
+                    r.solver.name().to_string(),
+                    r.n.to_string(),
+                    md(&r.change),
+                    format!("{} ({})", t(r.cold_wall_s), it(r.cold_iterations)),
+                    format!("{} ({})", t(r.warm_wall_s), it(r.warm_iterations)),
+                    r.ratio.map_or_else(|| "—".into(), |x| sig(x, 3)),
+                ];
+                if let Some(e) = &r.error {
+                    row[4] = format!("**failed**: {}", md(e));
+                }
+                row
+            })
+            .collect();
+        s.push_str(&table(
+            &[
+                "solver",
+                "N",
+                "change",
+                "cold (iterations)",
+                "warm (iterations)",
+                "warm / cold",
+            ],
+            &rows,
+        ));
+        s.push('\n');
     }
 
     fn provenance(&self, s: &mut String) {
@@ -1148,6 +1248,7 @@ mod tests {
             tols: vec![1e-4, 1e-8],
             reference_tol: 1e-11,
             threads: vec![1, 2],
+            floor_sizes: vec![32],
             repeats: 1,
             ..SpeedOptions::with_n(32)
         }
@@ -1251,6 +1352,8 @@ mod tests {
         assert!(text.contains("**Times are from one run on a shared machine**"));
         assert!(text.contains("exponent k (iterations ~ N^k)"));
         assert!(text.contains("| cg | 1e-4 |") && text.contains("| gfmd | 1e-8 |"));
+        assert!(text.contains("**The floor**") && text.contains("| pairs / iteration |"));
+        assert!(text.contains("**Warm starts**") && text.contains("| load +1% |"));
         assert!(from.join("speed.csv").exists() && from.join("speed.json").exists());
         assert!(text.contains("## Provenance"));
         assert!(text.contains(&format!("commit `{}", provenance::COMMIT)));

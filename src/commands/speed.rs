@@ -1,0 +1,82 @@
+//! `speed`: the speed-against-error study on its own, on chosen grids (the scorecard runs
+//! the same study at N = 256; `report --no-speed` shows a study written here).
+
+use std::path::PathBuf;
+
+use clap::Args as ClapArgs;
+use persson_check::error::{Error, Result};
+use persson_check::speed::{run as run_study, SpeedOptions};
+
+use super::check_out_dir;
+
+/// Arguments of `speed`.
+#[derive(ClapArgs, Debug)]
+pub struct Args {
+    /// Points per side of the tolerance and thread studies (the size study uses N/4 ... 2N).
+    #[arg(long, default_value_t = 256, allow_negative_numbers = true)]
+    n: usize,
+    /// Grids of the floor (FFT pair) and warm-start studies (default: N and 2N).
+    #[arg(long = "floor-n", num_args = 1..)]
+    floor_n: Vec<usize>,
+    /// Timed solves per row; the fastest counts.
+    #[arg(long, default_value_t = 3)]
+    repeats: usize,
+    /// Output folder: speed.json, speed.csv and speed/*.png, *.svg.
+    #[arg(long)]
+    out: PathBuf,
+}
+
+pub fn run(args: Args) -> Result<()> {
+    let mut opts = SpeedOptions::with_n(args.n);
+    if !args.floor_n.is_empty() {
+        opts.floor_sizes = args.floor_n;
+    }
+    opts.repeats = args.repeats;
+    opts.validate().map_err(|e| match &e {
+        Error::InvalidInput { field, .. } => {
+            let flag = match field.as_str() {
+                "speed n" => "--n",
+                "speed floor sizes" => "--floor-n",
+                "speed repeats" => "--repeats",
+                other => other,
+            }
+            .to_string();
+            e.with_field(&flag)
+        }
+        _ => e,
+    })?;
+    check_out_dir(&args.out)?;
+    let study = run_study(&opts, &mut |line| eprintln!("speed: {line}"))?;
+    std::fs::create_dir_all(&args.out).map_err(|e| Error::io(&args.out, e))?;
+    for path in study.write(&args.out)? {
+        println!("wrote {}", path.display());
+    }
+    for r in &study.floor {
+        println!(
+            "floor {:>4} N = {:>5}: FFT pair {:.3e} s, {} iterations in {:.3e} s, \
+             {:.2} pairs/iteration, iteration = {:.2} pairs, each pair used = {:.2} pairs",
+            r.solver.name(),
+            r.n,
+            r.fft_pair_s,
+            r.iterations.unwrap_or(0),
+            r.wall_s.unwrap_or(f64::NAN),
+            r.pairs_per_iteration.unwrap_or(f64::NAN),
+            r.iteration_in_pairs.unwrap_or(f64::NAN),
+            r.overhead.unwrap_or(f64::NAN),
+        );
+    }
+    for r in &study.warm {
+        println!(
+            "warm  {:>4} N = {:>5}, {}: cold {} it {:.3e} s, warm {} it {:.3e} s, ratio {:.3}",
+            r.solver.name(),
+            r.n,
+            r.change,
+            r.cold_iterations.unwrap_or(0),
+            r.cold_wall_s.unwrap_or(f64::NAN),
+            r.warm_iterations.unwrap_or(0),
+            r.warm_wall_s.unwrap_or(f64::NAN),
+            r.ratio.unwrap_or(f64::NAN),
+        );
+    }
+    Ok(())
+}
