@@ -33,7 +33,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::elastic::HalfSpace;
 use crate::error::{check_positive, Error, Result};
-use crate::fft::Fft2;
+use crate::fft::{Fft2, Kernel};
 use crate::field;
 use crate::grid::Grid;
 
@@ -46,6 +46,10 @@ pub struct Model {
     pub halfspace: HalfSpace,
     /// FFT plans for the grid.
     pub fft: Fft2,
+    /// The stiffness `q E*/2` as a convolution kernel.
+    pub stiffness: Kernel,
+    /// The compliance `2 / (q E*)` as a convolution kernel.
+    pub compliance: Kernel,
 }
 
 impl Model {
@@ -53,10 +57,14 @@ impl Model {
     pub fn new(grid: Grid, e_star: f64) -> Result<Self> {
         let halfspace = HalfSpace::new(&grid, e_star)?;
         let fft = Fft2::new(&grid);
+        let stiffness = fft.kernel(halfspace.stiffness());
+        let compliance = fft.kernel(halfspace.compliance());
         Ok(Self {
             grid,
             halfspace,
             fft,
+            stiffness,
+            compliance,
         })
     }
 }

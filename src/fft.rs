@@ -44,6 +44,16 @@ impl std::fmt::Debug for Fft2 {
     }
 }
 
+/// A real multiplier on the half spectrum for [`Fft2::convolve`], stored column by column
+/// with the forward transform's `1/N^2` folded in, so that the column pass reads it
+/// contiguously (row-major, every value sits one spectrum row, several KiB, from the
+/// last: a cache line and a TLB entry per value on large grids).
+#[derive(Debug, Clone)]
+pub struct Kernel {
+    n: usize,
+    values: Vec<f64>,
+}
+
 /// Per-thread work space, kept between calls: allocating and zeroing scratch for every
 /// task of every transform cost more than a tenth of a solve.
 #[derive(Default)]
@@ -105,6 +115,21 @@ impl Fft2 {
     /// counts two.
     pub fn transforms(&self) -> u64 {
         self.transforms.load(Ordering::Relaxed)
+    }
+
+    /// The convolution kernel of `table`, a real multiplier in the half-spectrum layout of
+    /// [`crate::grid`] (e.g. the half-space's stiffness `q E*/2`).
+    pub fn kernel(&self, table: &[f64]) -> Kernel {
+        let (n, m) = (self.n, self.m);
+        assert_eq!(table.len(), n * m, "kernel table length");
+        let norm = 1.0 / (n as f64 * n as f64);
+        let mut values = vec![0.0; n * m];
+        for (ky, row) in table.chunks_exact(m).enumerate() {
+            for (kx, &v) in row.iter().enumerate() {
+                values[kx * n + ky] = v * norm;
+            }
+        }
+        Kernel { n, values }
     }
 
     fn count(&self, k: u64) {
@@ -189,17 +214,16 @@ impl Fft2 {
 
     /// A fused convolution `out = F^-1[kernel F[x]]`, with `x` generated row by row.
     ///
-    /// `input(i, row, side)` writes row `i` of `x` into `row` (and may write the matching
+    /// `kernel` comes from [`Fft2::kernel`]. `input(i, row, side)` writes row `i` of `x` into `row` (and may write the matching
     /// row of `side`, a second field it keeps, e.g. a search direction) and returns a
     /// value; `output(i, row, side)` sees row `i` of the result once it is in `out`, with the
     /// same row of `side` (empty without one), and returns a value. Both lists of values come back in row order, so reductions over them do not
-    /// depend on the number of threads. `kernel` is real, on the half spectrum; `spec` is
-    /// work space. Each row is generated, and consumed, while it is in cache: the input
+    /// depend on the number of threads. `spec` is work space. Each row is generated, and consumed, while it is in cache: the input
     /// and output passes of a solver iteration cost no extra sweep over memory.
     #[allow(clippy::too_many_arguments)]
     pub fn convolve<A, B, I, O>(
         &self,
-        kernel: &[f64],
+        kernel: &Kernel,
         spec: &mut [Complex64],
         side: Option<&mut [f64]>,
         input: I,
@@ -213,7 +237,7 @@ impl Fft2 {
         O: Fn(usize, &[f64], &[f64]) -> A + Sync,
     {
         let (n, m) = (self.n, self.m);
-        assert_eq!(kernel.len(), n * m, "kernel length");
+        assert_eq!(kernel.n, n, "kernel planned for another grid");
         assert_eq!(spec.len(), n * m, "spectrum length");
         assert_eq!(out.len(), n * n, "output length");
         self.count(2);
@@ -311,13 +335,12 @@ impl Fft2 {
         )
     }
 
-    /// Column pass of a convolution: forward transform, multiplication by `kernel / N^2`,
+    /// Column pass of a convolution: forward transform, multiplication by the kernel,
     /// inverse transform, block by block.
-    fn columns_with(&self, spec: &mut [Complex64], kernel: &[f64]) {
+    fn columns_with(&self, spec: &mut [Complex64], kernel: &Kernel) {
         let (n, m, block) = (self.n, self.m, self.block);
         let blocks = m.div_ceil(block);
         let base = SharedMut(spec.as_mut_ptr());
-        let norm = 1.0 / (n as f64 * n as f64);
         (0..blocks).into_par_iter().for_each(|b| {
             SCRATCH.with(|cell| {
                 let mut guard = cell.borrow_mut();
@@ -344,10 +367,9 @@ impl Fft2 {
                     }
                 }
                 self.col_fwd.process_with_scratch(buf, scratch);
-                for c in 0..width {
-                    for ky in 0..n {
-                        buf[c * n + ky] *= kernel[ky * m + c0 + c] * norm;
-                    }
+                let k = &kernel.values[c0 * n..(c0 + width) * n];
+                for (b, &kv) in buf.iter_mut().zip(k) {
+                    *b *= kv;
                 }
                 self.col_inv.process_with_scratch(buf, scratch);
                 unsafe {
@@ -476,7 +498,7 @@ mod tests {
             let mut side = vec![0.0; n * n];
             let mut got = vec![0.0; n * n];
             let (ins, outs) = fft.convolve(
-                &kernel,
+                &fft.kernel(&kernel),
                 &mut spec,
                 Some(&mut side),
                 |i, row, keep| {

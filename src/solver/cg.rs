@@ -105,7 +105,7 @@ const STAGNATION: usize = 200;
 const KEEP_CONJUGACY: f64 = 0.01;
 
 /// Sums over the gap: `sum_Ic g^2`, `sum_Ic p |g|`, `sum_Ic p`, and the largest
-/// penetration `max(-g)` outside contact.
+/// penetration `max(-g)`.
 #[derive(Debug, Clone, Copy, Default)]
 struct GapSums {
     gg: f64,
@@ -175,7 +175,10 @@ impl View<'_> {
             // p = 0 outside contact: these need no mask.
             acc[1] += pk * g.abs();
             acc[2] += pk;
-            pen = pen.max(if contact { f64::NEG_INFINITY } else { -g });
+            // Penetration anywhere, contact points included, as in the full residual:
+            // with a smaller estimate the full residual is evaluated too early, fails, and
+            // costs a refresh and an evaluation for nothing.
+            pen = pen.max(-g);
             gm
         };
         match out {
@@ -219,8 +222,8 @@ impl ConstrainedCg {
         let h = problem.heights;
         let p0 = problem.p0;
         let ell = problem.length_scale;
-        let stiffness_table = model.halfspace.stiffness();
-        let compliance_table = model.halfspace.compliance();
+        let stiffness_table = &model.stiffness;
+        let compliance_table = &model.compliance;
         ensure_len(&mut self.p, n2);
         ensure_len(&mut self.u, n2);
         ensure_len(&mut self.t, n2);
@@ -521,7 +524,7 @@ impl ConstrainedCg {
         let h = problem.heights;
         let s = *scale;
         let (_, outs) = model.fft.convolve(
-            model.halfspace.compliance(),
+            &model.compliance,
             &mut self.spec,
             Some(&mut self.p),
             |_, row, p| {
