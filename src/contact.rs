@@ -48,7 +48,8 @@ pub struct Model {
     pub fft: Fft2,
     /// The stiffness `q E*/2` as a convolution kernel.
     pub stiffness: Kernel,
-    /// The compliance `2 / (q E*)` as a convolution kernel.
+    /// The compliance `2 / (q E*)` as a convolution kernel (the stiffness's values, inverted
+    /// as they are read).
     pub compliance: Kernel,
 }
 
@@ -58,7 +59,7 @@ impl Model {
         let halfspace = HalfSpace::new(&grid, e_star)?;
         let fft = Fft2::new(&grid);
         let stiffness = fft.kernel(halfspace.stiffness());
-        let compliance = fft.kernel(halfspace.compliance());
+        let compliance = stiffness.inverse();
         Ok(Self {
             grid,
             halfspace,

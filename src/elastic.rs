@@ -29,8 +29,6 @@ pub struct HalfSpace {
     e_star: f64,
     /// `q E*/2` for every half-spectrum mode (0 at `q = 0`).
     stiffness: Vec<f64>,
-    /// `2 / (q E*)` for every half-spectrum mode (0 at `q = 0`: the rigid shift is free).
-    compliance: Vec<f64>,
 }
 
 impl HalfSpace {
@@ -40,15 +38,7 @@ impl HalfSpace {
         let stiffness = (0..grid.modes())
             .map(|s| 0.5 * e_star * grid.q(s))
             .collect::<Vec<f64>>();
-        let compliance = stiffness
-            .iter()
-            .map(|&k| if k > 0.0 { 1.0 / k } else { 0.0 })
-            .collect();
-        Ok(Self {
-            e_star,
-            stiffness,
-            compliance,
-        })
+        Ok(Self { e_star, stiffness })
     }
 
     /// Effective modulus `E*`.
@@ -61,9 +51,12 @@ impl HalfSpace {
         &self.stiffness
     }
 
-    /// The table of `2 / (q E*)` over the half spectrum (0 at `q = 0`).
-    pub fn compliance(&self) -> &[f64] {
-        &self.compliance
+    /// `2 / (q E*)` over the half spectrum (0 at `q = 0`: the rigid shift is free), computed
+    /// from the stiffness rather than stored (a table costs 4 bytes per grid point).
+    pub fn compliance(&self) -> impl Iterator<Item = f64> + '_ {
+        self.stiffness
+            .iter()
+            .map(|&k| if k > 0.0 { 1.0 / k } else { 0.0 })
     }
 
     /// Stress from displacement, `p~ = (q E*/2) u~`, with `p~(0) = p0`.
@@ -76,8 +69,8 @@ impl HalfSpace {
 
     /// Displacement from stress, `u~ = 2 p~ / (q E*)`, with the free rigid shift `u~(0) = 0`.
     pub fn displacement_from_pressure(&self, p: &[Complex64], u: &mut [Complex64]) {
-        for ((ui, pi), c) in u.iter_mut().zip(p).zip(&self.compliance) {
-            *ui = pi * *c;
+        for ((ui, pi), c) in u.iter_mut().zip(p).zip(self.compliance()) {
+            *ui = pi * c;
         }
     }
 

@@ -48,10 +48,28 @@ impl std::fmt::Debug for Fft2 {
 /// with the forward transform's `1/N^2` folded in, so that the column pass reads it
 /// contiguously (row-major, every value sits one spectrum row, several KiB, from the
 /// last: a cache line and a TLB entry per value on large grids).
+///
+/// A kernel and its [`Kernel::inverse`] share one table (4 bytes per grid point): the
+/// inverse divides as it reads, which costs little next to the transforms.
 #[derive(Debug, Clone)]
 pub struct Kernel {
     n: usize,
-    values: Vec<f64>,
+    values: Arc<[f64]>,
+    /// `1/N^2`, folded into `values`.
+    norm: f64,
+    /// Multiply by `1/k` (0 where `k = 0`) instead of `k`.
+    inverse: bool,
+}
+
+impl Kernel {
+    /// The kernel `1/k` of this kernel `k`, with 0 where `k = 0` (the compliance of a
+    /// stiffness, whose `q = 0` mode is the free rigid shift).
+    pub fn inverse(&self) -> Kernel {
+        Kernel {
+            inverse: !self.inverse,
+            ..self.clone()
+        }
+    }
 }
 
 /// Per-thread work space, kept between calls: allocating and zeroing scratch for every
@@ -129,7 +147,12 @@ impl Fft2 {
                 values[kx * n + ky] = v * norm;
             }
         }
-        Kernel { n, values }
+        Kernel {
+            n,
+            values: values.into(),
+            norm,
+            inverse: false,
+        }
     }
 
     fn count(&self, k: u64) {
@@ -214,12 +237,16 @@ impl Fft2 {
 
     /// A fused convolution `out = F^-1[kernel F[x]]`, with `x` generated row by row.
     ///
-    /// `kernel` comes from [`Fft2::kernel`]. `input(i, row, side)` writes row `i` of `x` into `row` (and may write the matching
-    /// row of `side`, a second field it keeps, e.g. a search direction) and returns a
-    /// value; `output(i, row, side)` sees row `i` of the result once it is in `out`, with the
-    /// same row of `side` (empty without one), and returns a value. Both lists of values come back in row order, so reductions over them do not
-    /// depend on the number of threads. `spec` is work space. Each row is generated, and consumed, while it is in cache: the input
-    /// and output passes of a solver iteration cost no extra sweep over memory.
+    /// `kernel` comes from [`Fft2::kernel`]. `input(i, row, side, old)` writes row `i` of `x`
+    /// into `row` (and may write the matching row of `side`, a second field it keeps, e.g. a
+    /// search direction) and returns a value; `old` is row `i` of `out` before the call, so
+    /// a field that is only read to generate `x` can share its memory with the result. Every
+    /// row is generated before the first one is written. `output(i, row, side)` sees row `i`
+    /// of the result once it is in `out`, with the same row of `side` (empty without one),
+    /// and returns a value. Both lists of values come back in row order, so reductions over
+    /// them do not depend on the number of threads. `spec` is work space. Each row is
+    /// generated, and consumed, while it is in cache: the input and output passes of a
+    /// solver iteration cost no extra sweep over memory.
     #[allow(clippy::too_many_arguments)]
     pub fn convolve<A, B, I, O>(
         &self,
@@ -233,7 +260,7 @@ impl Fft2 {
     where
         A: Send,
         B: Send,
-        I: Fn(usize, &mut [f64], &mut [f64]) -> B + Sync,
+        I: Fn(usize, &mut [f64], &mut [f64], &[f64]) -> B + Sync,
         O: Fn(usize, &[f64], &[f64]) -> A + Sync,
     {
         let (n, m) = (self.n, self.m);
@@ -251,38 +278,41 @@ impl Fft2 {
             None => (&mut none[..], 0),
         };
         let side_chunk = (side_rows * rows).max(1);
-        let forward = |c: usize, spec_chunk: &mut [Complex64], side_chunk: &mut [f64]| {
-            SCRATCH.with(|cell| {
-                let mut guard = cell.borrow_mut();
-                let Scratch { real, complex, .. } = &mut *guard;
-                let row = at_least(real, n);
-                let scratch = at_least(complex, self.r2c.get_scratch_len());
-                let mut values = Vec::with_capacity(rows);
-                for (k, o) in spec_chunk.chunks_exact_mut(m).enumerate() {
-                    let i = c * rows + k;
-                    let side_row: &mut [f64] = if side_rows > 0 {
-                        &mut side_chunk[k * n..(k + 1) * n]
-                    } else {
-                        &mut []
-                    };
-                    values.push(input(i, row, side_row));
-                    self.r2c
-                        .process_with_scratch(row, o, scratch)
-                        .expect("r2c lengths are planned");
-                }
-                values
-            })
-        };
+        let forward =
+            |c: usize, spec_chunk: &mut [Complex64], side_chunk: &mut [f64], old_chunk: &[f64]| {
+                SCRATCH.with(|cell| {
+                    let mut guard = cell.borrow_mut();
+                    let Scratch { real, complex, .. } = &mut *guard;
+                    let row = at_least(real, n);
+                    let scratch = at_least(complex, self.r2c.get_scratch_len());
+                    let mut values = Vec::with_capacity(rows);
+                    for (k, o) in spec_chunk.chunks_exact_mut(m).enumerate() {
+                        let i = c * rows + k;
+                        let side_row: &mut [f64] = if side_rows > 0 {
+                            &mut side_chunk[k * n..(k + 1) * n]
+                        } else {
+                            &mut []
+                        };
+                        values.push(input(i, row, side_row, &old_chunk[k * n..(k + 1) * n]));
+                        self.r2c
+                            .process_with_scratch(row, o, scratch)
+                            .expect("r2c lengths are planned");
+                    }
+                    values
+                })
+            };
         let generated: Vec<Vec<B>> = if side_rows > 0 {
             spec.par_chunks_mut(m * rows)
                 .zip(side.par_chunks_mut(side_chunk))
+                .zip(out.par_chunks(n * rows))
                 .enumerate()
-                .map(|(c, (a, b))| forward(c, a, b))
+                .map(|(c, ((a, b), o))| forward(c, a, b, o))
                 .collect()
         } else {
             spec.par_chunks_mut(m * rows)
+                .zip(out.par_chunks(n * rows))
                 .enumerate()
-                .map(|(c, chunk)| forward(c, chunk, &mut []))
+                .map(|(c, (chunk, o))| forward(c, chunk, &mut [], o))
                 .collect()
         };
         self.columns_with(spec, kernel);
@@ -368,8 +398,16 @@ impl Fft2 {
                 }
                 self.col_fwd.process_with_scratch(buf, scratch);
                 let k = &kernel.values[c0 * n..(c0 + width) * n];
-                for (b, &kv) in buf.iter_mut().zip(k) {
-                    *b *= kv;
+                if kernel.inverse {
+                    // kv = k / N^2, and the inverse needs (1/k) / N^2 = N^-4 / kv.
+                    let norm2 = kernel.norm * kernel.norm;
+                    for (b, &kv) in buf.iter_mut().zip(k) {
+                        *b *= if kv > 0.0 { norm2 / kv } else { 0.0 };
+                    }
+                } else {
+                    for (b, &kv) in buf.iter_mut().zip(k) {
+                        *b *= kv;
+                    }
                 }
                 self.col_inv.process_with_scratch(buf, scratch);
                 unsafe {
@@ -501,7 +539,7 @@ mod tests {
                 &fft.kernel(&kernel),
                 &mut spec,
                 Some(&mut side),
-                |i, row, keep| {
+                |i, row, keep, _| {
                     row.copy_from_slice(&x[i * n..(i + 1) * n]);
                     keep.copy_from_slice(row);
                     i
@@ -521,6 +559,46 @@ mod tests {
                 assert_eq!(*k, i);
                 let direct: f64 = got[i * n..(i + 1) * n].iter().sum();
                 assert_eq!(*s, direct);
+            }
+        }
+    }
+
+    #[test]
+    fn inverse_kernel_undoes_the_kernel_in_place() {
+        // x -> k x -> (1/k) (k x) returns x minus its mean (k = 0 at q = 0), with the
+        // second convolution reading its input from the buffer it writes.
+        for n in [8usize, 15, 32] {
+            let grid = Grid::new(n, 1.0).unwrap();
+            let fft = Fft2::new(&grid);
+            let mut rng = ChaCha8Rng::seed_from_u64(7 + n as u64);
+            let x: Vec<f64> = (0..n * n).map(|_| rng.random::<f64>() - 0.5).collect();
+            let mean = x.iter().sum::<f64>() / (n * n) as f64;
+            let table: Vec<f64> = (0..grid.modes()).map(|s| grid.q(s)).collect();
+            let k = fft.kernel(&table);
+            let mut spec = fft.new_spectrum();
+            let mut y = vec![0.0; n * n];
+            fft.convolve(
+                &k,
+                &mut spec,
+                None,
+                |i, row, _, _| row.copy_from_slice(&x[i * n..(i + 1) * n]),
+                &mut y,
+                |_, _, _| (),
+            );
+            fft.convolve(
+                &k.inverse(),
+                &mut spec,
+                None,
+                |_, row, _, old| row.copy_from_slice(old),
+                &mut y,
+                |_, _, _| (),
+            );
+            for (a, b) in y.iter().zip(&x) {
+                assert!(
+                    (a - (b - mean)).abs() < 1e-13,
+                    "n = {n}: {a} vs {}",
+                    b - mean
+                );
             }
         }
     }

@@ -180,6 +180,8 @@ pub fn run(args: Args) -> Result<()> {
         }
     };
     bar.finish_and_clear();
+    // The solver's work buffers (24 bytes per point with CG) are not needed to write.
+    drop(solver);
     write_outputs(&args.out, &model, &heights, &solution, |s| Summary {
         n: model.grid.n(),
         p0: s.p0,

@@ -68,7 +68,6 @@ pub struct ConstrainedCg {
     pub refresh_every: usize,
     /// Precondition the gap with the stiffness `K` (one more FFT pair per iteration).
     pub preconditioned: bool,
-    z: Vec<f64>,
     p: Vec<f64>,
     u: Vec<f64>,
     t: Vec<f64>,
@@ -81,7 +80,6 @@ impl Default for ConstrainedCg {
         Self {
             refresh_every: 50,
             preconditioned: true,
-            z: Vec::new(),
             p: Vec::new(),
             u: Vec::new(),
             t: Vec::new(),
@@ -228,7 +226,6 @@ impl ConstrainedCg {
         ensure_len(&mut self.u, n2);
         ensure_len(&mut self.t, n2);
         ensure_len(&mut self.r, n2);
-        ensure_len(&mut self.z, n2);
         ensure_len(&mut self.spec, model.grid.modes());
 
         let warm = matches!(start, Start::Warm(_));
@@ -289,8 +286,10 @@ impl ConstrainedCg {
                     stiffness_table,
                     &mut self.spec,
                     None,
-                    |i, row, _| view.gap_sums_into(i * n..(i + 1) * n, Some(row)),
-                    &mut self.z,
+                    |i, row, _, _| view.gap_sums_into(i * n..(i + 1) * n, Some(row)),
+                    // z shares r's memory: it is read while t is generated, before r is
+                    // written (see `Fft2::convolve`).
+                    &mut self.r,
                     |i, z, _| {
                         let (p, u, h) = view.row(i, n);
                         let (s, gbar) = (view.scale, view.gbar);
@@ -350,6 +349,8 @@ impl ConstrainedCg {
                 }
                 reached = reached.min(solution.stats.residual.value());
                 internal_tol *= 0.25;
+                self.resume(solution, gbar);
+                scale = 1.0;
             }
 
             // 2. Search direction t (kept in self.t) and r = K^-1 t, with the step's sums.
@@ -370,16 +371,14 @@ impl ConstrainedCg {
                 scale,
                 gbar,
             };
-            let z = &self.z;
             let (_, outs) = model.fft.convolve(
                 compliance_table,
                 &mut self.spec,
                 Some(&mut self.t),
-                |i, row, t| {
+                |i, row, t, z| {
                     let (p, u, h) = view.row(i, n);
                     let (s, gbar) = (view.scale, view.gbar);
                     if precond {
-                        let z = &z[i * n..(i + 1) * n];
                         for (((x, tk), &zk), &pk) in row.iter_mut().zip(t.iter_mut()).zip(z).zip(p)
                         {
                             let d = zk - zbar + beta * *tk;
@@ -527,7 +526,7 @@ impl ConstrainedCg {
             &model.compliance,
             &mut self.spec,
             Some(&mut self.p),
-            |_, row, p| {
+            |_, row, p, _| {
                 for (x, pj) in row.iter_mut().zip(p.iter_mut()) {
                     *pj *= s;
                     *x = *pj;
@@ -555,7 +554,7 @@ impl ConstrainedCg {
     }
 
     /// Packs the current state (load scale `scale`, rigid shift `gbar`) into a solution
-    /// with its residual.
+    /// with its residual, moving `p` and `u` into it.
     fn finish(
         &mut self,
         problem: &ContactProblem,
@@ -565,8 +564,14 @@ impl ConstrainedCg {
         warm: bool,
         timer: Instant,
     ) -> ContactSolution {
-        let displacement: Vec<f64> = self.u.par_iter().map(|u| scale * u - gbar).collect();
-        let pressure: Vec<f64> = self.p.par_iter().map(|p| scale * p).collect();
+        // The solution takes the solver's buffers rather than copying them (16 bytes per
+        // point at the peak); `resume` hands them back when the solve must go on.
+        let mut pressure = std::mem::take(&mut self.p);
+        let mut displacement = std::mem::take(&mut self.u);
+        pressure.par_iter_mut().for_each(|p| *p *= scale);
+        displacement
+            .par_iter_mut()
+            .for_each(|u| *u = scale * *u - gbar);
         let residual = Residual::evaluate(
             problem,
             &pressure,
@@ -587,6 +592,14 @@ impl ConstrainedCg {
             },
         }
     }
+
+    /// Takes back the buffers of a [`Self::finish`]ed state to iterate on (the load scale
+    /// is then 1, and the rigid shift `gbar` the one it was packed with).
+    fn resume(&mut self, solution: ContactSolution, gbar: f64) {
+        self.p = solution.pressure;
+        self.u = solution.displacement;
+        self.u.par_iter_mut().for_each(|u| *u += gbar);
+    }
 }
 
 /// The displacement of a point under unit pressure on that point alone,
@@ -596,7 +609,6 @@ fn point_compliance(model: &crate::contact::Model) -> f64 {
     let sum: f64 = model
         .halfspace
         .compliance()
-        .iter()
         .enumerate()
         .map(|(s, c)| grid.weight_of(s) * c)
         .sum();

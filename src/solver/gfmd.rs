@@ -197,6 +197,7 @@ impl Gfmd {
                 if solution.stats.residual.value() <= opts.tol {
                     return Ok(solution);
                 }
+                self.u = solution.displacement;
             }
             // 3: mass-weighted acceleration.
             model.fft.forward(&self.force, &mut self.spec);
@@ -330,8 +331,9 @@ impl Gfmd {
         (equilibrium, load, finite)
     }
 
-    /// Packs the current state into a solution with its residual. Expects the stress of
-    /// the current state in `self.accel` (as left by [`Gfmd::forces`]).
+    /// Packs the current state into a solution with its residual, moving `u` into it.
+    /// Expects the stress of the current state in `self.accel` (as left by
+    /// [`Gfmd::forces`]).
     fn finish(
         &mut self,
         problem: &ContactProblem,
@@ -346,7 +348,8 @@ impl Gfmd {
             .zip(self.accel.par_iter().zip(h))
             .map(|(&u, (&s, &hh))| if u <= hh { s.max(0.0) } else { 0.0 })
             .collect();
-        let displacement = self.u.clone();
+        // The solution takes the displacement buffer (the caller hands it back to go on).
+        let displacement = std::mem::take(&mut self.u);
         let residual = Residual::evaluate(
             problem,
             &pressure,
