@@ -135,9 +135,7 @@ impl Experiment for ContactArea {
                 p.spectrum.validate(&crate::grid::Grid::new(p.n, 1.0)?)?;
             }
         }
-        if scene.seeds.is_empty() {
-            return Err(Error::invalid("seeds", "[]", "at least one seed"));
-        }
+        crate::error::check_seeds(&scene.seeds)?;
         if scene.reduced_pressures.is_empty()
             || scene.reduced_pressures.windows(2).any(|w| w[1] <= w[0])
         {

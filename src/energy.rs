@@ -275,9 +275,7 @@ impl Experiment for TotalEnergy {
     fn validate(scene: &EnergyScene) -> Result<()> {
         let p = scene.params(0);
         p.spectrum.validate(&Grid::new(p.n, 1.0)?)?;
-        if scene.seeds.is_empty() {
-            return Err(Error::invalid("seeds", "[]", "at least one seed"));
-        }
+        crate::error::check_seeds(&scene.seeds)?;
         if scene.contact_areas.is_empty() {
             return Err(Error::invalid(
                 "contact_areas",

@@ -118,6 +118,24 @@ pub fn check_open(field: &str, value: f64, lo: f64, hi: f64) -> Result<()> {
     }
 }
 
+/// Checks that a list of realization seeds is not empty and names each seed once: a
+/// repeated seed would count one realization twice and shrink the error bar for nothing.
+pub fn check_seeds(seeds: &[u64]) -> Result<()> {
+    if seeds.is_empty() {
+        return Err(Error::invalid("seeds", "[]", "at least one seed"));
+    }
+    for (k, s) in seeds.iter().enumerate() {
+        if seeds[..k].contains(s) {
+            return Err(Error::invalid(
+                "seeds",
+                format!("{seeds:?}"),
+                format!("distinct seeds ({s} appears twice)"),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Checks `value > 0` and finite; names the field on failure.
 pub fn check_positive(field: &str, value: f64) -> Result<()> {
     if value.is_finite() && value > 0.0 {

@@ -248,9 +248,7 @@ impl ModeScene {
     fn validate(&self) -> Result<()> {
         let p = self.params(0);
         p.spectrum.validate(&Grid::new(p.n, 1.0)?)?;
-        if self.seeds.is_empty() {
-            return Err(Error::invalid("seeds", "[]", "at least one seed"));
-        }
+        crate::error::check_seeds(&self.seeds)?;
         if self.contact_areas.is_empty() {
             return Err(Error::invalid(
                 "contact_areas",

@@ -414,9 +414,7 @@ impl Experiment for Reentry {
     fn validate(scene: &ReentryScene) -> Result<()> {
         let grid = crate::grid::Grid::new(scene.n, 1.0)?;
         scene.params(0).spectrum.validate(&grid)?;
-        if scene.seeds.is_empty() {
-            return Err(Error::invalid("seeds", "[]", "at least one seed"));
-        }
+        crate::error::check_seeds(&scene.seeds)?;
         if scene.contact_areas.is_empty() {
             return Err(Error::invalid(
                 "contact_areas",

@@ -142,9 +142,7 @@ impl TransitionScene {
         SurfaceParams::new(self.n, self.hurst, self.lambda_l, self.lambda_s, 0)
             .spectrum
             .validate(&grid)?;
-        if self.seeds.is_empty() {
-            return Err(Error::invalid("seeds", "[]", "at least one seed"));
-        }
+        crate::error::check_seeds(&self.seeds)?;
         check_open("contact_area", self.contact_area, 0.0, 1.0)?;
         let zeta_max = self.lambda_l / self.lambda_s;
         crate::scene::check_zeta(self.zeta, zeta_max)?;

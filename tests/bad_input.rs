@@ -619,6 +619,22 @@ fn every_definition_rejects_empty_seeds() {
 }
 
 #[test]
+fn every_definition_rejects_a_repeated_seed() {
+    for (name, text) in DEFINITIONS {
+        let line = text
+            .lines()
+            .find(|l| l.starts_with("seeds = ["))
+            .unwrap_or_else(|| panic!("{name}: no seeds"));
+        let file = format!("{name}.toml");
+        let text = edit(text, line, "seeds = [3, 5, 3]");
+        bad_definitions(
+            &[(&file, &text)],
+            &[&file, "[reduced]", "seeds", "distinct", "3 appears twice"],
+        );
+    }
+}
+
+#[test]
 fn one_bad_definition_stops_all_before_any_runs() {
     // contact_area sorts first and is valid: it must not run (nor write) either.
     let frozen = DEFINITIONS
