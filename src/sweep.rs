@@ -37,6 +37,8 @@ pub struct Sweep<'a> {
     solver: Box<dyn Solver + Send>,
     opts: SolveOptions,
     spec: Vec<Complex64>,
+    /// Spectrum work space (kept: a sweep sets thousands of magnifications).
+    work: Vec<Complex64>,
     heights: Vec<f64>,
     zeta: f64,
     previous: Option<ContactSolution>,
@@ -59,6 +61,7 @@ impl<'a> Sweep<'a> {
             solver: kind.build(),
             opts,
             spec: model.fft.new_spectrum(),
+            work: model.fft.new_spectrum(),
             heights: vec![0.0; model.grid.points()],
             zeta: f64::NAN,
             previous: None,
@@ -72,20 +75,18 @@ impl<'a> Sweep<'a> {
         if zeta == self.zeta {
             return;
         }
-        let mut next = self.model.fft.new_spectrum();
-        self.surface.modes_at(zeta, &mut next);
+        let next = &mut self.work;
+        self.surface.modes_at(zeta, next);
         if self.previous.is_some() && self.zeta.is_finite() {
             let change = self
                 .change
                 .get_or_insert_with(|| vec![Complex64::default(); next.len()]);
-            for ((c, new), old) in change.iter_mut().zip(&next).zip(&self.spec) {
+            for ((c, new), old) in change.iter_mut().zip(next.iter()).zip(&self.spec) {
                 *c += new - old;
             }
         }
-        self.spec.copy_from_slice(&next);
-        self.model
-            .fft
-            .inverse_in_place(&mut next, &mut self.heights);
+        self.spec.copy_from_slice(next);
+        self.model.fft.inverse_in_place(next, &mut self.heights);
         self.zeta = zeta;
     }
 
@@ -98,14 +99,13 @@ impl<'a> Sweep<'a> {
         let points = self.model.grid.points();
         let mut response = vec![0.0; points];
         let mut dh = vec![0.0; points];
-        let mut work: Vec<Complex64> = change
-            .iter()
-            .zip(self.model.halfspace.stiffness())
-            .map(|(c, k)| c * k)
-            .collect();
-        fft.inverse_in_place(&mut work, &mut response);
-        work.copy_from_slice(&change);
-        fft.inverse_in_place(&mut work, &mut dh);
+        // The mean height never changes (the q = 0 mode is not a shell): the response has
+        // zero mean.
+        self.model
+            .halfspace
+            .pressure_from_displacement(&change, 0.0, &mut self.work);
+        fft.inverse_in_place(&mut self.work, &mut response);
+        fft.inverse(&change, &mut dh, &mut self.work);
         let mut start = prev.clone();
         start
             .pressure

@@ -605,33 +605,32 @@ fn definition_not_utf8() {
     );
 }
 
-#[test]
-fn every_definition_rejects_empty_seeds() {
+/// Every built-in definition with its reduced scene's seeds replaced by `seeds` is
+/// rejected with a message holding `words` (and the file, the table and the field).
+fn every_definition_rejects_seeds(seeds: &str, words: &[&str]) {
     for (name, text) in DEFINITIONS {
         let line = text
             .lines()
             .find(|l| l.starts_with("seeds = ["))
             .unwrap_or_else(|| panic!("{name}: no seeds"));
         let file = format!("{name}.toml");
-        let text = edit(text, line, "seeds = []");
-        bad_definitions(&[(&file, &text)], &[&file, "[reduced]", "seeds"]);
+        let text = edit(text, line, seeds);
+        let expected: Vec<&str> = [file.as_str(), "[reduced]", "seeds"]
+            .into_iter()
+            .chain(words.iter().copied())
+            .collect();
+        bad_definitions(&[(&file, &text)], &expected);
     }
 }
 
 #[test]
+fn every_definition_rejects_empty_seeds() {
+    every_definition_rejects_seeds("seeds = []", &["at least one seed"]);
+}
+
+#[test]
 fn every_definition_rejects_a_repeated_seed() {
-    for (name, text) in DEFINITIONS {
-        let line = text
-            .lines()
-            .find(|l| l.starts_with("seeds = ["))
-            .unwrap_or_else(|| panic!("{name}: no seeds"));
-        let file = format!("{name}.toml");
-        let text = edit(text, line, "seeds = [3, 5, 3]");
-        bad_definitions(
-            &[(&file, &text)],
-            &[&file, "[reduced]", "seeds", "distinct", "3 appears twice"],
-        );
-    }
+    every_definition_rejects_seeds("seeds = [3, 5, 3]", &["distinct", "3 appears twice"]);
 }
 
 #[test]
