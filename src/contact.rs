@@ -81,6 +81,8 @@ pub struct ContactProblem<'a> {
     pub p0: f64,
     /// Length scale `ell` of the residual (see the module docs).
     pub length_scale: f64,
+    /// Standard deviation of the heights (tamaas's error measure divides by it).
+    pub heights_std: f64,
 }
 
 impl<'a> ContactProblem<'a> {
@@ -94,14 +96,25 @@ impl<'a> ContactProblem<'a> {
                 format!("n^2 = {} values", model.grid.points()),
             ));
         }
-        if !field::all_finite(heights) {
+        // One pass for the mean (finite exactly when every height is, barring overflow),
+        // one for the spread; the finiteness check runs only to name the bad input.
+        let mean = field::mean(heights);
+        if !mean.is_finite() && !field::all_finite(heights) {
             return Err(Error::invalid(
                 "heights",
                 "a non-finite value",
                 "finite numbers (no NaN or infinity)",
             ));
         }
-        let rms = field::std_dev(heights);
+        let rms =
+            (field::sum_map(heights, |_, v| (v - mean) * (v - mean)) / heights.len() as f64).sqrt();
+        if !rms.is_finite() {
+            return Err(Error::invalid(
+                "heights",
+                format!("a spread that overflows (mean {mean:e})"),
+                "heights whose squares are finite",
+            ));
+        }
         let flat_scale =
             p0 * model.grid.length() / (std::f64::consts::PI * model.halfspace.e_star());
         let length_scale = if rms > 1e-12 * flat_scale {
@@ -114,6 +127,7 @@ impl<'a> ContactProblem<'a> {
             heights,
             p0,
             length_scale,
+            heights_std: rms,
         })
     }
 
@@ -162,24 +176,48 @@ impl Residual {
         let h = problem.heights;
         let ell = problem.length_scale;
         let npts = p.len() as f64;
-        let min_g = min_zip(u, h);
-        let sum_p = field::sum(p);
-        let p_gap = field::sum_map(p, |i, pi| pi * (u[i] - h[i]).abs());
-        let p_gap_shifted = field::sum_map(p, |i, pi| pi * (u[i] - h[i] - min_g));
-        let rms_p = (field::sum_map(p, |_, v| v * v) / npts).sqrt();
-        let min_p = field::min(p);
-        // Stress balance: K u + p0 - p.
+        // The pointwise sums in one sweep; tamaas's `sum p (g - min g)` is
+        // `sum p g - min(g) sum p`.
+        let s = field::fold_chunks(
+            p.len(),
+            PointSums::default(),
+            |rg| {
+                let mut acc = PointSums::default();
+                for ((&pi, &ui), &hi) in p[rg.clone()].iter().zip(&u[rg.clone()]).zip(&h[rg]) {
+                    let g = ui - hi;
+                    acc.sum_p += pi;
+                    acc.p_abs_gap += pi * g.abs();
+                    acc.p_gap += pi * g;
+                    acc.sum_p2 += pi * pi;
+                    acc.min_g = nan_min(acc.min_g, g);
+                    acc.min_p = nan_min(acc.min_p, pi);
+                }
+                acc
+            },
+            PointSums::add,
+        );
+        // Stress balance: K u + p0 - p (the stiffness has no q = 0 mode: p0 is added).
         let model = problem.model;
-        model.fft.forward(u, spec);
-        for (s, k) in spec.iter_mut().zip(model.halfspace.stiffness()) {
-            *s *= *k;
-        }
-        spec[0] = Complex64::new(problem.p0, 0.0);
-        model.fft.inverse_in_place(spec, scratch);
-        let unbalanced = field::sum_zip(scratch, p, |s, pi| (s - pi) * (s - pi));
-        let h_std = field::std_dev(h);
+        let n = model.grid.n();
+        let (_, rows) = model.fft.convolve(
+            &model.stiffness,
+            spec,
+            None,
+            |i, row, _, _| row.copy_from_slice(&u[i * n..(i + 1) * n]),
+            scratch,
+            |i, ku, _| {
+                ku.iter()
+                    .zip(&p[i * n..(i + 1) * n])
+                    .map(|(&k, &pi)| (k + problem.p0 - pi).powi(2))
+                    .sum::<f64>()
+            },
+        );
+        let unbalanced: f64 = rows.iter().sum();
+        let (sum_p, min_g) = (s.sum_p, s.min_g);
+        let rms_p = (s.sum_p2 / npts).sqrt();
+        let h_std = problem.heights_std;
         let tamaas = if h_std > 0.0 && sum_p > 0.0 {
-            p_gap_shifted / (sum_p * h_std)
+            (s.p_gap - min_g * sum_p) / (sum_p * h_std)
         } else {
             0.0
         };
@@ -187,11 +225,11 @@ impl Residual {
         Self {
             penetration: (-min_g).max(0.0) / ell,
             complementarity: if sum_p > 0.0 {
-                p_gap / (ell * sum_p)
+                s.p_abs_gap / (ell * sum_p)
             } else {
                 0.0
             },
-            tension: (-min_p).max(0.0) / rms_p,
+            tension: (-s.min_p).max(0.0) / rms_p,
             equilibrium: (unbalanced / npts).sqrt() / rms_p,
             load: (sum_p / npts - problem.p0).abs() / problem.p0,
             tamaas,
@@ -199,13 +237,50 @@ impl Residual {
     }
 }
 
-/// `min(u - h)`.
-fn min_zip(u: &[f64], h: &[f64]) -> f64 {
-    use rayon::prelude::*;
-    u.par_iter()
-        .zip(h)
-        .map(|(a, b)| a - b)
-        .reduce(|| f64::INFINITY, f64::min)
+/// Sums and minima over the points that the residual needs.
+#[derive(Debug, Clone, Copy)]
+struct PointSums {
+    sum_p: f64,
+    p_abs_gap: f64,
+    p_gap: f64,
+    sum_p2: f64,
+    min_g: f64,
+    min_p: f64,
+}
+
+impl Default for PointSums {
+    fn default() -> Self {
+        Self {
+            sum_p: 0.0,
+            p_abs_gap: 0.0,
+            p_gap: 0.0,
+            sum_p2: 0.0,
+            min_g: f64::INFINITY,
+            min_p: f64::INFINITY,
+        }
+    }
+}
+
+impl PointSums {
+    fn add(self, o: Self) -> Self {
+        Self {
+            sum_p: self.sum_p + o.sum_p,
+            p_abs_gap: self.p_abs_gap + o.p_abs_gap,
+            p_gap: self.p_gap + o.p_gap,
+            sum_p2: self.sum_p2 + o.sum_p2,
+            min_g: nan_min(self.min_g, o.min_g),
+            min_p: nan_min(self.min_p, o.min_p),
+        }
+    }
+}
+
+/// The smaller of two numbers, NaN if either is (a NaN must not hide in a residual).
+fn nan_min(a: f64, b: f64) -> f64 {
+    if a.is_nan() || b.is_nan() {
+        f64::NAN
+    } else {
+        a.min(b)
+    }
 }
 
 /// A converged solution: fields, and how it was reached.
