@@ -18,6 +18,7 @@
 //! eq. elasticEnergy_u). The per-mode energy `E_exa(q) = (E*/4) q |u~(q)|^2` is what the
 //! single-mode validations compare with Persson's `E_P(q)`.
 
+use rayon::prelude::*;
 use rustfft::num_complex::Complex64;
 
 use crate::error::{check_positive, Result};
@@ -61,9 +62,10 @@ impl HalfSpace {
 
     /// Stress from displacement, `p~ = (q E*/2) u~`, with `p~(0) = p0`.
     pub fn pressure_from_displacement(&self, u: &[Complex64], p0: f64, p: &mut [Complex64]) {
-        for ((pi, ui), k) in p.iter_mut().zip(u).zip(&self.stiffness) {
-            *pi = ui * *k;
-        }
+        p.par_iter_mut()
+            .zip(u.par_iter())
+            .zip(self.stiffness.par_iter())
+            .for_each(|((pi, ui), k)| *pi = ui * *k);
         p[0] = Complex64::new(p0, 0.0);
     }
 

@@ -18,6 +18,7 @@
 use rand::Rng;
 use rand_chacha::rand_core::SeedableRng;
 use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
 use rustfft::num_complex::Complex64;
 use serde::{Deserialize, Serialize};
 
@@ -202,13 +203,16 @@ impl Surface {
     pub fn modes_at(&self, zeta: f64, out: &mut [Complex64]) {
         let limit = self.grid.shell_limit(zeta, self.lambda_l);
         let k2 = self.grid.k2_table();
-        for ((o, h), &k) in out.iter_mut().zip(&self.modes).zip(k2) {
-            *o = if k <= limit {
-                *h
-            } else {
-                Complex64::new(0.0, 0.0)
-            };
-        }
+        out.par_iter_mut()
+            .zip(self.modes.par_iter())
+            .zip(k2.par_iter())
+            .for_each(|((o, h), &k)| {
+                *o = if k <= limit {
+                    *h
+                } else {
+                    Complex64::new(0.0, 0.0)
+                };
+            });
     }
 
     /// Heights at magnification `zeta` (`f64::INFINITY` for full resolution).

@@ -33,8 +33,14 @@
 //! rescaling of step 5 is applied lazily (a scale factor read with `p` and `u`), and the
 //! rigid shift of the next iteration is summed in the same sweep that updates `p`.
 //!
+//! A cold start (`p = p0` everywhere) needs no transform: a uniform pressure displaces
+//! nothing, `u = 0`. The number of points in contact comes from the sweep that updates `p`.
+//!
 //! Stopping: the iteration watches an estimate of the residual (complementarity and
-//! penetration); when it falls below the tolerance the full [`Residual`] is evaluated, and
+//! penetration); when it falls below the tolerance with an incrementally updated `u`, `u`
+//! is recomputed and the estimate taken again by one sweep over the fields (no
+//! preconditioning transforms); once it holds for the exact state the full [`Residual`]
+//! is evaluated, and
 //! if that is still above, the estimate's target is lowered and the solve goes on. The
 //! full residual has a rounding floor: its equilibrium part compares `K u`, rounded at the
 //! scale of the heights, with pressures that shrink with the load (about `1e-12` at
@@ -113,6 +119,11 @@ struct GapSums {
 }
 
 impl GapSums {
+    /// The residual estimate the iteration watches: complementarity and penetration.
+    fn estimate(&self, ell: f64) -> f64 {
+        (self.pg / (ell * self.sp)).max(self.pen / ell)
+    }
+
     fn add(self, o: Self) -> Self {
         Self {
             gg: self.gg + o.gg,
@@ -230,7 +241,10 @@ impl ConstrainedCg {
 
         let warm = matches!(start, Start::Warm(_));
         match start {
-            Start::Cold => self.p.fill(p0),
+            Start::Cold => {
+                self.p.fill(p0);
+                self.u.fill(0.0);
+            }
             Start::Warm(prev) => {
                 if prev.pressure.len() != n2 {
                     return Err(Error::invalid(
@@ -251,7 +265,13 @@ impl ConstrainedCg {
         }
         // The load scale that makes mean(p) = p0.
         let mut scale = p0 / crate::field::mean(&self.p);
-        let mut gbar = self.exact_displacement(problem, &mut scale);
+        // Points in contact, and the rigid shift. A uniform pressure displaces nothing
+        // (the compliance has no q = 0 mode): a cold start needs no transform.
+        let (mut gbar, mut n_c) = if warm {
+            self.exact_displacement(problem, &mut scale)
+        } else {
+            (-crate::field::mean(h), n2 as f64)
+        };
         self.t.fill(0.0);
 
         let mut rho_old = 1.0;
@@ -316,7 +336,7 @@ impl ConstrainedCg {
                     iteration: it,
                 });
             }
-            let estimate = (gap.pg / (ell * gap.sp)).max(gap.pen / ell);
+            let estimate = gap.estimate(ell);
             monitor(Progress {
                 iteration: it,
                 residual: estimate,
@@ -338,10 +358,23 @@ impl ConstrainedCg {
             }
             if estimate <= internal_tol {
                 if !exact {
-                    gbar = self.exact_displacement(problem, &mut scale);
+                    (gbar, n_c) = self.exact_displacement(problem, &mut scale);
                     exact = true;
                     since_refresh = 0;
-                    continue;
+                    // The estimate of the exact state, without the preconditioner's
+                    // transforms: if it still holds, the solve is done.
+                    let view = View {
+                        p: &self.p,
+                        u: &self.u,
+                        h,
+                        scale,
+                        gbar,
+                    };
+                    let gap =
+                        fold_chunks(n2, GapSums::default(), |rg| view.gap_sums(rg), GapSums::add);
+                    if gap.estimate(ell) > internal_tol {
+                        continue;
+                    }
                 }
                 let solution = self.finish(problem, scale, gbar, it, warm, timer);
                 if solution.stats.residual.value() <= opts.tol {
@@ -354,7 +387,6 @@ impl ConstrainedCg {
             }
 
             // 2. Search direction t (kept in self.t) and r = K^-1 t, with the step's sums.
-            let n_c = count_contact(&self.p);
             let zbar = if precond { sz / n_c } else { 0.0 };
             let beta = if conjugate { rho / rho_old } else { 0.0 };
             rho_old = rho;
@@ -491,8 +523,9 @@ impl ConstrainedCg {
                 });
             }
             since_refresh += 1;
+            n_c = cnt;
             if clipped + entered > 0.0 || since_refresh >= self.refresh_every {
-                gbar = self.exact_displacement(problem, &mut scale);
+                (gbar, n_c) = self.exact_displacement(problem, &mut scale);
                 exact = true;
                 since_refresh = 0;
             } else {
@@ -502,7 +535,7 @@ impl ConstrainedCg {
         }
         // Budget exhausted or stalled: the last step may have converged; if not, report
         // the smallest residual reached, the exact state's or an earlier one's.
-        gbar = self.exact_displacement(problem, &mut scale);
+        (gbar, _) = self.exact_displacement(problem, &mut scale);
         let solution = self.finish(problem, scale, gbar, spent, warm, timer);
         if solution.stats.residual.value() <= opts.tol {
             return Ok(solution);
@@ -516,8 +549,9 @@ impl ConstrainedCg {
     }
 
     /// Applies the load scale to `p` (leaving `scale = 1`), recomputes `u = K^-1 p`, and
-    /// returns the rigid shift: the mean of `u - h` over the contact set.
-    fn exact_displacement(&mut self, problem: &ContactProblem, scale: &mut f64) -> f64 {
+    /// returns the rigid shift (the mean of `u - h` over the contact set) and the number of
+    /// points in contact.
+    fn exact_displacement(&mut self, problem: &ContactProblem, scale: &mut f64) -> (f64, f64) {
         let model = problem.model;
         let n = model.grid.n();
         let h = problem.heights;
@@ -546,11 +580,8 @@ impl ConstrainedCg {
         );
         *scale = 1.0;
         let [su, cnt] = add_all(outs);
-        if cnt > 0.0 {
-            su / cnt
-        } else {
-            f64::NAN
-        }
+        let gbar = if cnt > 0.0 { su / cnt } else { f64::NAN };
+        (gbar, cnt)
     }
 
     /// Packs the current state (load scale `scale`, rigid shift `gbar`) into a solution
@@ -613,14 +644,6 @@ fn point_compliance(model: &crate::contact::Model) -> f64 {
         .map(|(s, c)| grid.weight_of(s) * c)
         .sum();
     sum / grid.points() as f64
-}
-
-/// Number of points in contact.
-fn count_contact(p: &[f64]) -> f64 {
-    let [c] = crate::field::reduce_chunks(p.len(), |rg| {
-        [p[rg].iter().filter(|&&x| x > 0.0).count() as f64]
-    });
-    c
 }
 
 impl Solver for ConstrainedCg {
