@@ -106,8 +106,7 @@ impl<'a> ContactProblem<'a> {
                 "finite numbers (no NaN or infinity)",
             ));
         }
-        let rms =
-            (field::sum_map(heights, |_, v| (v - mean) * (v - mean)) / heights.len() as f64).sqrt();
+        let rms = field::std_dev_about(heights, mean);
         if !rms.is_finite() {
             return Err(Error::invalid(
                 "heights",

@@ -90,7 +90,11 @@ pub fn dot(a: &[f64], b: &[f64]) -> f64 {
 
 /// Population standard deviation.
 pub fn std_dev(x: &[f64]) -> f64 {
-    let m = mean(x);
+    std_dev_about(x, mean(x))
+}
+
+/// Population standard deviation of a field whose mean `m` is already known.
+pub fn std_dev_about(x: &[f64], m: f64) -> f64 {
     (sum_map(x, |_, v| (v - m) * (v - m)) / x.len() as f64).sqrt()
 }
 

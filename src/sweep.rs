@@ -179,7 +179,9 @@ impl<'a> Sweep<'a> {
     }
 
     /// Solves at magnification `zeta` and load `p0`, warm-started from the last solution
-    /// (predicted for the change of magnification, see the module docs).
+    /// (predicted for the change of magnification, see the module docs). When the
+    /// magnification changed, the last solution becomes the prediction: if that solve
+    /// fails, the sweep holds no solution and the next solve starts cold.
     pub fn solve_at(&mut self, zeta: f64, p0: f64) -> Result<&ContactSolution> {
         self.set_zeta(zeta);
         let predicted = self.predicted();

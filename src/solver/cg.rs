@@ -210,8 +210,15 @@ impl View<'_> {
         }
     }
 
-    fn gap_sums(&self, range: std::ops::Range<usize>) -> GapSums {
-        self.gap_sums_into(range, None)
+    /// Gap sums over the whole grid.
+    fn gap_sums(&self) -> GapSums {
+        let n2 = self.p.len();
+        fold_chunks(
+            n2,
+            GapSums::default(),
+            |rg| self.gap_sums_into(rg, None),
+            GapSums::add,
+        )
     }
 }
 
@@ -326,7 +333,7 @@ impl ConstrainedCg {
                 let [sz, gz] = add_all(outs);
                 (gap, sz, gz)
             } else {
-                let gap = fold_chunks(n2, GapSums::default(), |rg| view.gap_sums(rg), GapSums::add);
+                let gap = view.gap_sums();
                 (gap, 0.0, gap.gg)
             };
             if !(gap.gg.is_finite() && rho.is_finite()) {
@@ -370,9 +377,7 @@ impl ConstrainedCg {
                         scale,
                         gbar,
                     };
-                    let gap =
-                        fold_chunks(n2, GapSums::default(), |rg| view.gap_sums(rg), GapSums::add);
-                    if gap.estimate(ell) > internal_tol {
+                    if view.gap_sums().estimate(ell) > internal_tol {
                         continue;
                     }
                 }
