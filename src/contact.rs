@@ -188,8 +188,8 @@ impl Residual {
                     acc.p_abs_gap += pi * g.abs();
                     acc.p_gap += pi * g;
                     acc.sum_p2 += pi * pi;
-                    acc.min_g = nan_min(acc.min_g, g);
-                    acc.min_p = nan_min(acc.min_p, pi);
+                    acc.min_g = field::nan_min(acc.min_g, g);
+                    acc.min_p = field::nan_min(acc.min_p, pi);
                 }
                 acc
             },
@@ -267,18 +267,9 @@ impl PointSums {
             p_abs_gap: self.p_abs_gap + o.p_abs_gap,
             p_gap: self.p_gap + o.p_gap,
             sum_p2: self.sum_p2 + o.sum_p2,
-            min_g: nan_min(self.min_g, o.min_g),
-            min_p: nan_min(self.min_p, o.min_p),
+            min_g: field::nan_min(self.min_g, o.min_g),
+            min_p: field::nan_min(self.min_p, o.min_p),
         }
-    }
-}
-
-/// The smaller of two numbers, NaN if either is (a NaN must not hide in a residual).
-fn nan_min(a: f64, b: f64) -> f64 {
-    if a.is_nan() || b.is_nan() {
-        f64::NAN
-    } else {
-        a.min(b)
     }
 }
 

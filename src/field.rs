@@ -98,20 +98,33 @@ pub fn std_dev_about(x: &[f64], m: f64) -> f64 {
     (sum_map(x, |_, v| (v - m) * (v - m)) / x.len() as f64).sqrt()
 }
 
-/// Minimum of a field (NaN if the field holds a NaN).
-pub fn min(x: &[f64]) -> f64 {
-    x.par_iter().copied().reduce(
-        || f64::INFINITY,
-        |a, b| if a.is_nan() || b < a { b } else { a },
-    )
+/// The smaller of two numbers, NaN if either is (`f64::min` drops a NaN, which must not
+/// hide in a residual or a statistic).
+pub fn nan_min(a: f64, b: f64) -> f64 {
+    if a.is_nan() || b.is_nan() {
+        f64::NAN
+    } else {
+        a.min(b)
+    }
 }
 
-/// Maximum of a field.
+/// The larger of two numbers, NaN if either is.
+pub fn nan_max(a: f64, b: f64) -> f64 {
+    if a.is_nan() || b.is_nan() {
+        f64::NAN
+    } else {
+        a.max(b)
+    }
+}
+
+/// Minimum of a field (NaN if the field holds a NaN).
+pub fn min(x: &[f64]) -> f64 {
+    x.par_iter().copied().reduce(|| f64::INFINITY, nan_min)
+}
+
+/// Maximum of a field (NaN if the field holds a NaN).
 pub fn max(x: &[f64]) -> f64 {
-    x.par_iter().copied().reduce(
-        || f64::NEG_INFINITY,
-        |a, b| if a.is_nan() || b > a { b } else { a },
-    )
+    x.par_iter().copied().reduce(|| f64::NEG_INFINITY, nan_max)
 }
 
 /// True when every element is finite.
@@ -157,5 +170,17 @@ mod tests {
         assert_eq!(max(&x), 3.0);
         assert!((std_dev(&x) - 2.5f64.sqrt()).abs() < 1e-15);
         assert_eq!(positive_fraction(&x), 0.5);
+    }
+
+    #[test]
+    fn min_and_max_report_a_nan() {
+        for x in [
+            [f64::NAN, 1.0, 2.0],
+            [1.0, f64::NAN, 2.0],
+            [1.0, 2.0, f64::NAN],
+        ] {
+            assert!(min(&x).is_nan(), "{x:?}");
+            assert!(max(&x).is_nan(), "{x:?}");
+        }
     }
 }
