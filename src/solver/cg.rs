@@ -30,9 +30,9 @@
 //! step 3 clips nothing and step 4 adds nothing; otherwise `u = K^-1 p` is recomputed. `u`
 //! is also recomputed every [`ConstrainedCg::refresh_every`] iterations and before the
 //! final residual, so rounding in the incremental update never reaches a result. In a
-//! warm solve points enter or leave at nearly every iteration, so after an iteration that
-//! had to recompute `u` the next one does so directly: its update of `p` is the input
-//! pass of the convolution `K^-1 p` (no incremental update, and no separate sweep over
+//! warm solve points enter or leave at nearly every iteration, so after an update that
+//! changed the contact set the next one recomputes `u` whatever happens: its update of `p`
+//! is the input pass of the convolution `K^-1 p` (no incremental update, and no separate sweep over
 //! `p`; the guess costs a transform when it is wrong, once per solve or so). The load
 //! rescaling of step 5 is applied lazily (a scale factor read with `p` and `u`), and the
 //! rigid shift of the next iteration is summed in the same sweep that updates `p`.
@@ -329,8 +329,9 @@ impl ConstrainedCg {
         let mut conjugate = false;
         let mut exact = true; // u == K^-1 p up to one transform's rounding
         let mut since_refresh = 0usize;
-        // Whether the last update had to recompute u (see step 3-4 below); the start has.
-        let mut refreshed = true;
+        // Whether the last update changed the contact set, so that u had to be recomputed
+        // (see steps 3-4 below); taken as so at the start.
+        let mut set_changed = true;
         let mut internal_tol = opts.tol;
         let mut precond = self.preconditioned;
         let (mut best, mut best_at) = (f64::INFINITY, 0usize);
@@ -519,8 +520,8 @@ impl ConstrainedCg {
             };
 
             // 3-4. Update p, counting projections, and sum what the next rigid shift needs
-            // (sum_Ic u, sum_Ic h, |Ic| of the new contact set). When the last iteration
-            // had to recompute u, this one most likely will too (points enter or leave at
+            // (sum_Ic u, sum_Ic h, |Ic| of the new contact set). When the last update
+            // changed the contact set, this one most likely will too (points enter or leave at
             // nearly every iteration of a warm solve): the update then generates the new
             // pressure as the input of the convolution u = K^-1 p, and the incremental
             // update of u is skipped.
@@ -532,7 +533,7 @@ impl ConstrainedCg {
             };
             let (t, r) = (&self.t, &self.r);
             let (new_sum_p, clipped, entered, su, sh, cnt);
-            if refreshed {
+            if set_changed {
                 let (rows, outs) = model.fft.convolve(
                     &model.compliance,
                     &mut self.spec,
@@ -613,17 +614,17 @@ impl ConstrainedCg {
             }
             since_refresh += 1;
             n_c = cnt;
-            if refreshed {
+            let fused = set_changed;
+            set_changed = clipped + entered > 0.0;
+            if fused {
                 // u = K^-1 p of the stored (unscaled) pressure: the scale applies to both.
                 gbar = (scale * su - sh) / cnt;
                 exact = true;
                 since_refresh = 0;
-                refreshed = clipped + entered > 0.0;
-            } else if clipped + entered > 0.0 || since_refresh >= self.refresh_every {
+            } else if set_changed || since_refresh >= self.refresh_every {
                 (gbar, n_c) = self.exact_displacement(problem, &mut scale);
                 exact = true;
                 since_refresh = 0;
-                refreshed = true;
             } else {
                 gbar = (scale * su - sh) / cnt;
                 exact = false;
