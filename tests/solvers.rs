@@ -368,3 +368,27 @@ fn non_finite_heights_are_rejected_before_solving() {
         .to_string();
     assert!(e.contains("p0"), "{e}");
 }
+
+#[test]
+fn heights_whose_spread_overflows_are_rejected() {
+    let model = Model::new(Grid::new(16, 1.0).unwrap(), 1.0).unwrap();
+    // Every value is finite, but their squares are not (the mean is 0).
+    let h: Vec<f64> = (0..256)
+        .map(|i| if i % 2 == 0 { 1e200 } else { -1e200 })
+        .collect();
+    let e = ContactProblem::new(&model, &h, 0.1)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("heights") && e.contains("overflows") && e.contains("squares are finite"),
+        "{e}"
+    );
+    // The sum overflows too: the mean is infinite although every value is finite.
+    let e = ContactProblem::new(&model, &vec![f64::MAX; 256], 0.1)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("heights") && e.contains("overflows"), "{e}");
+    // Large but harmless heights are accepted.
+    let h: Vec<f64> = h.iter().map(|v| v * 1e-50).collect();
+    assert!(ContactProblem::new(&model, &h, 0.1).is_ok());
+}
