@@ -32,10 +32,10 @@
 //! final residual, so rounding in the incremental update never reaches a result. In a
 //! warm solve points enter or leave at nearly every iteration, so after an update that
 //! changed the contact set the next one recomputes `u` whatever happens: its update of `p`
-//! is the input pass of the convolution `K^-1 p` (no incremental update, and no separate sweep over
-//! `p`; the guess costs a transform when it is wrong, once per solve or so). The load
-//! rescaling of step 5 is applied lazily (a scale factor read with `p` and `u`), and the
-//! rigid shift of the next iteration is summed in the same sweep that updates `p`.
+//! is the input pass of the convolution `K^-1 p` (no incremental update, and no separate
+//! sweep over `p`; the guess costs a transform when it is wrong, once per solve or so). The
+//! load rescaling of step 5 is applied lazily (a scale factor read with `p` and `u`), and
+//! the rigid shift of the next iteration is summed in the same sweep that updates `p`.
 //!
 //! A cold start (`p = p0` everywhere) needs no transform: a uniform pressure displaces
 //! nothing, `u = 0`. The number of points in contact comes from the sweep that updates `p`.
@@ -177,6 +177,19 @@ impl Step {
             f64::from(u8::from(!was_in && g < 0.0)),
         )
     }
+}
+
+/// `sum_Ic u`, `sum_Ic h` and `|Ic|` over one row, `Ic = {p > 0}`: what the rigid shift
+/// `gbar = mean_Ic (u - h)` needs once `u = K^-1 p` has been recomputed.
+fn contact_sums(u: &[f64], p: &[f64], h: &[f64]) -> [f64; 3] {
+    let mut acc = [0.0; 3];
+    for ((&uk, &pk), &hk) in u.iter().zip(p).zip(h) {
+        let w = if pk > 0.0 { 1.0 } else { 0.0 };
+        acc[0] += w * uk;
+        acc[1] += w * hk;
+        acc[2] += w;
+    }
+    acc
 }
 
 /// Adds `K`-vectors of partial sums in order.
@@ -559,16 +572,7 @@ impl ConstrainedCg {
                         acc
                     },
                     &mut self.u,
-                    |i, u, p| {
-                        let mut acc = [0.0; 3];
-                        for ((&uk, &pk), &hk) in u.iter().zip(p).zip(&h[i * n..(i + 1) * n]) {
-                            let w = if pk > 0.0 { 1.0 } else { 0.0 };
-                            acc[0] += w * uk;
-                            acc[1] += w * hk;
-                            acc[2] += w;
-                        }
-                        acc
-                    },
+                    |i, u, p| contact_sums(u, p, &h[i * n..(i + 1) * n]),
                 );
                 [new_sum_p, clipped, entered] = add_all(rows);
                 [su, sh, cnt] = add_all(outs);
@@ -665,20 +669,11 @@ impl ConstrainedCg {
                 }
             },
             &mut self.u,
-            |i, u, p| {
-                let (mut su, mut cnt) = (0.0, 0.0);
-                for (j, (&uj, &pj)) in u.iter().zip(p).enumerate() {
-                    if pj > 0.0 {
-                        su += uj - h[i * n + j];
-                        cnt += 1.0;
-                    }
-                }
-                [su, cnt]
-            },
+            |i, u, p| contact_sums(u, p, &h[i * n..(i + 1) * n]),
         );
         *scale = 1.0;
-        let [su, cnt] = add_all(outs);
-        let gbar = if cnt > 0.0 { su / cnt } else { f64::NAN };
+        let [su, sh, cnt] = add_all(outs);
+        let gbar = if cnt > 0.0 { (su - sh) / cnt } else { f64::NAN };
         (gbar, cnt)
     }
 
