@@ -10,8 +10,8 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use persson_check::fft::Fft2;
-use persson_check::grid::Grid;
+use persson_check::engine::fft::Fft2;
+use persson_check::engine::grid::Grid;
 
 /// Grid sizes.
 const SIZES: [usize; 3] = [256, 512, 1024];

@@ -12,7 +12,7 @@
 //!   `zeta = lambda_l / lambda_s = N/16`, so the shell added is the surface's last one:
 //!   `zeta = 32` at `N = 512`, and `zeta = 16` at `N = 256`, where no shell reaches 32;
 //! * `warm_load/<solver>/<N>`, `N = 256, 512`: a warm re-solve after raising the load by 1%,
-//!   the step of a load search (`persson_check::load`).
+//!   the step of a load search (`persson_check::engine::load`).
 //!
 //! Surfaces, models, solvers and warm starts are built once, outside the timed code, and
 //! only when a benchmark is selected; each timed iteration is one call of
@@ -24,10 +24,12 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BatchSize, BenchmarkId, Criterion, SamplingMode};
-use persson_check::contact::{ContactProblem, ContactSolution, Model, SolveOptions, Solver, Start};
-use persson_check::solver::SolverKind;
-use persson_check::surface::{Surface, SurfaceParams};
-use persson_check::sweep::shell_steps;
+use persson_check::engine::contact::{
+    ContactProblem, ContactSolution, Model, SolveOptions, Solver, Start,
+};
+use persson_check::engine::solver::SolverKind;
+use persson_check::engine::surface::{Surface, SurfaceParams};
+use persson_check::engine::sweep::shell_steps;
 
 /// The solvers, in table order.
 const SOLVERS: [SolverKind; 2] = [SolverKind::Cg, SolverKind::Gfmd];

@@ -33,36 +33,19 @@
 //! * [`modes`]: the single-mode elastic energy, Persson's assumptions (d) and (e);
 //! * [`energy`]: the total elastic energy and the incremental correction factor;
 //! * [`stats`], [`plot`]: estimates with error bars, and figures;
-//! * [`crate::reference`]: closed-form solutions the solvers are tested against;
+//! * [`crate::engine::reference`]: closed-form solutions the solvers are tested against;
 //! * [`npy`], [`scene`], [`io`]: `.npy` fields, scene files, atomic writes.
 
-pub mod area;
-pub mod checkpoint;
-pub mod contact;
-pub mod elastic;
-pub mod energy;
+pub mod engine;
 pub mod error;
-pub mod fft;
-pub mod field;
-pub mod grid;
+pub mod experiments;
 pub mod io;
-pub mod load;
-pub mod modes;
-pub mod npy;
 pub mod persson;
 pub mod plot;
 pub mod provenance;
-pub mod reentry;
-pub mod reference;
 pub mod report;
-pub mod scene;
-pub mod solver;
-pub mod spectrum;
 pub mod speed;
 pub mod stats;
-pub mod surface;
-pub mod sweep;
-pub mod transition;
 pub mod validation;
 
 pub use error::{Error, Result};

@@ -14,7 +14,7 @@
 //! * **threads**: the same solve in rayon pools of 1, 2 (and all available) threads;
 //! * **floor**: on each grid of `floor_sizes`, the time of one forward + inverse 2D FFT
 //!   pair (the floor of an iteration's cost) and each solver's cold solve in units of it:
-//!   the FFT pairs the solve used per iteration (counted by [`crate::fft::Fft2`]), its cost
+//!   the FFT pairs the solve used per iteration (counted by [`crate::engine::fft::Fft2`]), its cost
 //!   per iteration in pairs, and the cost of each pair it used (1 would be nothing but
 //!   FFTs);
 //! * **warm**: on the same grids, each solver re-solving from a converged solution after a
@@ -35,14 +35,14 @@ use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 
-use crate::contact::{ContactProblem, ContactSolution, Model, SolveOptions, Start};
+use crate::engine::contact::{ContactProblem, ContactSolution, Model, SolveOptions, Start};
+use crate::engine::solver::SolverKind;
+use crate::engine::surface::{Surface, SurfaceParams};
+use crate::engine::sweep::shell_steps;
 use crate::error::{check_positive, Error, Result};
 use crate::plot::{Axis, Figure, Series, Style};
 use crate::provenance::Machine;
-use crate::solver::SolverKind;
 use crate::stats::{round_sig, LineFit};
-use crate::surface::{Surface, SurfaceParams};
-use crate::sweep::shell_steps;
 
 /// The solvers compared, in table order.
 pub const SOLVERS: [SolverKind; 2] = [SolverKind::Cg, SolverKind::Gfmd];
@@ -116,7 +116,7 @@ impl SpeedOptions {
     pub fn validate(&self) -> Result<()> {
         self.params(self.n)
             .spectrum
-            .validate(&crate::grid::Grid::new(self.n, 1.0)?)
+            .validate(&crate::engine::grid::Grid::new(self.n, 1.0)?)
             .map_err(|e| {
                 Error::invalid(
                     "speed n",
@@ -141,7 +141,7 @@ impl SpeedOptions {
             return Err(Error::invalid("speed repeats", 0, ">= 1"));
         }
         for &n in &self.floor_sizes {
-            crate::grid::Grid::new(n, 1.0)
+            crate::engine::grid::Grid::new(n, 1.0)
                 .and_then(|g| self.params(n).spectrum.validate(&g))
                 .map_err(|e| {
                     Error::invalid(
@@ -168,7 +168,7 @@ impl SpeedOptions {
             .iter()
             .copied()
             .filter(|&n| {
-                crate::grid::Grid::new(n, 1.0)
+                crate::engine::grid::Grid::new(n, 1.0)
                     .and_then(|g| self.params(n).spectrum.validate(&g))
                     .is_ok()
             })
@@ -209,7 +209,7 @@ pub struct ToleranceRow {
     pub wall_s: Option<f64>,
     /// Iterations.
     pub iterations: Option<usize>,
-    /// Residual reached (the project's, see [`crate::contact::Residual`]).
+    /// Residual reached (the project's, see [`crate::engine::contact::Residual`]).
     pub residual: Option<f64>,
     /// tamaas's error measure of the same solution.
     pub tamaas: Option<f64>,

@@ -11,10 +11,10 @@
 use std::path::Path;
 use std::process::{Command, Stdio};
 
-use persson_check::contact::{ContactSolution, Model, SolveOptions};
-use persson_check::solver::SolverKind;
-use persson_check::surface::{Surface, SurfaceParams};
-use persson_check::sweep::Sweep;
+use persson_check::engine::contact::{ContactSolution, Model, SolveOptions};
+use persson_check::engine::solver::SolverKind;
+use persson_check::engine::surface::{Surface, SurfaceParams};
+use persson_check::engine::sweep::Sweep;
 use serde_json::Value;
 
 /// A reduced re-entry scene on a grid of two reduction chunks (128^2 = 2 x 8192 points).

@@ -5,6 +5,8 @@
 
 use std::f64::consts::{PI, SQRT_2};
 
+use persson_check::engine::spectrum::{Shell, ShellSpectrum};
+use persson_check::engine::surface::{Amplitudes, Surface, SurfaceParams};
 use persson_check::persson::moments::{
     relative_width_estimate, second_moment, width_estimate, width_from_moments,
 };
@@ -12,8 +14,6 @@ use persson_check::persson::{
     persson_contact_area, reduced_pressure, Broadening, ContactAreaLaw, Correction, Prediction,
     PressureDistribution, Variant,
 };
-use persson_check::spectrum::{Shell, ShellSpectrum};
-use persson_check::surface::{Amplitudes, Surface, SurfaceParams};
 use statrs::function::erf::erfc;
 
 /// The realization of the snapshot: small, but with some 200 shells.

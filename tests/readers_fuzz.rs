@@ -10,9 +10,9 @@ use std::path::Path;
 
 use proptest::prelude::*;
 
-use persson_check::grid::{MAX_N, MIN_N};
-use persson_check::npy::{self, Field};
-use persson_check::scene::{parse_scene, Scene};
+use persson_check::engine::grid::{MAX_N, MIN_N};
+use persson_check::engine::scene::{parse_scene, Scene};
+use persson_check::io::npy::{self, Field};
 use persson_check::validation::builtin::{check, DEFINITIONS};
 use persson_check::validation::Source;
 

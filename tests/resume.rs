@@ -15,7 +15,7 @@ use std::process::{Command, Stdio};
 use std::sync::OnceLock;
 use std::time::{Duration, Instant};
 
-use persson_check::checkpoint::{Array, Checkpoints};
+use persson_check::io::checkpoint::{Array, Checkpoints};
 use serde_json::Value;
 
 /// The reduced re-entry scene of these tests, spliced into the real definition's header.

@@ -1,12 +1,12 @@
 //! The two hard-wall solvers against exact solutions, conservation laws and each other.
 
-use persson_check::contact::{ContactProblem, ContactSolution, Model, SolveOptions, Start};
-use persson_check::field;
-use persson_check::grid::Grid;
-use persson_check::load::{persson_load_guess, solve_for_area, AreaSearch, AreaTarget};
-use persson_check::reference::Westergaard;
-use persson_check::solver::SolverKind;
-use persson_check::surface::{Surface, SurfaceParams};
+use persson_check::engine::contact::{ContactProblem, ContactSolution, Model, SolveOptions, Start};
+use persson_check::engine::field;
+use persson_check::engine::grid::Grid;
+use persson_check::engine::load::{persson_load_guess, solve_for_area, AreaSearch, AreaTarget};
+use persson_check::engine::reference::Westergaard;
+use persson_check::engine::solver::SolverKind;
+use persson_check::engine::surface::{Surface, SurfaceParams};
 use persson_check::Error;
 
 const BOTH: [SolverKind; 2] = [SolverKind::Cg, SolverKind::Gfmd];

@@ -8,9 +8,9 @@ pub mod surface;
 pub mod validate;
 
 use clap::Args as ClapArgs;
+use persson_check::engine::scene::{read_scene, Scene, SurfaceScene};
+use persson_check::engine::surface::{Amplitudes, Surface};
 use persson_check::error::{Error, Result};
-use persson_check::scene::{read_scene, Scene, SurfaceScene};
-use persson_check::surface::{Amplitudes, Surface};
 use std::path::{Path, PathBuf};
 
 /// Surface given on the command line or by a scene file.

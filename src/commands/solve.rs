@@ -6,15 +6,15 @@ use clap::Args as ClapArgs;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 
-use persson_check::contact::{
+use persson_check::engine::contact::{
     ContactProblem, ContactSolution, Model, Progress, Residual, SolveOptions, Solver, Start,
 };
+use persson_check::engine::grid::Grid;
+use persson_check::engine::load::{persson_load_guess, solve_for_area, AreaSearch, AreaTarget};
+use persson_check::engine::scene::{check_zeta, SolveScene};
+use persson_check::engine::solver::SolverKind;
+use persson_check::engine::surface::Surface;
 use persson_check::error::{check_open, check_positive, Error, Result};
-use persson_check::grid::Grid;
-use persson_check::load::{persson_load_guess, solve_for_area, AreaSearch, AreaTarget};
-use persson_check::scene::{check_zeta, SolveScene};
-use persson_check::solver::SolverKind;
-use persson_check::surface::Surface;
 
 use super::{as_flag, check_out_dir, SurfaceArgs};
 
@@ -236,7 +236,7 @@ fn check_flags(args: &Args) -> Result<()> {
 /// The surface of a heights file; a `--file-lambda-l` beyond the box is named as the flag,
 /// anything else as the file.
 fn read_heights(path: &std::path::Path, file_lambda_l: Option<f64>) -> Result<Surface> {
-    let field = persson_check::npy::read_field(path)?;
+    let field = persson_check::io::npy::read_field(path)?;
     let grid = Grid::new(field.n, 1.0).map_err(|e| Error::bad_file(path, e.to_string()))?;
     Surface::from_heights(grid, &field.values, file_lambda_l).map_err(|e| match &e {
         Error::InvalidInput { field, .. } if field == "lambda_l" => e.with_field("--file-lambda-l"),
@@ -302,9 +302,9 @@ fn write_outputs<F: Fn(&ContactSolution) -> Summary>(
     let n = model.grid.n();
     let summary = summary(solution);
     let gap = solution.gap(heights);
-    persson_check::npy::write_field(&dir.join("pressure.npy"), n, &solution.pressure)?;
-    persson_check::npy::write_field(&dir.join("displacement.npy"), n, &solution.displacement)?;
-    persson_check::npy::write_field(&dir.join("gap.npy"), n, &gap)?;
+    persson_check::io::npy::write_field(&dir.join("pressure.npy"), n, &solution.pressure)?;
+    persson_check::io::npy::write_field(&dir.join("displacement.npy"), n, &solution.displacement)?;
+    persson_check::io::npy::write_field(&dir.join("gap.npy"), n, &gap)?;
     let json = serde_json::to_string_pretty(&summary).expect("summary serialises");
     persson_check::io::write_atomic(&dir.join("summary.json"), json.as_bytes())?;
     let mut csv = csv::Writer::from_writer(Vec::new());

@@ -3,10 +3,10 @@
 use std::path::PathBuf;
 
 use clap::Args as ClapArgs;
+use persson_check::engine::fft::Fft2;
+use persson_check::engine::scene::check_zeta;
+use persson_check::engine::surface::Surface;
 use persson_check::error::Result;
-use persson_check::fft::Fft2;
-use persson_check::scene::check_zeta;
-use persson_check::surface::Surface;
 
 use super::{check_out_file, SurfaceArgs};
 
@@ -31,6 +31,6 @@ pub fn run(args: Args) -> Result<()> {
     let surface = Surface::generate(&scene.surface.params(seed))?;
     let fft = Fft2::new(surface.grid());
     let h = surface.heights_at(zeta, &fft);
-    persson_check::npy::write_field(&args.out, surface.grid().n(), &h)?;
+    persson_check::io::npy::write_field(&args.out, surface.grid().n(), &h)?;
     Ok(())
 }

@@ -17,7 +17,7 @@ use std::f64::consts::{PI, SQRT_2};
 use serde::{Deserialize, Serialize};
 use statrs::function::erf::{erf, erfc};
 
-use crate::spectrum::ShellSpectrum;
+use crate::engine::spectrum::ShellSpectrum;
 
 /// Eq. (contactArea) with its two fit parameters.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

@@ -9,7 +9,7 @@
 //! ([`ShellSpectrum::up_to`]); below the first shell the surface is flat. The theory is
 //! thus compared with a simulation mode by mode, on the same `h~(q)`. The *ensemble*
 //! (expected) spectrum of the model needs no code of its own: it is the shell spectrum of a
-//! surface generated with [`Amplitudes::RandomPhase`](crate::surface::Amplitudes), whose
+//! surface generated with [`Amplitudes::RandomPhase`](crate::engine::surface::Amplitudes), whose
 //! unit-modulus amplitudes put exactly `C(q)` on every mode.
 //!
 //! Units: pressures in units of the `E*` passed in (the crate's default `E* = 1`), lengths
@@ -79,8 +79,8 @@ pub use distribution::PressureDistribution;
 use serde::{Deserialize, Serialize};
 use statrs::function::erf::{erf, erfc};
 
+use crate::engine::spectrum::{Shell, ShellSpectrum};
 use crate::error::{check_positive, Error, Result};
-use crate::spectrum::{Shell, ShellSpectrum};
 
 /// Fixed-point iterations allowed per shell (see [`trapezoidal_step`]).
 const MAX_FIXED_POINT: usize = 100;

@@ -24,13 +24,17 @@ pub const EXPERIMENTS: &[&str] = &[
 /// Runs `source` with the experiment named `experiment`.
 pub fn dispatch(experiment: &str, source: &Source, opts: &RunOptions) -> Result<Outcome> {
     match experiment {
-        "contact_area" => run_experiment::<crate::area::ContactArea>(source, opts),
-        "diffusion" => run_experiment::<crate::transition::Diffusion>(source, opts),
-        "drift" => run_experiment::<crate::transition::Drift>(source, opts),
-        "reentry" => run_experiment::<crate::reentry::Reentry>(source, opts),
-        "mode_onset" => run_experiment::<crate::modes::ModeOnset>(source, opts),
-        "mode_frozen" => run_experiment::<crate::modes::ModeFrozen>(source, opts),
-        "total_energy" => run_experiment::<crate::energy::TotalEnergy>(source, opts),
+        "contact_area" => {
+            run_experiment::<crate::experiments::contact_area::ContactArea>(source, opts)
+        }
+        "diffusion" => run_experiment::<crate::experiments::transitions::Diffusion>(source, opts),
+        "drift" => run_experiment::<crate::experiments::transitions::Drift>(source, opts),
+        "reentry" => run_experiment::<crate::experiments::reentry::Reentry>(source, opts),
+        "mode_onset" => run_experiment::<crate::experiments::modes::ModeOnset>(source, opts),
+        "mode_frozen" => run_experiment::<crate::experiments::modes::ModeFrozen>(source, opts),
+        "total_energy" => {
+            run_experiment::<crate::experiments::total_energy::TotalEnergy>(source, opts)
+        }
         other => Err(unknown_experiment(source, other)),
     }
 }
@@ -40,13 +44,13 @@ pub fn dispatch(experiment: &str, source: &Source, opts: &RunOptions) -> Result<
 pub fn check(source: &Source) -> Result<()> {
     let (_, experiment) = source.header()?;
     match experiment.as_str() {
-        "contact_area" => check_experiment::<crate::area::ContactArea>(source),
-        "diffusion" => check_experiment::<crate::transition::Diffusion>(source),
-        "drift" => check_experiment::<crate::transition::Drift>(source),
-        "reentry" => check_experiment::<crate::reentry::Reentry>(source),
-        "mode_onset" => check_experiment::<crate::modes::ModeOnset>(source),
-        "mode_frozen" => check_experiment::<crate::modes::ModeFrozen>(source),
-        "total_energy" => check_experiment::<crate::energy::TotalEnergy>(source),
+        "contact_area" => check_experiment::<crate::experiments::contact_area::ContactArea>(source),
+        "diffusion" => check_experiment::<crate::experiments::transitions::Diffusion>(source),
+        "drift" => check_experiment::<crate::experiments::transitions::Drift>(source),
+        "reentry" => check_experiment::<crate::experiments::reentry::Reentry>(source),
+        "mode_onset" => check_experiment::<crate::experiments::modes::ModeOnset>(source),
+        "mode_frozen" => check_experiment::<crate::experiments::modes::ModeFrozen>(source),
+        "total_energy" => check_experiment::<crate::experiments::total_energy::TotalEnergy>(source),
         other => Err(unknown_experiment(source, other)),
     }
 }

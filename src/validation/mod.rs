@@ -389,7 +389,7 @@ impl Source {
 
     /// The `name` and `experiment` keys, read before the file is parsed in full.
     pub fn header(&self) -> Result<(String, String)> {
-        let table: toml::Table = crate::scene::parse_toml(&self.path, &self.text)?;
+        let table: toml::Table = crate::engine::scene::parse_toml(&self.path, &self.text)?;
         let get = |key: &str| -> Result<String> {
             match table.get(key) {
                 Some(toml::Value::String(s)) => Ok(s.clone()),
@@ -408,7 +408,7 @@ impl Source {
 
     /// Parses the whole definition with scene type `S`, checking the header's ranges.
     pub fn parse<S: DeserializeOwned>(&self) -> Result<Definition<S>> {
-        let def: Definition<S> = crate::scene::parse_toml(&self.path, &self.text)?;
+        let def: Definition<S> = crate::engine::scene::parse_toml(&self.path, &self.text)?;
         def.verdict
             .validate()
             .map_err(|e| Error::bad_file(&self.path, e.to_string()))?;

@@ -18,21 +18,21 @@
 //! `a_r` when the smallest asperities span few points (`eps_c = a / lambda_s` not small):
 //! at `lambda_s = 4` grid spacings `kappa` comes out near 2.7, falling by about half the
 //! difference each time `eps_c` halves. The scene therefore lists `refinements`: the same
-//! realizations (same seed, all lengths scaled, see [`crate::surface`]) at grids `r` times
+//! realizations (same seed, all lengths scaled, see [`crate::engine::surface`]) at grids `r` times
 //! finer. With two or more, the headline statistics are first-order Richardson
 //! extrapolations of the two finest grids, `x_inf = (r2 x2 - r1 x1) / (r2 - r1)` (error
 //! proportional to `eps_c`); the per-grid values are reported beside them.
 
 use serde::{Deserialize, Serialize};
 
-use crate::contact::{Model, SolveOptions};
+use crate::engine::contact::{Model, SolveOptions};
+use crate::engine::solver::SolverKind;
+use crate::engine::surface::{Surface, SurfaceParams};
+use crate::engine::sweep::Sweep;
 use crate::error::{check_open, check_positive, Error, Result};
 use crate::persson::{persson_contact_area, ContactAreaLaw};
 use crate::plot::{Axis, Figure, Series, Style};
-use crate::solver::SolverKind;
 use crate::stats::{round_sig, Estimate};
-use crate::surface::{Surface, SurfaceParams};
-use crate::sweep::Sweep;
 use crate::validation::{Check, Conclusion, Definition, Detail, Experiment, JobContext, Table};
 
 /// Scene of the contact-area experiment.
@@ -132,7 +132,8 @@ impl Experiment for ContactArea {
                     seed: 0,
                     refine,
                 });
-                p.spectrum.validate(&crate::grid::Grid::new(p.n, 1.0)?)?;
+                p.spectrum
+                    .validate(&crate::engine::grid::Grid::new(p.n, 1.0)?)?;
             }
         }
         crate::error::check_seeds(&scene.seeds)?;

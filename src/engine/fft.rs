@@ -4,7 +4,7 @@
 //! `f(r) = sum_q f~(q) exp(i q.r)`, so that `mean(f^2) = sum_q |f~(q)|^2`. The forward
 //! transform carries the whole `1/N^2`; the inverse carries none.
 //!
-//! Layout: see [`crate::grid`]. The transform is done in two passes over the data, without
+//! Layout: see [`crate::engine::grid`]. The transform is done in two passes over the data, without
 //! a transposed copy: real-to-complex transforms of every row (realfft) write the half
 //! spectrum in place of its rows, then blocks of a few columns are gathered into a small
 //! contiguous buffer, transformed (rustfft), and scattered back. Both passes run on rayon's
@@ -20,7 +20,7 @@ use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::num_complex::Complex64;
 use rustfft::{Fft, FftPlanner};
 
-use crate::grid::Grid;
+use crate::engine::grid::Grid;
 
 /// Precomputed plans for real 2D transforms on one grid size.
 ///
@@ -136,7 +136,7 @@ impl Fft2 {
     }
 
     /// The convolution kernel of `table`, a real multiplier in the half-spectrum layout of
-    /// [`crate::grid`] (e.g. the half-space's stiffness `q E*/2`).
+    /// [`crate::engine::grid`] (e.g. the half-space's stiffness `q E*/2`).
     pub fn kernel(&self, table: &[f64]) -> Kernel {
         let (n, m) = (self.n, self.m);
         assert_eq!(table.len(), n * m, "kernel table length");

@@ -6,8 +6,8 @@
 //! * [`ConstrainedCg`]: constrained conjugate gradients on the pressure
 //!   (Polonsky & Keer 1999), the algorithm of tamaas and ContactMechanics.
 //!
-//! Both implement [`crate::contact::Solver`], start cold or from a previous solution, stop
-//! at the solver-independent [`crate::contact::Residual`], and fail with
+//! Both implement [`crate::engine::contact::Solver`], start cold or from a previous solution, stop
+//! at the solver-independent [`crate::engine::contact::Residual`], and fail with
 //! [`crate::Error::NotConverged`] (carrying the residual) or [`crate::Error::NonFinite`]
 //! rather than return an unconverged field.
 
@@ -19,7 +19,7 @@ pub use gfmd::{FireParams, Gfmd};
 
 use serde::{Deserialize, Serialize};
 
-use crate::contact::Solver;
+use crate::engine::contact::Solver;
 
 /// The solvers by name, for scenes and the command line.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default, clap::ValueEnum)]

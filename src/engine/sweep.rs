@@ -26,11 +26,11 @@
 use rayon::prelude::*;
 use rustfft::num_complex::Complex64;
 
-use crate::contact::{ContactProblem, ContactSolution, Model, SolveOptions, Solver, Start};
+use crate::engine::contact::{ContactProblem, ContactSolution, Model, SolveOptions, Solver, Start};
+use crate::engine::load::{persson_load_guess, solve_for_area, AreaSearch, AreaTarget};
+use crate::engine::solver::SolverKind;
+use crate::engine::surface::Surface;
 use crate::error::Result;
-use crate::load::{persson_load_guess, solve_for_area, AreaSearch, AreaTarget};
-use crate::solver::SolverKind;
-use crate::surface::Surface;
 
 /// A realization, its model and a solver, stepping through magnifications.
 pub struct Sweep<'a> {
@@ -244,7 +244,7 @@ pub fn shell_steps(surface: &Surface, zeta_from: f64, zeta_to: f64) -> Vec<f64> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::surface::SurfaceParams;
+    use crate::engine::surface::SurfaceParams;
 
     #[test]
     fn sweep_reaches_the_cold_solution_and_finds_loads() {

@@ -41,16 +41,16 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::contact::{Model, SolveOptions};
+use crate::engine::contact::{Model, SolveOptions};
+use crate::engine::grid::Grid;
+use crate::engine::solver::SolverKind;
+use crate::engine::surface::{Surface, SurfaceParams};
+use crate::engine::sweep::{shell_steps, Sweep};
 use crate::error::{check_open, check_positive, Error, Result};
-use crate::grid::Grid;
-use crate::modes::ladder;
+use crate::experiments::modes::ladder;
 use crate::persson::{Broadening, Correction, Prediction};
 use crate::plot::{Axis, Figure, Series, Style};
-use crate::solver::SolverKind;
 use crate::stats::{round_sig, Estimate};
-use crate::surface::{Surface, SurfaceParams};
-use crate::sweep::{shell_steps, Sweep};
 use crate::validation::{Check, Conclusion, Definition, Detail, Experiment, JobContext, Table};
 
 /// Below this measured contact area the paper finds that the corrected theory fails.

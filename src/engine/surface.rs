@@ -22,10 +22,10 @@ use rayon::prelude::*;
 use rustfft::num_complex::Complex64;
 use serde::{Deserialize, Serialize};
 
+use crate::engine::fft::Fft2;
+use crate::engine::grid::Grid;
+use crate::engine::spectrum::{SelfAffine, ShellSpectrum};
 use crate::error::{check_positive, Error, Result};
-use crate::fft::Fft2;
-use crate::grid::Grid;
-use crate::spectrum::{SelfAffine, ShellSpectrum};
 
 /// How the random amplitudes `xi(q)` are drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]

@@ -12,8 +12,8 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::engine::grid::Grid;
 use crate::error::{check_open, Error, Result};
-use crate::grid::Grid;
 
 /// Self-affine isotropic spectrum with cutoffs (lengths in grid units).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -78,7 +78,7 @@ impl SelfAffine {
     }
 
     /// `C(q)` up to a constant factor, with `C(q_l) = 1`, as a function of the integer
-    /// shell `k2` of `grid` (exact cutoffs, see [`crate::grid`]).
+    /// shell `k2` of `grid` (exact cutoffs, see [`crate::engine::grid`]).
     pub fn shape_on_shell(&self, grid: &Grid, k2: u32) -> f64 {
         if k2 == 0 {
             return 0.0;
@@ -184,7 +184,7 @@ impl ShellSpectrum {
     /// Shells resolved at magnification `zeta` (`|q| <= zeta q_l`, with the same slack as
     /// [`Grid::shell_limit`]).
     pub fn up_to(&self, zeta: f64) -> &[Shell] {
-        let limit = zeta * zeta * (1.0 + crate::grid::SHELL_SLACK);
+        let limit = zeta * zeta * (1.0 + crate::engine::grid::SHELL_SLACK);
         let end = self.shells.partition_point(|s| s.zeta * s.zeta <= limit);
         &self.shells[..end]
     }

@@ -70,15 +70,15 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::contact::{ContactSolution, Model, SolveOptions};
+use crate::engine::contact::{ContactSolution, Model, SolveOptions};
+use crate::engine::grid::Grid;
+use crate::engine::solver::SolverKind;
+use crate::engine::surface::{Surface, SurfaceParams};
+use crate::engine::sweep::Sweep;
 use crate::error::{check_open, check_positive, Error, Result};
-use crate::grid::Grid;
 use crate::persson::Correction;
 use crate::plot::{Axis, Figure, Series, Style};
-use crate::solver::SolverKind;
 use crate::stats::{round_sig, Estimate, LineFit};
-use crate::surface::{Surface, SurfaceParams};
-use crate::sweep::Sweep;
 use crate::validation::{Check, Conclusion, Definition, Detail, Experiment, JobContext, Table};
 
 /// The paper's asymptote law `K1 exp(-K2 x)` for `H = 0.8`: `(K1, K2)`.
@@ -139,7 +139,7 @@ impl Band {
     }
 
     /// The band's share of the per-mode energies `energies` (weighted, as from
-    /// [`HalfSpace::mode_energies`](crate::elastic::HalfSpace::mode_energies)).
+    /// [`HalfSpace::mode_energies`](crate::engine::elastic::HalfSpace::mode_energies)).
     pub fn energy(&self, energies: &[f64]) -> f64 {
         self.modes.iter().map(|&s| energies[s]).sum()
     }

@@ -54,7 +54,7 @@
 //!
 //! # Cost
 //!
-//! An iteration is two fused convolutions ([`crate::fft::Fft2::convolve`]) and one update
+//! An iteration is two fused convolutions ([`crate::engine::fft::Fft2::convolve`]) and one update
 //! sweep, or three convolutions when `u` is recomputed (the update then being the third's
 //! input): the gap and the search direction are generated row by row as the transforms
 //! read them, and the sums the step needs are taken row by row as the inverse transforms
@@ -70,11 +70,11 @@ use std::time::Instant;
 use rustfft::num_complex::Complex64;
 
 use super::ensure_len;
-use crate::contact::{
+use crate::engine::contact::{
     ContactProblem, ContactSolution, Progress, Residual, SolveOptions, SolveStats, Solver, Start,
 };
+use crate::engine::field::{fold_chunks, CHUNK};
 use crate::error::{Error, Result};
-use crate::field::{fold_chunks, CHUNK};
 use rayon::prelude::*;
 
 /// Constrained conjugate-gradient solver with its work buffers.
@@ -322,20 +322,20 @@ impl ConstrainedCg {
                     .par_iter_mut()
                     .zip(&prev.pressure)
                     .for_each(|(p, &q)| *p = q.max(0.0));
-                let mean = crate::field::mean(&self.p);
+                let mean = crate::engine::field::mean(&self.p);
                 if !(mean > 0.0 && mean.is_finite()) {
                     self.p.fill(p0);
                 }
             }
         }
         // The load scale that makes mean(p) = p0.
-        let mut scale = p0 / crate::field::mean(&self.p);
+        let mut scale = p0 / crate::engine::field::mean(&self.p);
         // Points in contact, and the rigid shift. A uniform pressure displaces nothing
         // (the compliance has no q = 0 mode): a cold start needs no transform.
         let (mut gbar, mut n_c) = if warm {
             self.exact_displacement(problem, &mut scale)
         } else {
-            (-crate::field::mean(h), n2 as f64)
+            (-crate::engine::field::mean(h), n2 as f64)
         };
         self.t.fill(0.0);
 
@@ -728,7 +728,7 @@ impl ConstrainedCg {
 
 /// The displacement of a point under unit pressure on that point alone,
 /// `N^-2 sum_q 2 / (q E*)` (the diagonal of the compliance in real space).
-fn point_compliance(model: &crate::contact::Model) -> f64 {
+fn point_compliance(model: &crate::engine::contact::Model) -> f64 {
     let grid = &model.grid;
     let sum: f64 = model
         .halfspace

@@ -25,12 +25,12 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use crate::contact::SolveOptions;
+use crate::engine::contact::SolveOptions;
+use crate::engine::grid::Grid;
+use crate::engine::solver::SolverKind;
+use crate::engine::spectrum::SelfAffine;
+use crate::engine::surface::{Amplitudes, SurfaceParams};
 use crate::error::{check_open, check_positive, Error, Result};
-use crate::grid::Grid;
-use crate::solver::SolverKind;
-use crate::spectrum::SelfAffine;
-use crate::surface::{Amplitudes, SurfaceParams};
 
 fn one() -> f64 {
     1.0

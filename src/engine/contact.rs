@@ -31,11 +31,11 @@
 use rustfft::num_complex::Complex64;
 use serde::{Deserialize, Serialize};
 
-use crate::elastic::HalfSpace;
+use crate::engine::elastic::HalfSpace;
+use crate::engine::fft::{Fft2, Kernel};
+use crate::engine::field;
+use crate::engine::grid::Grid;
 use crate::error::{check_positive, Error, Result};
-use crate::fft::{Fft2, Kernel};
-use crate::field;
-use crate::grid::Grid;
 
 /// The elastic model on a grid: geometry, material and the FFT plans. Plain data.
 #[derive(Debug)]
@@ -321,7 +321,7 @@ impl ContactSolution {
         field::sum_zip(&self.displacement, heights, |u, h| (u - h).max(0.0)) / heights.len() as f64
     }
 
-    /// Elastic energy per unit area, `(1/2) mean[(p - p0) u]` (see [`crate::elastic`]).
+    /// Elastic energy per unit area, `(1/2) mean[(p - p0) u]` (see [`crate::engine::elastic`]).
     pub fn elastic_energy(&self) -> f64 {
         0.5 * field::sum_zip(&self.pressure, &self.displacement, |p, u| (p - self.p0) * u)
             / self.pressure.len() as f64

@@ -8,8 +8,8 @@
 
 use std::path::Path;
 
+use crate::engine::grid::{MAX_N, MIN_N};
 use crate::error::{Error, Result};
-use crate::grid::{MAX_N, MIN_N};
 
 /// A square float64 field read from a `.npy` file.
 #[derive(Debug, Clone, PartialEq)]

@@ -12,7 +12,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::contact::{ContactProblem, ContactSolution, Model, SolveOptions, Solver, Start};
+use crate::engine::contact::{ContactProblem, ContactSolution, Model, SolveOptions, Solver, Start};
 use crate::error::{check_open, Error, Result};
 
 /// How closely the contact area must match its target.

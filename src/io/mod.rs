@@ -5,6 +5,9 @@
 //! renamed over its final name; a run killed halfway leaves the previous file (or none) in
 //! place, never a truncated one.
 
+pub mod checkpoint;
+pub mod npy;
+
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};

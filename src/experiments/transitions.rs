@@ -33,14 +33,14 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::contact::{Model, SolveOptions};
+use crate::engine::contact::{Model, SolveOptions};
+use crate::engine::solver::SolverKind;
+use crate::engine::surface::{Surface, SurfaceParams};
+use crate::engine::sweep::Sweep;
 use crate::error::{check_open, check_positive, Error, Result};
 use crate::persson::{moments, Broadening, Correction};
 use crate::plot::{Axis, Figure, Series, Style};
-use crate::solver::SolverKind;
 use crate::stats::{round_sig, Estimate};
-use crate::surface::{Surface, SurfaceParams};
-use crate::sweep::Sweep;
 use crate::validation::{Check, Conclusion, Definition, Detail, Experiment, JobContext, Table};
 
 /// Scene of the transition experiment.
@@ -138,16 +138,16 @@ pub struct Drift;
 
 impl TransitionScene {
     fn validate(&self) -> Result<()> {
-        let grid = crate::grid::Grid::new(self.n, 1.0)?;
+        let grid = crate::engine::grid::Grid::new(self.n, 1.0)?;
         SurfaceParams::new(self.n, self.hurst, self.lambda_l, self.lambda_s, 0)
             .spectrum
             .validate(&grid)?;
         crate::error::check_seeds(&self.seeds)?;
         check_open("contact_area", self.contact_area, 0.0, 1.0)?;
         let zeta_max = self.lambda_l / self.lambda_s;
-        crate::scene::check_zeta(self.zeta, zeta_max)?;
+        crate::engine::scene::check_zeta(self.zeta, zeta_max)?;
         check_positive("dzeta", self.dzeta)?;
-        crate::scene::check_zeta(self.zeta + self.dzeta, zeta_max).map_err(|_| {
+        crate::engine::scene::check_zeta(self.zeta + self.dzeta, zeta_max).map_err(|_| {
             Error::invalid(
                 "dzeta",
                 self.dzeta,

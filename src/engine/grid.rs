@@ -173,7 +173,7 @@ impl Grid {
 
     /// Mean of a real field.
     pub fn mean(&self, field: &[f64]) -> f64 {
-        crate::field::sum(field) / self.points() as f64
+        crate::engine::field::sum(field) / self.points() as f64
     }
 }
 

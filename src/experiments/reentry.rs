@@ -21,7 +21,7 @@
 //!   contact at every step; red, in contact after having been out (re-entered); white, out
 //!   of contact and never back; blue, out of contact after having come back at least once.
 //!
-//! The sweep checkpoints its state every `checkpoint_seconds` ([`crate::checkpoint`]); a run
+//! The sweep checkpoints its state every `checkpoint_seconds` ([`crate::io::checkpoint`]); a run
 //! killed mid-sweep resumes (`--resume`) from the last checkpoint and ends with the same
 //! numbers as an uninterrupted run (solves are deterministic, and the warm start is part of
 //! the state). A run without `--resume` starts every sweep afresh.
@@ -30,14 +30,14 @@ use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 
-use crate::checkpoint::{Array, Checkpoints};
-use crate::contact::{ContactSolution, Model, Residual, SolveOptions, SolveStats};
+use crate::engine::contact::{ContactSolution, Model, Residual, SolveOptions, SolveStats};
+use crate::engine::solver::SolverKind;
+use crate::engine::surface::{Surface, SurfaceParams};
+use crate::engine::sweep::{shell_steps, Sweep};
 use crate::error::{check_open, check_positive, Error, Result};
+use crate::io::checkpoint::{Array, Checkpoints};
 use crate::plot::Raster;
-use crate::solver::SolverKind;
 use crate::stats::{round_sig, Estimate};
-use crate::surface::{Surface, SurfaceParams};
-use crate::sweep::{shell_steps, Sweep};
 use crate::validation::{Check, Conclusion, Definition, Detail, Experiment, JobContext, Table};
 
 /// Scene of the re-entry experiment.
@@ -412,7 +412,7 @@ impl Experiment for Reentry {
     type JobResult = ReentryResult;
 
     fn validate(scene: &ReentryScene) -> Result<()> {
-        let grid = crate::grid::Grid::new(scene.n, 1.0)?;
+        let grid = crate::engine::grid::Grid::new(scene.n, 1.0)?;
         scene.params(0).spectrum.validate(&grid)?;
         crate::error::check_seeds(&scene.seeds)?;
         if scene.contact_areas.is_empty() {
@@ -433,7 +433,7 @@ impl Experiment for Reentry {
             ));
         }
         let zeta_max = scene.lambda_l / scene.lambda_s;
-        crate::scene::check_zeta(scene.flux_zeta, zeta_max)?;
+        crate::engine::scene::check_zeta(scene.flux_zeta, zeta_max)?;
         check_positive("flux_dzeta", scene.flux_dzeta)?;
         if scene.flux_zeta + scene.flux_dzeta > zeta_max {
             return Err(Error::invalid(

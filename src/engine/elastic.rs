@@ -21,8 +21,8 @@
 use rayon::prelude::*;
 use rustfft::num_complex::Complex64;
 
+use crate::engine::grid::Grid;
 use crate::error::{check_positive, Result};
-use crate::grid::Grid;
 
 /// An elastic half-space with effective modulus `E*`, on a grid.
 #[derive(Debug, Clone)]
@@ -89,8 +89,8 @@ impl HalfSpace {
     /// Elastic energy per unit area in real space, `(1/2) mean[(p - p0) u]`, where `p0` is
     /// the mean of `p`.
     pub fn energy_real(p: &[f64], u: &[f64]) -> f64 {
-        let p0 = crate::field::mean(p);
-        0.5 * crate::field::sum_zip(p, u, |pi, ui| (pi - p0) * ui) / p.len() as f64
+        let p0 = crate::engine::field::mean(p);
+        0.5 * crate::engine::field::sum_zip(p, u, |pi, ui| (pi - p0) * ui) / p.len() as f64
     }
 
     /// Per-mode energies `E_exa(q) = (E*/4) q |u~(q)|^2` over the half spectrum, each
@@ -107,8 +107,8 @@ impl HalfSpace {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fft::Fft2;
-    use crate::surface::{Surface, SurfaceParams};
+    use crate::engine::fft::Fft2;
+    use crate::engine::surface::{Surface, SurfaceParams};
 
     #[test]
     fn energy_in_real_space_equals_energy_in_fourier_space() {

@@ -42,11 +42,11 @@ use rustfft::num_complex::Complex64;
 use serde::{Deserialize, Serialize};
 
 use super::ensure_len;
-use crate::contact::{
+use crate::engine::contact::{
     ContactProblem, ContactSolution, Progress, Residual, SolveOptions, SolveStats, Solver, Start,
 };
+use crate::engine::field::{fold_chunks, CHUNK};
 use crate::error::{Error, Result};
-use crate::field::{fold_chunks, CHUNK};
 
 /// FIRE's constants. Defaults: Bitzek et al. (2006), with time steps in units of the
 /// common mode period `1/omega`.

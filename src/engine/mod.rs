@@ -1,0 +1,29 @@
+//! The engine: one hard-wall contact problem on a periodic grid, and the sweeps that solve
+//! it again while roughness is added.
+//!
+//! What it may use: [`crate::error`], [`crate::io`] and [`crate::stats`], nothing above.
+//! Nothing here knows about Persson's theory, experiments or validations.
+//!
+//! * [`grid`], [`fft`], [`field`]: the periodic grid, its real transforms, and reductions
+//!   that give the same bits on any number of threads;
+//! * [`spectrum`], [`surface`]: self-affine spectra and realizations, magnification;
+//! * [`elastic`]: the half-space's Green's function and elastic energy;
+//! * [`contact`]: the problem, its solution and the solver-independent residual;
+//! * [`solver`]: the [`solver::Solver`] trait, GFMD and constrained conjugate gradients;
+//! * [`load`]: the load that gives a target contact area;
+//! * [`sweep`]: one realization solved at a sequence of magnifications, warm-started;
+//! * [`scene`]: scene files (a surface and a solve);
+//! * [`reference`]: closed-form solutions the solvers are tested against.
+
+pub mod contact;
+pub mod elastic;
+pub mod fft;
+pub mod field;
+pub mod grid;
+pub mod load;
+pub mod reference;
+pub mod scene;
+pub mod solver;
+pub mod spectrum;
+pub mod surface;
+pub mod sweep;
