@@ -24,10 +24,9 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BatchSize, BenchmarkId, Criterion, SamplingMode};
-use persson_check::engine::contact::{
-    ContactProblem, ContactSolution, Model, SolveOptions, Solver, Start,
-};
+use persson_check::engine::contact::{ContactProblem, ContactSolution, Model};
 use persson_check::engine::solver::SolverKind;
+use persson_check::engine::solver::{SolveOptions, Solver, Start};
 use persson_check::engine::surface::{Surface, SurfaceParams};
 use persson_check::engine::sweep::shell_steps;
 

@@ -33,11 +33,13 @@ pub enum Error {
     },
     /// A solver stopped before reaching its tolerance.
     #[error(
-        "{solver} did not converge: residual {residual:.3e} > tolerance {tol:.1e} after {iterations} iterations"
+        "{solver} did not converge ({reason}): residual {residual:.3e} > tolerance {tol:.1e} after {iterations} iterations"
     )]
     NotConverged {
         /// Solver name.
         solver: &'static str,
+        /// Why it stopped.
+        reason: Termination,
         /// Iterations spent.
         iterations: usize,
         /// Residual reached (solver-independent definition, see `contact::Residual`).
@@ -68,7 +70,42 @@ pub enum Error {
     },
 }
 
+/// Why an iterative solve stopped (after argmin's termination reasons).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Termination {
+    /// The residual fell below the tolerance.
+    Converged,
+    /// The iteration budget ran out before the residual reached the tolerance.
+    BudgetExhausted,
+    /// The residual stopped improving at its rounding floor, above the tolerance.
+    Stalled,
+    /// A NaN or an infinity appeared in the solver's state.
+    NonFinite,
+}
+
+impl std::fmt::Display for Termination {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Termination::Converged => "converged",
+            Termination::BudgetExhausted => "iteration budget exhausted",
+            Termination::Stalled => "stalled at the rounding floor",
+            Termination::NonFinite => "non-finite value",
+        })
+    }
+}
+
 impl Error {
+    /// Why the solve behind this error stopped, for errors that come from an iterative
+    /// solve ([`Error::NotConverged`], [`Error::NonFinite`]).
+    pub fn termination(&self) -> Option<Termination> {
+        match self {
+            Error::NotConverged { reason, .. } => Some(*reason),
+            Error::NonFinite { .. } => Some(Termination::NonFinite),
+            _ => None,
+        }
+    }
+
     /// An [`Error::InvalidInput`] for `field = value`, allowed `allowed`.
     pub fn invalid(field: &str, value: impl Display, allowed: impl Into<String>) -> Self {
         Error::InvalidInput {
@@ -142,5 +179,33 @@ pub fn check_positive(field: &str, value: f64) -> Result<()> {
         Ok(())
     } else {
         Err(Error::invalid(field, value, "a finite number > 0"))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn solve_errors_name_why_they_stopped() {
+        let e = Error::NotConverged {
+            solver: "cg",
+            reason: Termination::Stalled,
+            iterations: 12,
+            residual: 3e-13,
+            tol: 1e-14,
+        };
+        assert_eq!(e.termination(), Some(Termination::Stalled));
+        assert!(
+            e.to_string().contains("stalled at the rounding floor"),
+            "{e}"
+        );
+        let e = Error::NonFinite {
+            solver: "gfmd",
+            what: "stress",
+            iteration: 4,
+        };
+        assert_eq!(e.termination(), Some(Termination::NonFinite));
+        assert_eq!(Error::invalid("n", 3, "> 4").termination(), None);
     }
 }

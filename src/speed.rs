@@ -35,8 +35,9 @@ use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 
-use crate::engine::contact::{ContactProblem, ContactSolution, Model, SolveOptions, Start};
+use crate::engine::contact::{ContactProblem, ContactSolution, Model};
 use crate::engine::solver::SolverKind;
+use crate::engine::solver::{SolveOptions, Start};
 use crate::engine::surface::{Surface, SurfaceParams};
 use crate::engine::sweep::shell_steps;
 use crate::error::{check_positive, Error, Result};

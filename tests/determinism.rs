@@ -11,7 +11,8 @@
 use std::path::Path;
 use std::process::{Command, Stdio};
 
-use persson_check::engine::contact::{ContactSolution, Model, SolveOptions};
+use persson_check::engine::contact::{ContactSolution, Model};
+use persson_check::engine::solver::SolveOptions;
 use persson_check::engine::solver::SolverKind;
 use persson_check::engine::surface::{Surface, SurfaceParams};
 use persson_check::engine::sweep::Sweep;

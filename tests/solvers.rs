@@ -1,12 +1,14 @@
 //! The two hard-wall solvers against exact solutions, conservation laws and each other.
 
-use persson_check::engine::contact::{ContactProblem, ContactSolution, Model, SolveOptions, Start};
+use persson_check::engine::contact::{ContactProblem, ContactSolution, Model};
 use persson_check::engine::field;
 use persson_check::engine::grid::Grid;
 use persson_check::engine::load::{persson_load_guess, solve_for_area, AreaSearch, AreaTarget};
 use persson_check::engine::reference::Westergaard;
 use persson_check::engine::solver::SolverKind;
+use persson_check::engine::solver::{SolveOptions, Start};
 use persson_check::engine::surface::{Surface, SurfaceParams};
+use persson_check::error::Termination;
 use persson_check::Error;
 
 const BOTH: [SolverKind; 2] = [SolverKind::Cg, SolverKind::Gfmd];
@@ -340,8 +342,10 @@ fn budget_exhaustion_is_an_error_with_the_residual() {
             Err(Error::NotConverged {
                 iterations,
                 residual,
+                reason,
                 ..
             }) => {
+                assert_eq!(reason, Termination::BudgetExhausted, "{}", kind.name());
                 assert_eq!(iterations, 3);
                 assert!(residual > 1e-12 && residual.is_finite());
             }

@@ -6,15 +6,14 @@ use clap::Args as ClapArgs;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 
-use persson_check::engine::contact::{
-    ContactProblem, ContactSolution, Model, Progress, Residual, SolveOptions, Solver, Start,
-};
+use persson_check::engine::contact::{ContactProblem, ContactSolution, Model, Residual};
 use persson_check::engine::grid::Grid;
 use persson_check::engine::load::{persson_load_guess, solve_for_area, AreaSearch, AreaTarget};
 use persson_check::engine::scene::{check_zeta, SolveScene};
 use persson_check::engine::solver::SolverKind;
+use persson_check::engine::solver::{Progress, SolveOptions, Solver, Start};
 use persson_check::engine::surface::Surface;
-use persson_check::error::{check_open, check_positive, Error, Result};
+use persson_check::error::{check_open, check_positive, Error, Result, Termination};
 
 use super::{as_flag, check_out_dir, SurfaceArgs};
 
@@ -72,6 +71,9 @@ struct Summary {
     iterations: usize,
     wall_s: f64,
     solver: &'static str,
+    /// Why the solve stopped: always `converged` here (a solve that stops otherwise is an
+    /// error that names its reason, and writes nothing).
+    termination: Termination,
     zeta: f64,
     rms_gradient: f64,
     reduced_pressure: f64,
@@ -192,6 +194,7 @@ pub fn run(args: Args) -> Result<()> {
         iterations: s.stats.iterations,
         wall_s: s.stats.wall_s,
         solver: s.stats.solver,
+        termination: Termination::Converged,
         zeta,
         rms_gradient: g_bar,
         reduced_pressure: s.p0 / (e_star * g_bar),

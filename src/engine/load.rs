@@ -12,7 +12,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::engine::contact::{ContactProblem, ContactSolution, Model, SolveOptions, Solver, Start};
+use crate::engine::contact::{ContactProblem, ContactSolution, Model};
+use crate::engine::solver::{SolveOptions, Solver, Start};
 use crate::error::{check_open, Error, Result};
 
 /// How closely the contact area must match its target.

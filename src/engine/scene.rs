@@ -25,8 +25,8 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use crate::engine::contact::SolveOptions;
 use crate::engine::grid::Grid;
+use crate::engine::solver::SolveOptions;
 use crate::engine::solver::SolverKind;
 use crate::engine::spectrum::SelfAffine;
 use crate::engine::surface::{Amplitudes, SurfaceParams};

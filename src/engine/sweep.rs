@@ -26,9 +26,10 @@
 use rayon::prelude::*;
 use rustfft::num_complex::Complex64;
 
-use crate::engine::contact::{ContactProblem, ContactSolution, Model, SolveOptions, Solver, Start};
+use crate::engine::contact::{ContactProblem, ContactSolution, Model};
 use crate::engine::load::{persson_load_guess, solve_for_area, AreaSearch, AreaTarget};
 use crate::engine::solver::SolverKind;
+use crate::engine::solver::{SolveOptions, Solver, Start};
 use crate::engine::surface::Surface;
 use crate::error::Result;
 

@@ -70,8 +70,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::engine::contact::{ContactSolution, Model, SolveOptions};
+use crate::engine::contact::{ContactSolution, Model};
 use crate::engine::grid::Grid;
+use crate::engine::solver::SolveOptions;
 use crate::engine::solver::SolverKind;
 use crate::engine::surface::{Surface, SurfaceParams};
 use crate::engine::sweep::Sweep;

@@ -30,7 +30,8 @@ use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 
-use crate::engine::contact::{ContactSolution, Model, Residual, SolveOptions, SolveStats};
+use crate::engine::contact::{ContactSolution, Model, Residual, SolveStats};
+use crate::engine::solver::SolveOptions;
 use crate::engine::solver::SolverKind;
 use crate::engine::surface::{Surface, SurfaceParams};
 use crate::engine::sweep::{shell_steps, Sweep};

@@ -41,8 +41,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::engine::contact::{Model, SolveOptions};
+use crate::engine::contact::Model;
 use crate::engine::grid::Grid;
+use crate::engine::solver::SolveOptions;
 use crate::engine::solver::SolverKind;
 use crate::engine::surface::{Surface, SurfaceParams};
 use crate::engine::sweep::{shell_steps, Sweep};

@@ -400,6 +400,7 @@ fn trapezoidal_step(c: &Correction, p0: f64, v_prev: f64, s_prev: f64, b: f64) -
     }
     Err(Error::NotConverged {
         solver: "corrected Persson theory (trapezoidal shell update)",
+        reason: crate::error::Termination::BudgetExhausted,
         iterations: MAX_FIXED_POINT,
         residual: change,
         tol: FIXED_POINT_TOL,

@@ -70,11 +70,10 @@ use std::time::Instant;
 use rustfft::num_complex::Complex64;
 
 use super::ensure_len;
-use crate::engine::contact::{
-    ContactProblem, ContactSolution, Progress, Residual, SolveOptions, SolveStats, Solver, Start,
-};
+use crate::engine::contact::{ContactProblem, ContactSolution, Residual, SolveStats};
 use crate::engine::field::{fold_chunks, CHUNK};
-use crate::error::{Error, Result};
+use crate::engine::solver::{Progress, SolveOptions, Solver, Start};
+use crate::error::{Error, Result, Termination};
 use rayon::prelude::*;
 
 /// Constrained conjugate-gradient solver with its work buffers.
@@ -352,6 +351,7 @@ impl ConstrainedCg {
         // Smallest full residual evaluated, and the iterations spent.
         let mut reached = f64::INFINITY;
         let mut spent = opts.max_iter;
+        let mut reason = Termination::BudgetExhausted;
 
         for it in 0..opts.max_iter {
             if !gbar.is_finite() || !scale.is_finite() {
@@ -421,6 +421,7 @@ impl ConstrainedCg {
                     best_at = it;
                 } else if internal_tol < opts.tol {
                     spent = it;
+                    reason = Termination::Stalled;
                     break;
                 }
             }
@@ -644,6 +645,7 @@ impl ConstrainedCg {
         }
         Err(Error::NotConverged {
             solver: NAME,
+            reason,
             iterations: spent,
             residual: solution.stats.residual.value().min(reached),
             tol: opts.tol,

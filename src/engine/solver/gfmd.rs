@@ -42,11 +42,10 @@ use rustfft::num_complex::Complex64;
 use serde::{Deserialize, Serialize};
 
 use super::ensure_len;
-use crate::engine::contact::{
-    ContactProblem, ContactSolution, Progress, Residual, SolveOptions, SolveStats, Solver, Start,
-};
+use crate::engine::contact::{ContactProblem, ContactSolution, Residual, SolveStats};
 use crate::engine::field::{fold_chunks, CHUNK};
-use crate::error::{Error, Result};
+use crate::engine::solver::{Progress, SolveOptions, Solver, Start};
+use crate::error::{Error, Result, Termination};
 
 /// FIRE's constants. Defaults: Bitzek et al. (2006), with time steps in units of the
 /// common mode period `1/omega`.
@@ -282,6 +281,7 @@ impl Gfmd {
         }
         Err(Error::NotConverged {
             solver: NAME,
+            reason: Termination::BudgetExhausted,
             iterations: opts.max_iter,
             residual: solution.stats.residual.value(),
             tol: opts.tol,

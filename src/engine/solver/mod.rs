@@ -6,7 +6,7 @@
 //! * [`ConstrainedCg`]: constrained conjugate gradients on the pressure
 //!   (Polonsky & Keer 1999), the algorithm of tamaas and ContactMechanics.
 //!
-//! Both implement [`crate::engine::contact::Solver`], start cold or from a previous solution, stop
+//! Both implement [`Solver`], start cold or from a previous solution, stop
 //! at the solver-independent [`crate::engine::contact::Residual`], and fail with
 //! [`crate::Error::NotConverged`] (carrying the residual) or [`crate::Error::NonFinite`]
 //! rather than return an unconverged field.
@@ -19,7 +19,8 @@ pub use gfmd::{FireParams, Gfmd};
 
 use serde::{Deserialize, Serialize};
 
-use crate::engine::contact::Solver;
+use crate::engine::contact::{ContactProblem, ContactSolution};
+use crate::error::{Error, Result};
 
 /// The solvers by name, for scenes and the command line.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default, clap::ValueEnum)]
@@ -55,5 +56,88 @@ pub(crate) fn ensure_len<T: Clone + Default>(v: &mut Vec<T>, len: usize) {
     if v.len() != len {
         v.clear();
         v.resize(len, T::default());
+    }
+}
+
+/// Solver settings shared by every solver.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct SolveOptions {
+    /// Requested residual (see [`Residual`]).
+    pub tol: f64,
+    /// Iteration budget; exceeding it is an error carrying the residual reached.
+    pub max_iter: usize,
+}
+
+impl Default for SolveOptions {
+    fn default() -> Self {
+        Self {
+            tol: 1e-8,
+            max_iter: 100_000,
+        }
+    }
+}
+
+impl SolveOptions {
+    /// Options with tolerance `tol`.
+    pub fn with_tol(tol: f64) -> Self {
+        Self {
+            tol,
+            ..Self::default()
+        }
+    }
+
+    /// Checks the ranges.
+    pub fn validate(&self) -> Result<()> {
+        if !(self.tol.is_finite() && self.tol >= 1e-14 && self.tol < 1.0) {
+            return Err(Error::invalid("tol", self.tol, "in [1e-14, 1)"));
+        }
+        if self.max_iter == 0 {
+            return Err(Error::invalid("max_iter", 0, ">= 1"));
+        }
+        Ok(())
+    }
+}
+
+/// Where a solve starts.
+#[derive(Debug, Clone, Copy)]
+pub enum Start<'a> {
+    /// From scratch (uniform pressure, flat displacement).
+    Cold,
+    /// From a previous solution: another load, or a lower magnification.
+    Warm(&'a ContactSolution),
+}
+
+/// Progress of a solve, for monitors (progress bars, logs).
+#[derive(Debug, Clone, Copy)]
+pub struct Progress {
+    /// Iteration number.
+    pub iteration: usize,
+    /// The solver's running estimate of the residual.
+    pub residual: f64,
+}
+
+/// A hard-wall contact solver.
+pub trait Solver {
+    /// Short name (`"gfmd"`, `"cg"`).
+    fn name(&self) -> &'static str;
+
+    /// Solves `problem` from `start` to `opts.tol`, or fails with the residual reached;
+    /// `monitor` sees every iteration.
+    fn solve_monitored(
+        &mut self,
+        problem: &ContactProblem,
+        start: Start,
+        opts: &SolveOptions,
+        monitor: &mut dyn FnMut(Progress),
+    ) -> Result<ContactSolution>;
+
+    /// Solves `problem` from `start` to `opts.tol`, or fails with the residual reached.
+    fn solve(
+        &mut self,
+        problem: &ContactProblem,
+        start: Start,
+        opts: &SolveOptions,
+    ) -> Result<ContactSolution> {
+        self.solve_monitored(problem, start, opts, &mut |_| {})
     }
 }
