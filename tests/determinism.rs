@@ -8,7 +8,6 @@
 //! (`src/field.rs`, `src/fft.rs`), so these tests demand more than the snapshots do:
 //! bit-identical fields and statistics.
 
-use std::path::Path;
 use std::process::{Command, Stdio};
 
 use persson_check::engine::contact::{ContactSolution, Model};
@@ -16,7 +15,8 @@ use persson_check::engine::solver::SolveOptions;
 use persson_check::engine::solver::SolverKind;
 use persson_check::engine::surface::{Surface, SurfaceParams};
 use persson_check::engine::sweep::Sweep;
-use serde_json::Value;
+
+use crate::common::{definitions_with_reentry, outcome_numbers, table_without_wall};
 
 /// A reduced re-entry scene on a grid of two reduction chunks (128^2 = 2 x 8192 points).
 const REENTRY_SCENE: &str = "[reduced]
@@ -38,54 +38,10 @@ tol = 1e-8
 /// A folder with the built-in `a_diffusion` and `b_drift` (whose reduced scenes share their
 /// jobs: 256^2, eight realizations) and a small `c_reentry` ([`REENTRY_SCENE`]).
 fn definitions() -> tempfile::TempDir {
-    let validations = Path::new(env!("CARGO_MANIFEST_DIR")).join("validations");
-    let dir = tempfile::tempdir().unwrap();
-    for name in ["a_diffusion", "b_drift"] {
-        let file = format!("{name}.toml");
-        std::fs::copy(validations.join(&file), dir.path().join(&file)).unwrap();
-    }
-    let text = std::fs::read_to_string(validations.join("c_reentry.toml")).unwrap();
-    let (head, rest) = text.split_at(text.find("[reduced]").expect("a [reduced] table"));
-    let full = &rest[rest.find("[full]").expect("a [full] table")..];
-    std::fs::write(
-        dir.path().join("c_reentry.toml"),
-        format!("{head}{REENTRY_SCENE}{full}"),
-    )
-    .unwrap();
-    dir
+    definitions_with_reentry(REENTRY_SCENE, &["a_diffusion", "b_drift"])
 }
 
 const NAMES: [&str; 3] = ["a_diffusion", "b_drift", "c_reentry"];
-
-/// An outcome without what depends on the clock or the machine: the wall time, the thread
-/// count, and the re-entry account's sentence on the mean time of a sweep.
-fn outcome_numbers(out: &Path, name: &str) -> Value {
-    let bytes = std::fs::read(out.join(format!("{name}.json"))).unwrap();
-    let mut v: Value = serde_json::from_slice(&bytes).unwrap();
-    let o = v.as_object_mut().unwrap();
-    o.remove("wall_s");
-    o.remove("threads");
-    let account = o["account"].as_str().unwrap();
-    let cut = account.find("A sweep took").unwrap_or(account.len());
-    o["account"] = account[..cut].to_string().into();
-    v
-}
-
-/// A CSV table without its wall-time columns.
-fn table_without_wall(out: &Path, name: &str) -> Vec<Vec<String>> {
-    let text = std::fs::read_to_string(out.join(format!("{name}.csv"))).unwrap();
-    let rows: Vec<Vec<&str>> = text.lines().map(|l| l.split(',').collect()).collect();
-    let keep: Vec<bool> = rows[0].iter().map(|c| !c.starts_with("wall")).collect();
-    rows.iter()
-        .map(|r| {
-            r.iter()
-                .zip(&keep)
-                .filter(|(_, &k)| k)
-                .map(|(c, _)| c.to_string())
-                .collect()
-        })
-        .collect()
-}
 
 #[test]
 fn validations_give_the_same_statistics_on_one_and_two_threads() {

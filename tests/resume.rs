@@ -18,6 +18,8 @@ use std::time::{Duration, Instant};
 use persson_check::io::checkpoint::{Array, Checkpoints};
 use serde_json::Value;
 
+use crate::common::{definitions_with_reentry, outcome_numbers, table_without_wall};
+
 /// The reduced re-entry scene of these tests, spliced into the real definition's header.
 const SCENE: &str = "[reduced]
 n = 64
@@ -45,17 +47,7 @@ const TIMEOUT: Duration = Duration::from_secs(180);
 
 /// A folder holding `c_reentry.toml` with the reduced scene [`SCENE`].
 fn definitions() -> tempfile::TempDir {
-    let real = Path::new(env!("CARGO_MANIFEST_DIR")).join("validations/c_reentry.toml");
-    let text = std::fs::read_to_string(real).unwrap();
-    let (head, rest) = text.split_at(text.find("[reduced]").expect("a [reduced] table"));
-    let full = &rest[rest.find("[full]").expect("a [full] table")..];
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(
-        dir.path().join("c_reentry.toml"),
-        format!("{head}{SCENE}{full}"),
-    )
-    .unwrap();
-    dir
+    definitions_with_reentry(SCENE, &[])
 }
 
 /// `persson-check --threads THREADS validate c_reentry --dir DEFS --out OUT [--resume]`.
@@ -196,41 +188,6 @@ fn job_wall(out: &Path, key: &str) -> f64 {
     stored["result"]["wall_s"].as_f64().unwrap()
 }
 
-/// The outcome without what depends on the clock or the machine: the wall time, the
-/// thread count, and the account's sentence on the mean time of a sweep.
-fn outcome_numbers(out: &Path) -> Value {
-    let bytes = std::fs::read(out.join("c_reentry.json")).unwrap();
-    let mut v: Value = serde_json::from_slice(&bytes).unwrap();
-    let o = v.as_object_mut().unwrap();
-    o.remove("wall_s");
-    o.remove("threads");
-    let account = o["account"].as_str().unwrap();
-    let cut = account
-        .find("A sweep took")
-        .expect("the account's timing sentence");
-    o["account"] = account[..cut].to_string().into();
-    v
-}
-
-/// The CSV table without its `wall_s` column.
-fn table_without_wall(out: &Path) -> Vec<Vec<String>> {
-    let text = std::fs::read_to_string(out.join("c_reentry.csv")).unwrap();
-    let rows: Vec<Vec<String>> = text
-        .lines()
-        .map(|l| l.split(',').map(str::to_string).collect())
-        .collect();
-    let wall = rows[0]
-        .iter()
-        .position(|c| c == "wall_s")
-        .expect("a wall_s column");
-    rows.into_iter()
-        .map(|mut r| {
-            r.remove(wall);
-            r
-        })
-        .collect()
-}
-
 /// The per-point history, as the contact maps drawn from it.
 fn maps(out: &Path) -> Vec<Vec<u8>> {
     ["reentry_map.png", "flux_map.png"]
@@ -259,7 +216,10 @@ fn reference() -> &'static Reference {
 /// uninterrupted run's, exactly.
 fn assert_same_as_reference(out: &Path) {
     let r = reference().out.path();
-    let (got, want) = (outcome_numbers(out), outcome_numbers(r));
+    let (got, want) = (
+        outcome_numbers(out, "c_reentry"),
+        outcome_numbers(r, "c_reentry"),
+    );
     for key in [
         "value",
         "std_error",
@@ -275,8 +235,8 @@ fn assert_same_as_reference(out: &Path) {
     }
     assert_eq!(got, want, "the outcome differs from the uninterrupted run");
     assert_eq!(
-        table_without_wall(out),
-        table_without_wall(r),
+        table_without_wall(out, "c_reentry"),
+        table_without_wall(r, "c_reentry"),
         "c_reentry.csv"
     );
     assert!(maps(out) == maps(r), "the contact maps differ");
@@ -415,7 +375,12 @@ fn checkpoints_killed_at_any_instant_stay_whole() {
     let mut last = 0u64;
     for round in 0..12u64 {
         let mut child = Command::new(std::env::current_exe().unwrap())
-            .args(["checkpoint_writer", "--exact", "--ignored", "--nocapture"])
+            .args([
+                "resume::checkpoint_writer",
+                "--exact",
+                "--ignored",
+                "--nocapture",
+            ])
             .env(WRITER_ENV, &ck)
             .stdout(Stdio::null())
             .stderr(Stdio::null())

@@ -1,0 +1,62 @@
+//! Helpers shared by the test modules: definition folders with a spliced scene, and
+//! outcomes and tables without what depends on the clock or the machine.
+
+use std::path::Path;
+
+use serde_json::Value;
+
+/// The validation definitions shipped in `validations/`.
+pub fn validations_dir() -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("validations")
+}
+
+/// A temporary folder of definitions: copies of the built-in `copies`, and `c_reentry`
+/// with its `[reduced]` table replaced by `reduced` (which must end with a blank line).
+pub fn definitions_with_reentry(reduced: &str, copies: &[&str]) -> tempfile::TempDir {
+    let validations = validations_dir();
+    let dir = tempfile::tempdir().unwrap();
+    for name in copies {
+        let file = format!("{name}.toml");
+        std::fs::copy(validations.join(&file), dir.path().join(&file)).unwrap();
+    }
+    let text = std::fs::read_to_string(validations.join("c_reentry.toml")).unwrap();
+    let (head, rest) = text.split_at(text.find("[reduced]").expect("a [reduced] table"));
+    let full = &rest[rest.find("[full]").expect("a [full] table")..];
+    std::fs::write(
+        dir.path().join("c_reentry.toml"),
+        format!("{head}{reduced}{full}"),
+    )
+    .unwrap();
+    dir
+}
+
+/// An outcome (`<out>/<name>.json`) without what depends on the clock or the machine: the
+/// wall time, the thread count, and the re-entry account's sentence on the mean time of a
+/// sweep.
+pub fn outcome_numbers(out: &Path, name: &str) -> Value {
+    let bytes = std::fs::read(out.join(format!("{name}.json"))).unwrap();
+    let mut v: Value = serde_json::from_slice(&bytes).unwrap();
+    let o = v.as_object_mut().unwrap();
+    o.remove("wall_s");
+    o.remove("threads");
+    let account = o["account"].as_str().unwrap();
+    let cut = account.find("A sweep took").unwrap_or(account.len());
+    o["account"] = account[..cut].to_string().into();
+    v
+}
+
+/// A CSV table (`<out>/<name>.csv`) without its wall-time columns.
+pub fn table_without_wall(out: &Path, name: &str) -> Vec<Vec<String>> {
+    let text = std::fs::read_to_string(out.join(format!("{name}.csv"))).unwrap();
+    let rows: Vec<Vec<&str>> = text.lines().map(|l| l.split(',').collect()).collect();
+    let keep: Vec<bool> = rows[0].iter().map(|c| !c.starts_with("wall")).collect();
+    rows.iter()
+        .map(|r| {
+            r.iter()
+                .zip(&keep)
+                .filter(|(_, &k)| k)
+                .map(|(c, _)| c.to_string())
+                .collect()
+        })
+        .collect()
+}

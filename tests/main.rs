@@ -1,0 +1,12 @@
+//! The integration tests, as one crate (one binary, linked once): a module per subject,
+//! with the helpers they share in [`common`].
+
+mod bad_input;
+mod common;
+mod determinism;
+mod hard_scenes;
+mod persson;
+mod readers_fuzz;
+mod resume;
+mod solvers;
+mod validations;
