@@ -1,5 +1,7 @@
 //! Embeds the project's git commit and whether the working tree had local changes, for the
-//! scorecard's provenance (`persson_check::provenance`).
+//! scorecard's provenance (`persson_check::provenance`), and generates the table of
+//! built-in validation definitions from `validations/*.toml`
+//! (`persson_check::validation::source::DEFINITIONS`).
 //!
 //! Sets `PERSSON_CHECK_COMMIT` (40 hex digits, or "unknown") and `PERSSON_CHECK_DIRTY`
 //! ("yes", "no" or "unknown"). Without git, or outside the project's own repository (a
@@ -22,8 +24,36 @@ fn git(dir: &Path, args: &[&str]) -> Option<String> {
     String::from_utf8(out.stdout).ok()
 }
 
+/// Writes `$OUT_DIR/definitions.rs`: `&[(name, include_str!(path)), ...]` for every
+/// `validations/*.toml`, sorted by name.
+fn definitions(manifest: &Path) {
+    let dir = manifest.join("validations");
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .expect("the validations/ folder")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    files.sort();
+    let mut table = String::from("&[\n");
+    for path in &files {
+        let name = path
+            .file_stem()
+            .expect("a file name")
+            .to_string_lossy()
+            .to_string();
+        table.push_str(&format!(
+            "    ({name:?}, include_str!({:?})),\n",
+            path.display().to_string()
+        ));
+    }
+    table.push(']');
+    let out = PathBuf::from(std::env::var("OUT_DIR").expect("set by cargo"));
+    std::fs::write(out.join("definitions.rs"), table).expect("OUT_DIR is writable");
+}
+
 fn main() {
     let manifest = PathBuf::from(std::env::var("CARGO_MANIFEST_DIR").expect("set by cargo"));
+    definitions(&manifest);
     // Re-run when the sources change (the dirty flag) or git's HEAD, branch or index move
     // (a commit); paths are only named when they exist, or cargo would re-run every time.
     for rel in [

@@ -14,7 +14,7 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion, SamplingMode};
-use persson_check::validation::builtin::{builtin_sources, select};
+use persson_check::validation::source::{builtin_sources, select};
 use persson_check::validation::{run, RunOptions, Scale};
 
 /// The validation timed.

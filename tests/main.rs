@@ -7,6 +7,7 @@ mod determinism;
 mod hard_scenes;
 mod persson;
 mod readers_fuzz;
+mod registry;
 mod resume;
 mod solvers;
 mod validations;

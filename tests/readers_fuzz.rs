@@ -13,7 +13,8 @@ use proptest::prelude::*;
 use persson_check::engine::grid::{MAX_N, MIN_N};
 use persson_check::engine::scene::{parse_scene, Scene};
 use persson_check::io::npy::{self, Field};
-use persson_check::validation::builtin::{check, DEFINITIONS};
+use persson_check::validation::check;
+use persson_check::validation::source::DEFINITIONS;
 use persson_check::validation::Source;
 
 fn config() -> ProptestConfig {

@@ -1,8 +1,8 @@
 //! The scientific regression suite: every validation's reduced scene, its verdict, and its
 //! golden values (insta snapshots under `golden/`).
 
-use persson_check::validation::builtin::{builtin_sources, sources_in, DEFINITIONS, EXPERIMENTS};
-use persson_check::validation::{run, Outcome, RunOptions, Scale, Source, Verdict};
+use persson_check::validation::source::{builtin_sources, sources_in, DEFINITIONS};
+use persson_check::validation::{run, Outcome, Registry, RunOptions, Scale, Source, Verdict};
 
 fn source(name: &str) -> Source {
     builtin_sources()
@@ -120,15 +120,16 @@ fn total_energy_against_the_corrected_theory() {
     assert_eq!(o.verdict, Verdict::Inconclusive);
     assert_eq!(o.reproduced, None);
     assert!(o.value > 0.9 && o.value < 1.05, "E_exa / E_c = {}", o.value);
-    let improves = &o.checks[0];
+    let improves = o
+        .checks
+        .iter()
+        .find(|c| c.key == "correction_brings_energy_closer")
+        .expect("the check of the correction");
     assert!(improves.passed, "{improves:?}");
     let original = o
         .details
         .iter()
-        .find(|d| {
-            d.name
-                .starts_with("E_exa / E_P (S = 1) at full resolution, a_r = 0.2")
-        })
+        .find(|d| d.key == "original_ar0.2")
         .expect("the original theory at the headline load");
     assert!(
         original.value.value < 0.75,
@@ -144,8 +145,9 @@ fn built_in_definitions_are_the_files_in_validations() {
     assert_eq!(
         files.len(),
         DEFINITIONS.len(),
-        "validations/ and builtin.rs disagree"
+        "validations/ and the compiled-in definitions disagree"
     );
+    let registry = Registry::builtin();
     for file in &files {
         let (name, experiment) = file.header().unwrap();
         let builtin = DEFINITIONS
@@ -154,7 +156,7 @@ fn built_in_definitions_are_the_files_in_validations() {
             .unwrap_or_else(|| panic!("{name} is not compiled in"));
         assert_eq!(builtin.1, file.text, "{name}: compiled-in copy differs");
         assert!(
-            EXPERIMENTS.contains(&experiment.as_str()),
+            registry.names().contains(&experiment.as_str()),
             "{name}: {experiment}"
         );
     }

@@ -4,8 +4,8 @@ use std::path::PathBuf;
 
 use clap::Args as ClapArgs;
 use persson_check::error::{Error, Result};
-use persson_check::validation::builtin::{builtin_sources, check, select, sources_in};
-use persson_check::validation::{run_all, RunOptions, Scale};
+use persson_check::validation::source::{builtin_sources, select, sources_in, Source};
+use persson_check::validation::{Registry, RunOptions, Scale};
 
 /// Arguments of `validate`.
 #[derive(ClapArgs, Debug)]
@@ -33,9 +33,10 @@ pub fn run(args: Args) -> Result<()> {
         None => builtin_sources(),
     };
     let sources = select(sources, &args.names)?;
+    let registry = Registry::builtin();
     // Every definition is checked before any runs: bad input writes nothing.
     for source in &sources {
-        check(source)?;
+        registry.check(source)?;
     }
     let opts = RunOptions {
         scale: if args.full {
@@ -48,7 +49,7 @@ pub fn run(args: Args) -> Result<()> {
         progress: true,
     };
     let mut failed = Vec::new();
-    for (path, result) in run_all(&sources, &opts) {
+    for (path, result) in registry.run_all(&sources, &opts) {
         match result {
             Ok(o) => println!(
                 "{:<16} {} = {:.4} +- {:.4} (Persson {:.4}): {}, paper {} [{:.1} s]",
@@ -83,7 +84,7 @@ pub fn run(args: Args) -> Result<()> {
 }
 
 /// The definitions in `--dir` (at least one).
-fn definitions_in(dir: &std::path::Path) -> Result<Vec<persson_check::validation::Source>> {
+fn definitions_in(dir: &std::path::Path) -> Result<Vec<Source>> {
     let sources = sources_in(dir).map_err(|e| match e {
         Error::Io { path, source } if path == dir => Error::invalid(
             "--dir",

@@ -25,6 +25,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::{Check, Conclusion, Criteria, Detail, Experiment, JobContext, Table};
 use crate::engine::contact::Model;
 use crate::engine::solver::SolveOptions;
 use crate::engine::solver::SolverKind;
@@ -34,7 +35,6 @@ use crate::error::{check_open, check_positive, Error, Result};
 use crate::persson::{persson_contact_area, ContactAreaLaw};
 use crate::plot::{Axis, Figure, Series, Style};
 use crate::stats::{round_sig, Estimate};
-use crate::validation::{Check, Conclusion, Definition, Detail, Experiment, JobContext, Table};
 
 /// Scene of the contact-area experiment.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -208,7 +208,7 @@ impl Experiment for ContactArea {
     }
 
     fn conclude(
-        def: &Definition<AreaScene>,
+        criteria: &Criteria,
         scene: &AreaScene,
         results: &[(AreaJob, AreaResult)],
     ) -> Result<Conclusion> {
@@ -216,9 +216,7 @@ impl Experiment for ContactArea {
         let low: Vec<usize> = (0..pressures.len())
             .filter(|&k| pressures[k] <= scene.low_load)
             .collect();
-        let kappa_of = |a: &[f64]| -> f64 {
-            low.iter().map(|&k| a[k] / pressures[k]).sum::<f64>() / low.len() as f64
-        };
+        let kappa_of = |a: &[f64]| low_load_slope(pressures, a, &low);
         // Contact areas per (hurst, seed) at each refinement, and the extrapolation.
         let curve = |hurst: f64, seed: u64, refine: usize| -> &[f64] {
             &results
@@ -237,17 +235,16 @@ impl Experiment for ContactArea {
             }
             let r1 = refinements[refinements.len() - 2];
             let coarse = curve(hurst, seed, r1);
-            let (r1, r2) = (r1 as f64, finest as f64);
             fine.iter()
                 .zip(coarse)
-                .map(|(f, c)| (r2 * f - r1 * c) / (r2 - r1))
+                .map(|(&f, &c)| richardson(r1 as f64, c, finest as f64, f))
                 .collect()
         };
 
         let mut c = Conclusion {
             // Persson's a_r = erf(sqrt2 p~0) has slope sqrt(8/pi) at p~0 -> 0.
             persson: (8.0 / std::f64::consts::PI).sqrt(),
-            max_residual: results.iter().map(|r| r.1.max_residual).fold(0.0, f64::max),
+            max_residual: super::max_residual(results, |r| r.max_residual),
             ..Default::default()
         };
         let mut all = Vec::new();
@@ -273,6 +270,7 @@ impl Experiment for ContactArea {
                 .collect();
             let k = Estimate::mean_of(&per);
             c.details.push(Detail {
+                key: "kappa_on_grid".into(),
                 name: format!(
                     "kappa on the {0}x{0} grid (lambda_s = {1} grid spacings)",
                     scene.n * refine,
@@ -280,7 +278,7 @@ impl Experiment for ContactArea {
                 ),
                 value: k,
                 persson: Some(c.persson),
-                paper: def.paper.value,
+                paper: criteria.paper_value,
                 grid: Some(scene.n * refine),
             });
             c.golden
@@ -288,7 +286,7 @@ impl Experiment for ContactArea {
         }
 
         let mut table = Table::new(
-            def.name.clone(),
+            criteria.name.clone(),
             &[
                 "hurst",
                 "reduced_pressure",
@@ -324,10 +322,11 @@ impl Experiment for ContactArea {
                 .collect();
             let k_h = Estimate::mean_of(&curves.iter().map(|a| kappa_of(a)).collect::<Vec<_>>());
             c.details.push(Detail {
+                key: format!("kappa_H{hurst}"),
                 name: format!("kappa, H = {hurst} ({label})"),
                 value: k_h,
                 persson: Some(c.persson),
-                paper: def.paper.value,
+                paper: criteria.paper_value,
                 grid: None,
             });
             c.golden
@@ -390,6 +389,7 @@ impl Experiment for ContactArea {
                 .map(|&p| (p, ContactAreaLaw::PAPER.contact_area(p) / p)),
         ));
         c.checks.push(Check {
+            key: "law_within_tolerance".into(),
             name: format!(
                 "eq. (contactArea) within {:.0}% for a_r in [{}, {}]",
                 100.0 * scene.law_tolerance,
@@ -406,6 +406,7 @@ impl Experiment for ContactArea {
             ),
         });
         c.details.push(Detail {
+            key: "law_deviation".into(),
             name: format!("largest relative deviation from eq. (contactArea) ({label})"),
             value: Estimate::new(worst_law, f64::NAN),
             persson: None,
@@ -442,9 +443,52 @@ impl Experiment for ContactArea {
     }
 }
 
+/// The low-load slope `kappa = a_r / p~0`, averaged over the loads `low` (indices into
+/// `pressures` and `contact_area`).
+pub fn low_load_slope(pressures: &[f64], contact_area: &[f64], low: &[usize]) -> f64 {
+    low.iter()
+        .map(|&k| contact_area[k] / pressures[k])
+        .sum::<f64>()
+        / low.len() as f64
+}
+
+/// First-order Richardson extrapolation of a value `x1` measured on a grid refined `r1`
+/// times and `x2` on a grid refined `r2 > r1` times, for an error proportional to the
+/// grid spacing: `x_inf = (r2 x2 - r1 x1) / (r2 - r1)`.
+pub fn richardson(r1: f64, x1: f64, r2: f64, x2: f64) -> f64 {
+    (r2 * x2 - r1 * x1) / (r2 - r1)
+}
+
 /// `count` points spaced evenly in `ln x` from `lo` to `hi`.
 pub fn log_grid(lo: f64, hi: f64, count: usize) -> Vec<f64> {
     (0..count)
         .map(|k| (lo.ln() + (hi.ln() - lo.ln()) * k as f64 / (count - 1) as f64).exp())
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn richardson_removes_an_error_proportional_to_the_spacing() {
+        // x(h) = 2 + 0.5 h with h = 1 / r: exact from the two grids.
+        let x = |r: f64| 2.0 + 0.5 / r;
+        assert!((richardson(1.0, x(1.0), 2.0, x(2.0)) - 2.0).abs() < 1e-15);
+        assert!((richardson(2.0, x(2.0), 4.0, x(4.0)) - 2.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn low_load_slope_averages_a_r_over_p_at_the_chosen_loads() {
+        let p = [0.01, 0.02, 0.5];
+        let a = [0.02, 0.05, 0.4];
+        assert!((low_load_slope(&p, &a, &[0, 1]) - 2.25).abs() < 1e-15);
+    }
+
+    #[test]
+    fn shipped_scenes_are_valid() {
+        let (reduced, full, _) = crate::experiments::shipped_scenes::<AreaScene>("contact_area");
+        ContactArea::validate(&reduced).unwrap();
+        ContactArea::validate(&full).unwrap();
+    }
 }

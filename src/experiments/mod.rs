@@ -1,11 +1,291 @@
 //! Experiments: the measurements behind the validations, one module per thing measured.
 //!
 //! What it may use: [`crate::engine`], [`crate::persson`], [`crate::stats`],
-//! [`crate::plot`] (figure descriptions) and [`crate::io`]; nothing above (validations,
-//! report, commands).
+//! [`crate::plot`] (figure descriptions, rendered elsewhere) and [`crate::io`]; nothing
+//! above it (validations, report, commands).
+//!
+//! An [`Experiment`] splits its scene into independent jobs (one realization, or one
+//! realization at one load), runs one job at a time ([`Experiment::run_job`]), and reduces
+//! the jobs' results to a [`Conclusion`]: the headline statistic with its standard error,
+//! Persson's value for it, secondary statistics ([`Detail`]), checks of the paper's
+//! finding ([`Check`]), tables and figures. Each module keeps its statistics in pure
+//! functions, unit-tested on their own, apart from the code that builds the conclusion.
+//!
+//! * [`contact_area`]: the contact-area law, `a_r` against `p~0`;
+//! * [`transitions`]: assumptions (a) pressure-independent diffusion and (b) no drift;
+//! * [`reentry`]: assumption (c), no re-entry into contact;
+//! * [`modes`]: assumptions (d) a mode holds energy only once resolved, (e) and keeps it;
+//! * [`total_energy`]: the integrated elastic energy against the original and corrected
+//!   theories.
+//!
+//! Shared machinery: [`scene`] (the fields every scene repeats), [`ensemble`] (the
+//! seeds x contact areas job grid and the per-load ensemble statistics) and [`climb`] (the
+//! fixed-load magnification climb with optional checkpoints).
 
+pub mod climb;
 pub mod contact_area;
+pub mod ensemble;
 pub mod modes;
 pub mod reentry;
+pub mod scene;
 pub mod total_energy;
 pub mod transitions;
+
+use std::collections::BTreeMap;
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+use serde::de::DeserializeOwned;
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Result};
+use crate::plot::{Figure, Raster};
+use crate::stats::Estimate;
+
+/// What a conclusion is judged by: the validation's name, its verdict rule's significance
+/// and resolution, and the paper's value of the headline statistic.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Criteria {
+    /// The validation's name (the stem of its first table).
+    pub name: String,
+    /// Significance `z`, in standard errors.
+    pub significance: f64,
+    /// Smallest deviation from Persson's prediction that matters.
+    pub resolution: f64,
+    /// The paper's value of the headline statistic, if it states one.
+    pub paper_value: Option<f64>,
+}
+
+/// A secondary statistic, shown in the validation's section of the scorecard.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Detail {
+    /// Stable identifier (tests and the report use it, never the label).
+    #[serde(default)]
+    pub key: String,
+    /// Label, in words.
+    pub name: String,
+    /// Measurement.
+    pub value: Estimate,
+    /// Persson's value, if any.
+    pub persson: Option<f64>,
+    /// The paper's value, if any.
+    pub paper: Option<f64>,
+    /// Points per side of the grid the value was measured on, when the detail is one step
+    /// of a resolution study (one key, measured on several grids).
+    #[serde(default)]
+    pub grid: Option<usize>,
+}
+
+impl Detail {
+    /// A detail with key `key` and label `name`, without Persson's or the paper's value.
+    pub fn new(key: impl Into<String>, name: impl Into<String>, value: Estimate) -> Self {
+        Self {
+            key: key.into(),
+            name: name.into(),
+            value,
+            persson: None,
+            paper: None,
+            grid: None,
+        }
+    }
+
+    /// With Persson's value.
+    pub fn persson(mut self, v: f64) -> Self {
+        self.persson = Some(v);
+        self
+    }
+
+    /// With the paper's value (if any).
+    pub fn paper(mut self, v: Option<f64>) -> Self {
+        self.paper = v;
+        self
+    }
+
+    /// Measured on a grid of `n` points per side.
+    pub fn on_grid(mut self, n: usize) -> Self {
+        self.grid = Some(n);
+        self
+    }
+}
+
+/// A check of the paper's finding; all must pass for the finding to count as reproduced.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Check {
+    /// Stable identifier.
+    #[serde(default)]
+    pub key: String,
+    /// What is checked, in words.
+    pub name: String,
+    /// Whether it passed.
+    pub passed: bool,
+    /// The numbers behind it.
+    pub detail: String,
+}
+
+impl Check {
+    /// A check.
+    pub fn new(
+        key: impl Into<String>,
+        name: impl Into<String>,
+        passed: bool,
+        detail: impl Into<String>,
+    ) -> Self {
+        Self {
+            key: key.into(),
+            name: name.into(),
+            passed,
+            detail: detail.into(),
+        }
+    }
+}
+
+/// A table of numbers, written as CSV.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Table {
+    /// File stem.
+    pub name: String,
+    /// Column names.
+    pub columns: Vec<String>,
+    /// Rows (one value per column).
+    pub rows: Vec<Vec<f64>>,
+}
+
+impl Table {
+    /// An empty table with `columns`.
+    pub fn new(name: impl Into<String>, columns: &[&str]) -> Self {
+        Self {
+            name: name.into(),
+            columns: columns.iter().map(|c| c.to_string()).collect(),
+            rows: Vec::new(),
+        }
+    }
+
+    /// Appends a row.
+    pub fn push(&mut self, row: Vec<f64>) {
+        debug_assert_eq!(row.len(), self.columns.len());
+        self.rows.push(row);
+    }
+
+    /// Writes the table as CSV to `path`, atomically.
+    pub fn write_csv(&self, path: &Path) -> Result<()> {
+        let mut w = csv::Writer::from_writer(Vec::new());
+        let to_io = |e: csv::Error| Error::io(path, std::io::Error::other(e));
+        w.write_record(&self.columns).map_err(to_io)?;
+        for row in &self.rows {
+            w.write_record(row.iter().map(|v| format!("{v}")))
+                .map_err(to_io)?;
+        }
+        let bytes = w
+            .into_inner()
+            .map_err(|e| Error::io(path, std::io::Error::other(e.to_string())))?;
+        crate::io::write_atomic(path, &bytes)
+    }
+}
+
+/// What an experiment concludes from its jobs.
+#[derive(Debug, Clone, Default)]
+pub struct Conclusion {
+    /// The headline statistic.
+    pub measured: Option<Estimate>,
+    /// Persson's prediction of the headline statistic.
+    pub persson: f64,
+    /// Secondary statistics.
+    pub details: Vec<Detail>,
+    /// Checks of the paper's finding beyond the headline verdict and range.
+    pub checks: Vec<Check>,
+    /// A short account, generated from the numbers (no wall times: it must not depend on
+    /// the machine).
+    pub account: String,
+    /// Values kept as golden snapshots (rounded by the experiment).
+    pub golden: BTreeMap<String, f64>,
+    /// Tables; the first is written as `<name>.csv`.
+    pub tables: Vec<Table>,
+    /// Figures.
+    pub figures: Vec<Figure>,
+    /// Raster images (contact maps).
+    pub rasters: Vec<Raster>,
+    /// Largest solver residual over all solves.
+    pub max_residual: f64,
+}
+
+impl Conclusion {
+    /// The detail with key `key`, if any.
+    pub fn detail(&self, key: &str) -> Option<&Detail> {
+        self.details.iter().find(|d| d.key == key)
+    }
+
+    /// The check with key `key`, if any.
+    pub fn check(&self, key: &str) -> Option<&Check> {
+        self.checks.iter().find(|c| c.key == key)
+    }
+}
+
+/// Where a job keeps state that must survive interruption.
+#[derive(Debug, Clone)]
+pub struct JobContext {
+    /// Directory for the job's checkpoints. The runner empties it before a fresh run and
+    /// removes it once the job's result is stored; a job only reads and writes it.
+    pub state_dir: PathBuf,
+}
+
+/// The code behind a family of validations.
+pub trait Experiment {
+    /// Name of the job family: experiments that share a family share job results (two
+    /// validations that draw different statistics from the same runs).
+    const FAMILY: &'static str;
+
+    /// The scene (the `reduced` and `full` tables of a definition).
+    type Scene: Serialize + DeserializeOwned + Sync + fmt::Debug;
+    /// One independent unit of work (usually one realization).
+    type Job: Serialize + DeserializeOwned + Clone + Send + Sync + fmt::Debug;
+    /// A job's result (kept on disk for resuming).
+    type JobResult: Serialize + DeserializeOwned + Send;
+
+    /// Checks the scene's ranges; errors name the field.
+    fn validate(scene: &Self::Scene) -> Result<()>;
+
+    /// The jobs of a scene.
+    fn jobs(scene: &Self::Scene) -> Vec<Self::Job>;
+
+    /// Runs one job.
+    fn run_job(scene: &Self::Scene, job: &Self::Job, ctx: &JobContext) -> Result<Self::JobResult>;
+
+    /// Reduces all jobs' results (in job order) to a conclusion.
+    fn conclude(
+        criteria: &Criteria,
+        scene: &Self::Scene,
+        results: &[(Self::Job, Self::JobResult)],
+    ) -> Result<Conclusion>;
+}
+
+/// Largest of the results' residuals.
+pub fn max_residual<J, R>(results: &[(J, R)], residual: impl Fn(&R) -> f64) -> f64 {
+    results.iter().map(|(_, r)| residual(r)).fold(0.0, f64::max)
+}
+
+/// The reduced scene of a shipped definition (`validations/<name>.toml`), for the unit
+/// tests of the experiments.
+#[cfg(test)]
+pub(crate) fn shipped_scenes<S: DeserializeOwned>(name: &str) -> (S, S, Criteria) {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("validations")
+        .join(format!("{name}.toml"));
+    let text = std::fs::read_to_string(&path).expect("a shipped definition");
+    let mut table: toml::Table = toml::from_str(&text).expect("valid TOML");
+    let scene = |t: &mut toml::Table, k: &str| -> S {
+        t.remove(k)
+            .expect("a scene table")
+            .try_into()
+            .expect("a valid scene")
+    };
+    let reduced = scene(&mut table, "reduced");
+    let full = scene(&mut table, "full");
+    let verdict = table["verdict"].as_table().expect("a verdict table");
+    let criteria = Criteria {
+        name: name.to_string(),
+        significance: verdict["significance"].as_float().expect("significance"),
+        resolution: verdict["resolution"].as_float().expect("resolution"),
+        paper_value: table["paper"].get("value").and_then(|v| v.as_float()),
+    };
+    (reduced, full, criteria)
+}

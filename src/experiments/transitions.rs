@@ -33,51 +33,33 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::engine::contact::Model;
-use crate::engine::solver::SolveOptions;
-use crate::engine::solver::SolverKind;
-use crate::engine::surface::{Surface, SurfaceParams};
-use crate::engine::sweep::Sweep;
+use super::scene::scene;
+use super::{Check, Conclusion, Criteria, Detail, Experiment, JobContext, Table};
 use crate::error::{check_open, check_positive, Error, Result};
 use crate::persson::{moments, Broadening, Correction};
 use crate::plot::{Axis, Figure, Series, Style};
 use crate::stats::{round_sig, Estimate};
-use crate::validation::{Check, Conclusion, Definition, Detail, Experiment, JobContext, Table};
 
-/// Scene of the transition experiment.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct TransitionScene {
-    /// Points per side.
-    pub n: usize,
-    /// Hurst exponent.
-    pub hurst: f64,
-    /// Long-wavelength cutoff.
-    pub lambda_l: f64,
-    /// Short-wavelength cutoff.
-    pub lambda_s: f64,
-    /// Realizations.
-    pub seeds: Vec<u64>,
-    /// Relative contact area at `zeta` (sets the load).
-    pub contact_area: f64,
-    /// Old magnification.
-    pub zeta: f64,
-    /// Magnification step.
-    pub dzeta: f64,
-    /// Number of pressure bins.
-    pub bins: usize,
-    /// Bin width, in units of `p0 / a_r`.
-    pub bin_width: f64,
-    /// Bins with mean pressure below this (units of `p0 / a_r`) form the low-pressure region.
-    pub low_pressure: f64,
-    /// Bins with mean pressure above this (units of `p0 / a_r`) form the high-pressure region.
-    pub high_pressure: f64,
-    /// Bins with fewer walkers in a realization are not analysed for it.
-    pub min_walkers: usize,
-    /// Solver.
-    pub solver: SolverKind,
-    /// Residual tolerance.
-    pub tol: f64,
+scene! {
+    /// Scene of the transition experiment.
+    pub struct TransitionScene {
+        /// Relative contact area at `zeta` (sets the load).
+        pub contact_area: f64,
+        /// Old magnification.
+        pub zeta: f64,
+        /// Magnification step.
+        pub dzeta: f64,
+        /// Number of pressure bins.
+        pub bins: usize,
+        /// Bin width, in units of `p0 / a_r`.
+        pub bin_width: f64,
+        /// Bins with mean pressure below this (units of `p0 / a_r`) form the low-pressure region.
+        pub low_pressure: f64,
+        /// Bins with mean pressure above this (units of `p0 / a_r`) form the high-pressure region.
+        pub high_pressure: f64,
+        /// Bins with fewer walkers in a realization are not analysed for it.
+        pub min_walkers: usize,
+    }
 }
 
 /// Sums over the walkers of one bin.
@@ -139,11 +121,7 @@ pub struct Drift;
 
 impl TransitionScene {
     fn validate(&self) -> Result<()> {
-        let grid = crate::engine::grid::Grid::new(self.n, 1.0)?;
-        SurfaceParams::new(self.n, self.hurst, self.lambda_l, self.lambda_s, 0)
-            .spectrum
-            .validate(&grid)?;
-        crate::error::check_seeds(&self.seeds)?;
+        self.base().validate()?;
         check_open("contact_area", self.contact_area, 0.0, 1.0)?;
         let zeta_max = self.lambda_l / self.lambda_s;
         crate::engine::scene::check_zeta(self.zeta, zeta_max)?;
@@ -164,7 +142,7 @@ impl TransitionScene {
         if self.min_walkers < 2 {
             return Err(Error::invalid("min_walkers", self.min_walkers, ">= 2"));
         }
-        SolveOptions::with_tol(self.tol).validate()
+        Ok(())
     }
 
     fn unit_bin(&self, p: f64, unit: f64) -> usize {
@@ -174,15 +152,9 @@ impl TransitionScene {
 
 /// Solves one realization at `zeta` and `zeta + dzeta` and bins its walkers.
 fn run_transition(scene: &TransitionScene, seed: u64) -> Result<TransitionResult> {
-    let params = SurfaceParams::new(scene.n, scene.hurst, scene.lambda_l, scene.lambda_s, seed);
-    let surface = Surface::generate(&params)?;
-    let model = Model::new(surface.grid().clone(), 1.0)?;
-    let mut sweep = Sweep::new(
-        &surface,
-        &model,
-        scene.solver,
-        SolveOptions::with_tol(scene.tol),
-    );
+    let base = scene.base();
+    let r = base.realization(seed)?;
+    let mut sweep = base.sweep(&r);
     let p0 = sweep.find_load(scene.zeta, scene.contact_area)?;
     let old = sweep
         .solution()
@@ -210,7 +182,7 @@ fn run_transition(scene: &TransitionScene, seed: u64) -> Result<TransitionResult
         };
         histogram[row][col] += 1;
     }
-    let broadening = Broadening::new(&surface.shells(), model.halfspace.e_star())?;
+    let broadening = Broadening::new(&r.surface.shells(), r.model.halfspace.e_star())?;
     Ok(TransitionResult {
         p0,
         a_r_old,
@@ -448,10 +420,6 @@ fn common_account(scene: &TransitionScene, results: &[(u64, TransitionResult)]) 
     )
 }
 
-fn max_residual(results: &[(u64, TransitionResult)]) -> f64 {
-    results.iter().map(|r| r.1.max_residual).fold(0.0, f64::max)
-}
-
 impl Experiment for Diffusion {
     const FAMILY: &'static str = "transition";
     type Scene = TransitionScene;
@@ -471,7 +439,7 @@ impl Experiment for Diffusion {
     }
 
     fn conclude(
-        def: &Definition<TransitionScene>,
+        criteria: &Criteria,
         scene: &TransitionScene,
         results: &[(u64, TransitionResult)],
     ) -> Result<Conclusion> {
@@ -496,10 +464,11 @@ impl Experiment for Diffusion {
         let mut c = Conclusion {
             measured: Some(low),
             persson: 1.0,
-            max_residual: max_residual(results),
+            max_residual: super::max_residual(results, |r| r.max_residual),
             ..Default::default()
         };
         c.details.push(Detail {
+            key: "d_ratio_high".into(),
             name: format!("D_n / D_P at p >= {} p0/a_r", scene.high_pressure),
             value: high,
             persson: Some(1.0),
@@ -507,16 +476,18 @@ impl Experiment for Diffusion {
             grid: None,
         });
         c.details.push(Detail {
+            key: "s_corrected".into(),
             name: "corrected theory's S(a_r) (eq. gamma)".into(),
             value: Estimate::new(s_corrected, f64::NAN),
             persson: Some(s_corrected),
             paper: None,
             grid: None,
         });
-        let z = def.verdict.significance;
-        let tolerance = def.verdict.resolution;
+        let z = criteria.significance;
+        let tolerance = criteria.resolution;
         let consistent = (high.value - 1.0).abs() <= z * high.std_error + tolerance;
         c.checks.push(Check {
+            key: "high_pressure_ratio_near_one".into(),
             name: format!(
                 "D_n / D_P ~ 1 at p >= {} p0/a_r (within {z} standard errors plus {tolerance})",
                 scene.high_pressure
@@ -525,6 +496,7 @@ impl Experiment for Diffusion {
             detail: format!("{:.3} +- {:.3}", high.value, high.std_error),
         });
         c.checks.push(Check {
+            key: "high_pressure_closer_to_original".into(),
             name: "high-pressure diffusion closer to the original theory (1) than to S(a_r)".into(),
             passed: (high.value - 1.0).abs() < (high.value - s_corrected).abs(),
             detail: format!("{:.3} against 1 and S = {:.3}", high.value, s_corrected),
@@ -601,7 +573,7 @@ impl Experiment for Drift {
     }
 
     fn conclude(
-        def: &Definition<TransitionScene>,
+        criteria: &Criteria,
         scene: &TransitionScene,
         results: &[(u64, TransitionResult)],
     ) -> Result<Conclusion> {
@@ -629,37 +601,45 @@ impl Experiment for Drift {
             bins.iter().flatten().next().map(|b| b.drift)
         });
         let bins = per_bin(scene, results);
-        let z = def.verdict.significance;
+        let z = criteria.significance;
         let mut c = Conclusion {
             measured: Some(mu_c),
             persson: 0.0,
-            max_residual: max_residual(results),
+            max_residual: super::max_residual(results, |r| r.max_residual),
             ..Default::default()
         };
-        for (name, e) in [
-            (format!("mu_n at p < {} p0/a_r", scene.low_pressure), low),
-            (format!("mu_n at p >= {} p0/a_r", scene.high_pressure), high),
-            ("mu_n in the lowest analysed bin".to_string(), lowest),
+        for (key, name, e) in [
+            (
+                "mu_low",
+                format!("mu_n at p < {} p0/a_r", scene.low_pressure),
+                low,
+            ),
+            (
+                "mu_high",
+                format!("mu_n at p >= {} p0/a_r", scene.high_pressure),
+                high,
+            ),
+            (
+                "mu_lowest_bin",
+                "mu_n in the lowest analysed bin".to_string(),
+                lowest,
+            ),
         ] {
-            c.details.push(Detail {
-                name,
-                value: e,
-                persson: Some(0.0),
-                paper: None,
-                grid: None,
-            });
+            c.details.push(Detail::new(key, name, e).persson(0.0));
         }
         c.checks.push(Check {
+            key: "mu_c_negative".into(),
             name: format!("mu_c < 0 beyond {z} standard errors"),
             passed: mu_c.value + z * mu_c.std_error < 0.0,
             detail: format!("{:.4} +- {:.4}", mu_c.value, mu_c.std_error),
         });
         c.checks.push(Check {
+            key: "high_pressure_drift_near_zero".into(),
             name: format!(
                 "drift ~ 0 at p >= {} p0/a_r (within {z} standard errors plus {})",
-                scene.high_pressure, def.verdict.resolution
+                scene.high_pressure, criteria.resolution
             ),
-            passed: high.value.abs() <= z * high.std_error + def.verdict.resolution,
+            passed: high.value.abs() <= z * high.std_error + criteria.resolution,
             detail: format!("{:.4} +- {:.4}", high.value, high.std_error),
         });
         c.golden.insert("mu_c".into(), round_sig(mu_c.value, 3));

@@ -1122,6 +1122,7 @@ mod tests {
 
     fn detail(name: &str, value: f64, err: f64, grid: Option<usize>) -> Detail {
         Detail {
+            key: name.into(),
             name: name.into(),
             value: Estimate::new(value, err),
             persson: Some(1.0),
@@ -1164,6 +1165,7 @@ mod tests {
                 detail("largest deviation", 0.08, f64::NAN, None),
             ],
             checks: vec![Check {
+                key: "check".into(),
                 name: format!("check of {name}"),
                 passed: reproduced != Some(false),
                 detail: "numbers behind it".into(),

@@ -6,18 +6,18 @@
 //! left alone with `--resume` (so the job continues from its last checkpoint), and removed
 //! once the job's result is stored, never before.
 
-use std::collections::HashSet;
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
 use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
-use serde::{Deserialize, Serialize};
-use sha2::{Digest, Sha256};
 
-use super::{builtin, Definition, Experiment, JobContext, Outcome, Scale, Source, Verdict};
+use super::definition::{Definition, Scale, Verdict};
+use super::outcome::Outcome;
+use super::source::Source;
+use super::store::{self, job_key, jobs_dir, mark_written, remove_state, written_here, Stored};
 use crate::error::{Error, Result};
+use crate::experiments::{Experiment, JobContext};
 
 /// How to run validations.
 #[derive(Debug, Clone)]
@@ -33,65 +33,14 @@ pub struct RunOptions {
     pub progress: bool,
 }
 
-/// Runs one validation definition.
-pub fn run(source: &Source, opts: &RunOptions) -> Result<Outcome> {
-    let (_, experiment) = source.header()?;
-    builtin::dispatch(&experiment, source, opts)
-}
-
-/// Runs several definitions in turn; one failure does not stop the others.
-pub fn run_all(sources: &[Source], opts: &RunOptions) -> Vec<(PathBuf, Result<Outcome>)> {
-    sources
-        .iter()
-        .map(|s| (s.path.clone(), run(s, opts)))
-        .collect()
-}
-
-/// Job files written by this process: reused without `--resume`, since they hold this
-/// run's own results.
-static WRITTEN: Mutex<Option<HashSet<PathBuf>>> = Mutex::new(None);
-
-fn written_here(path: &Path) -> bool {
-    WRITTEN
-        .lock()
-        .expect("no panics while holding the lock")
-        .as_ref()
-        .is_some_and(|set| set.contains(path))
-}
-
-fn mark_written(path: PathBuf) {
-    WRITTEN
-        .lock()
-        .expect("no panics while holding the lock")
-        .get_or_insert_with(HashSet::new)
-        .insert(path);
-}
-
-/// A job's result as stored on disk.
-#[derive(Serialize, Deserialize)]
-struct Stored<J, R> {
-    job: J,
-    result: R,
-}
-
-/// Runs experiment `E` on `source` (called through [`builtin::dispatch`]).
-pub(crate) fn run_experiment<E: Experiment>(source: &Source, opts: &RunOptions) -> Result<Outcome> {
+/// Runs experiment `E` on `source`.
+pub fn run_experiment<E: Experiment>(source: &Source, opts: &RunOptions) -> Result<Outcome> {
     let timer = Instant::now();
     let def = source.parse::<E::Scene>()?;
     let (scene, jobs) = checked_scene::<E>(source, &def, opts.scale)?;
     let scene_json = serde_json::to_value(scene).expect("scenes serialise");
     let dir = opts.out.join(&def.name);
-    let state = opts
-        .out
-        .join("jobs")
-        .join(E::FAMILY)
-        .join(opts.scale.to_string());
-    let jobs_dir = state.clone();
-    let ctx = JobContext {
-        name: def.name.clone(),
-        scale: opts.scale,
-        state_dir: state.clone(),
-    };
+    let state = jobs_dir(&opts.out, E::FAMILY, opts.scale);
 
     let bar = progress_bar(opts.progress, &def.name, jobs.len());
     let results: Vec<(E::Job, E::JobResult)> = jobs
@@ -99,11 +48,12 @@ pub(crate) fn run_experiment<E: Experiment>(source: &Source, opts: &RunOptions) 
         .map(|job| -> Result<(E::Job, E::JobResult)> {
             let job_json = serde_json::to_string(job).expect("jobs serialise");
             let key = job_key(opts.scale, &scene_json, &job_json);
-            let path = jobs_dir.join(format!("{key}.json"));
-            let mut job_ctx = ctx.clone();
-            job_ctx.state_dir = state.join(format!("{key}.checkpoint"));
+            let path = state.join(format!("{key}.json"));
+            let job_ctx = JobContext {
+                state_dir: state.join(format!("{key}.checkpoint")),
+            };
             if opts.resume || written_here(&path) {
-                if let Some(result) = load::<E::Job, E::JobResult>(&path) {
+                if let Some(result) = store::load::<E::Job, E::JobResult>(&path) {
                     // Checkpoints of a run killed after storing this result are spent.
                     remove_state(&job_ctx.state_dir).ok();
                     bar.inc(1);
@@ -125,8 +75,7 @@ pub(crate) fn run_experiment<E: Experiment>(source: &Source, opts: &RunOptions) 
                 job: job.clone(),
                 result,
             };
-            let bytes = serde_json::to_vec(&stored).expect("results serialise");
-            crate::io::write_atomic(&path, &bytes)?;
+            store::store(&path, &stored)?;
             // Only now that the result is stored are the job's checkpoints dispensable; a
             // run killed before this point resumes from them. A leftover is harmless (the
             // next run of the job removes it), hence `ok()`.
@@ -138,7 +87,7 @@ pub(crate) fn run_experiment<E: Experiment>(source: &Source, opts: &RunOptions) 
         .collect::<Result<Vec<_>>>()?;
     bar.finish_and_clear();
 
-    let conclusion = E::conclude(&def, scene, &results)?;
+    let conclusion = E::conclude(&def.criteria(), scene, &results)?;
     let measured = conclusion
         .measured
         .ok_or_else(|| Error::bad_file(&source.path, "the experiment measured nothing"))?;
@@ -207,8 +156,8 @@ pub(crate) fn run_experiment<E: Experiment>(source: &Source, opts: &RunOptions) 
 }
 
 /// Parses `source` as a definition of experiment `E` and checks both of its scenes,
-/// without running anything (called through [`builtin::check`]).
-pub(crate) fn check_experiment<E: Experiment>(source: &Source) -> Result<()> {
+/// without running anything.
+pub fn check_experiment<E: Experiment>(source: &Source) -> Result<()> {
     let def = source.parse::<E::Scene>()?;
     for scale in [Scale::Reduced, Scale::Full] {
         checked_scene::<E>(source, &def, scale)?;
@@ -223,10 +172,7 @@ fn checked_scene<'a, E: Experiment>(
     def: &'a Definition<E::Scene>,
     scale: Scale,
 ) -> Result<(&'a E::Scene, Vec<E::Job>)> {
-    let scene = match scale {
-        Scale::Reduced => &def.reduced,
-        Scale::Full => &def.full,
-    };
+    let scene = def.scene(scale);
     E::validate(scene).map_err(|e| Error::bad_file(&source.path, format!("[{scale}] {e}")))?;
     let jobs = E::jobs(scene);
     if jobs.is_empty() {
@@ -236,34 +182,6 @@ fn checked_scene<'a, E: Experiment>(
         ));
     }
     Ok((scene, jobs))
-}
-
-/// A short hash of everything that determines a job's result.
-fn job_key(scale: Scale, scene: &serde_json::Value, job: &str) -> String {
-    let mut h = Sha256::new();
-    h.update(scale.to_string().as_bytes());
-    h.update(scene.to_string().as_bytes());
-    h.update(job.as_bytes());
-    h.finalize()
-        .iter()
-        .take(8)
-        .map(|b| format!("{b:02x}"))
-        .collect()
-}
-
-/// Removes a job's state directory (its checkpoints), if there is one.
-fn remove_state(dir: &Path) -> Result<()> {
-    match std::fs::remove_dir_all(dir) {
-        Err(e) if e.kind() != std::io::ErrorKind::NotFound => Err(Error::io(dir, e)),
-        _ => Ok(()),
-    }
-}
-
-/// A stored result, if present and readable (a damaged file is recomputed).
-fn load<J: serde::de::DeserializeOwned, R: serde::de::DeserializeOwned>(path: &Path) -> Option<R> {
-    let bytes = std::fs::read(path).ok()?;
-    let stored: Stored<J, R> = serde_json::from_slice(&bytes).ok()?;
-    Some(stored.result)
 }
 
 fn relative(base: &Path, path: &Path) -> String {

@@ -1,7 +1,7 @@
 //! Validation definitions (`validate --dir`).
 
 use super::*;
-use persson_check::validation::builtin::DEFINITIONS;
+use persson_check::validation::source::DEFINITIONS;
 
 /// A folder holding `files` (name, text) is rejected by `validate --dir`, naming `words`;
 /// the output folder, created beforehand, stays empty.

@@ -1,0 +1,510 @@
+//! Single-mode analysis of the elastic energy: Persson's assumptions (d) and (e) (SPEC
+//! section 5, rows d and e; paper section "Single-mode analysis of the elastic energy").
+//!
+//! Persson's theory gives a Fourier mode of the displacement elastic energy only once the
+//! roughness of that wavevector is resolved, eq. (elasticEnergy_h_q),
+//!
+//! ```text
+//!     E_P(p0, q) = (E*/4) q a_r(p0, q/q_l) |h~(q)|^2,
+//! ```
+//!
+//! (times `S(a_r)` in the corrected theory), and keeps it unchanged when finer roughness is
+//! added. The simulation's energy in the same mode at magnification `zeta` is
+//! eq. (elasticEnergy_u_q), `E_exa(p0, q, zeta) = (E*/4) q |u~(p0, q, zeta)|^2`. For a
+//! target wavenumber `q_t = zeta_t q_l` the two are compared through the normalised energy
+//! of a band of nearby modes, eq. (elastic_energy_norm),
+//!
+//! ```text
+//!     E_norm(p0, q_t, zeta) = sum_band q |u~(q, zeta)|^2 / sum_band q a_r(p0, q_t/q_l) |h~(q)|^2,
+//! ```
+//!
+//! where the band holds every mode with `|q/q_t - 1| <= band` (the scene's relative
+//! half-width). Persson predicts eq. (elastic_energy_norm_predicted),
+//! `E_norm^pred = S Theta(zeta - zeta_t)`: zero before the band is resolved, the constant
+//! `S` after (`S = 1` in the original theory).
+//!
+//! # Which `a_r` normalises
+//!
+//! The `a_r(p0, q_t/q_l)` of eq. (elastic_energy_norm) is the contact area *measured* in
+//! the same realization's sweep at `zeta = zeta_t`, not Persson's prediction of it. With
+//! the measured area, `E_norm` tests the mode assumption alone: the energy a mode holds
+//! against what the theory would give it *if it knew the true contact area*. A predicted
+//! `a_r` would mix in the contact-area error of the theory, which the contact-area
+//! validation measures on its own (paper figure captions: the right axis is the measured
+//! area). The same measured `a_r(zeta_t)` enters `S` in the prediction line, so that
+//! prediction and normalisation stay consistent: `E_norm^pred = S(a_r(zeta_t))` after
+//! resolution. `S` is taken at the mode's own resolution, as in `E_c(q) = E_P(q) S`; the
+//! paper's `S(p0, zeta)` in eq. (elastic_energy_norm_predicted) would let a resolved mode's
+//! energy drift with `zeta`, which is what the theory says does not happen.
+//!
+//! # Protocol
+//!
+//! Each job is one realization at one load. The load is stated as the contact area at full
+//! resolution (`zeta_max = lambda_l / lambda_s`, as the paper labels its panels) and found
+//! there ([`crate::experiments::climb`]); then, at that fixed `p0`, the sweep climbs from
+//! `zeta_start` to `zeta_end` in log-spaced steps ([`crate::experiments::climb::ladder`]) that also include, for every
+//! target, `zeta_t` (where `a_r(zeta_t)` is measured), the onset point
+//! `onset_ratio * zeta_t` and the start of the frozen window `frozen_from * zeta_t`. Each
+//! solve is warm-started from the previous step.
+//!
+//! # Statistics
+//!
+//! Ensemble values of `E_norm` are ratios of sums over realizations
+//! ([`Estimate::ratio_of_sums`]).
+//!
+//! * (d) onset ([`ModeOnset`]): `E_norm` at `zeta = onset_ratio * zeta_t`, below the first
+//!   mode of the band (Persson: 0). Headline: per realization the mean over targets at the
+//!   headline load, then the mean over realizations.
+//! * (e) frozen ([`ModeFrozen`]): the change `E_norm(zeta_end) - E_norm(frozen_from zeta_t)`
+//!   after resolution (Persson: 0, the energy is frozen at `S`). Headline: the first
+//!   (longest-wavelength) target at the lowest load, where the paper sees long wavelengths
+//!   recede. The asymptote `E_inf` is extrapolated per realization by a straight line
+//!   through the points of the frozen window. The paper calls the fall-off "linear with
+//!   magnification" and extrapolates to `zeta -> infinity`; a line in `zeta` has no finite
+//!   limit there, so the line is drawn in `1/zeta` (`E_norm = E_inf + b / zeta`), the
+//!   variable in which `zeta -> infinity` is a point. It is set against
+//!   `x = -d ln a_r / d ln zeta` (positive while the contact area shrinks), the slope of a
+//!   line through `(ln zeta, ln a_r)` over the same window, and the points of all
+//!   partial-contact loads and targets are fitted to the paper's `K1 exp(-K2 x)` by a line
+//!   through `(x, ln E_inf)`.
+
+mod band;
+mod frozen;
+mod onset;
+
+pub use band::{band_energies, Band};
+pub use frozen::{ModeFrozen, PAPER_K_H03, PAPER_K_H08};
+pub use onset::ModeOnset;
+
+use serde::{Deserialize, Serialize};
+
+use super::climb::{climb, ladder, step_of, Recorder};
+use super::ensemble::{check_contact_areas, check_headline, LoadGroup, SeedLoad};
+use super::scene::scene;
+use super::Table;
+use crate::engine::contact::{ContactSolution, Model};
+use crate::error::{check_open, check_positive, Error, Result};
+use crate::persson::Correction;
+use crate::plot::{Axis, Figure, Series, Style};
+use crate::stats::{round_sig, Estimate};
+
+scene! {
+    /// Scene of the single-mode experiments (d) and (e).
+    pub struct ModeScene {
+        /// Loads, as the relative contact area at full resolution, in (0, 1).
+        pub contact_areas: Vec<f64>,
+        /// The load of the onset headline (one of `contact_areas`).
+        pub headline_contact_area: f64,
+        /// Target magnifications `zeta_t = q_t / q_l`, increasing.
+        pub targets: Vec<f64>,
+        /// Relative half-width of each band: modes with `|q/q_t - 1| <= band`.
+        pub band: f64,
+        /// First magnification of the sweep.
+        pub zeta_start: f64,
+        /// Last magnification of the sweep (at most `lambda_l / lambda_s`).
+        pub zeta_end: f64,
+        /// Log-spaced sweep steps per octave of `zeta`.
+        pub steps_per_octave: usize,
+        /// Onset point `onset_ratio * zeta_t`, below the band (`< 1 - band`).
+        pub onset_ratio: f64,
+        /// The frozen window starts at `frozen_from * zeta_t` (`> 1 + band`).
+        pub frozen_from: f64,
+        /// The correction factor `S(a_r)` of the prediction line.
+        #[serde(default)]
+        pub correction: Correction,
+    }
+}
+
+impl ModeScene {
+    /// The sweep's magnifications.
+    pub fn steps(&self) -> Vec<f64> {
+        let mut extra = Vec::new();
+        for &t in &self.targets {
+            extra.extend([t, self.onset_ratio * t, self.frozen_from * t]);
+        }
+        ladder(
+            self.zeta_start,
+            self.zeta_end,
+            self.steps_per_octave,
+            &extra,
+        )
+    }
+
+    pub(super) fn validate(&self) -> Result<()> {
+        let base = self.base();
+        base.validate()?;
+        check_contact_areas(&self.contact_areas)?;
+        check_headline(self.headline_contact_area, &self.contact_areas)?;
+        check_open("band", self.band, 0.0, 0.5)?;
+        check_positive("zeta_start", self.zeta_start)?;
+        if !(self.zeta_end > self.zeta_start && self.zeta_end <= base.zeta_max() * (1.0 + 1e-12)) {
+            return Err(Error::invalid(
+                "zeta_end",
+                self.zeta_end,
+                format!(
+                    "in (zeta_start = {}, lambda_l / lambda_s = {}]",
+                    self.zeta_start,
+                    base.zeta_max()
+                ),
+            ));
+        }
+        if !(1..=64).contains(&self.steps_per_octave) {
+            return Err(Error::invalid(
+                "steps_per_octave",
+                self.steps_per_octave,
+                "an integer in [1, 64]",
+            ));
+        }
+        check_open("onset_ratio", self.onset_ratio, 0.0, 1.0 - self.band)?;
+        if !(self.frozen_from > 1.0 + self.band && self.frozen_from.is_finite()) {
+            return Err(Error::invalid(
+                "frozen_from",
+                self.frozen_from,
+                format!("> 1 + band = {}", 1.0 + self.band),
+            ));
+        }
+        if self.targets.is_empty() || self.targets.windows(2).any(|w| w[1] <= w[0]) {
+            return Err(Error::invalid(
+                "targets",
+                format!("{:?}", self.targets),
+                "a non-empty increasing list",
+            ));
+        }
+        for &t in &self.targets {
+            if !(self.onset_ratio * t >= self.zeta_start && (1.0 + self.band) * t <= self.zeta_end)
+            {
+                return Err(Error::invalid(
+                    "targets",
+                    t,
+                    format!(
+                        "a magnification with onset_ratio * zeta_t >= zeta_start = {} and \
+                         (1 + band) zeta_t <= zeta_end = {} (room below and after \
+                         resolution)",
+                        self.zeta_start, self.zeta_end
+                    ),
+                ));
+            }
+        }
+        self.correction.validate()
+    }
+}
+
+/// The sweep of one realization at one load.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ModeResult {
+    /// The load `p0` found.
+    pub p0: f64,
+    /// Magnifications of the sweep.
+    pub zetas: Vec<f64>,
+    /// Measured contact area at each step.
+    pub contact_area: Vec<f64>,
+    /// `E_exa` of each target's band at each step: `[target][step]`.
+    pub band_energy: Vec<Vec<f64>>,
+    /// Full-contact energy `(E*/4) sum_band q |h~|^2` of each band.
+    pub band_nominal: Vec<f64>,
+    /// Largest residual of the solves.
+    pub max_residual: f64,
+}
+
+impl ModeResult {
+    /// `a_r(zeta_t) * nominal` of target `t`: the denominator of eq. (elastic_energy_norm).
+    pub(super) fn denominator(&self, t: usize, zeta_t: f64) -> f64 {
+        self.contact_area[step_of(&self.zetas, zeta_t)] * self.band_nominal[t]
+    }
+
+    /// `E_norm` of target `t` at every step.
+    pub(super) fn e_norm(&self, t: usize, zeta_t: f64) -> Vec<f64> {
+        let d = self.denominator(t, zeta_t);
+        self.band_energy[t].iter().map(|e| e / d).collect()
+    }
+}
+
+/// What a climb records for the single-mode analysis: the contact area and the energy of
+/// every band at each step.
+struct BandRecorder<'a> {
+    model: &'a Model,
+    bands: &'a [Band],
+    contact_area: Vec<f64>,
+    band_energy: Vec<Vec<f64>>,
+}
+
+impl Recorder for BandRecorder<'_> {
+    fn record(&mut self, _step: usize, _zeta: f64, s: &ContactSolution) -> Result<()> {
+        self.contact_area.push(s.contact_area());
+        for (t, e) in band_energies(self.model, s, self.bands)
+            .into_iter()
+            .enumerate()
+        {
+            self.band_energy[t].push(e);
+        }
+        Ok(())
+    }
+}
+
+/// Runs one job: the load at full resolution, then the climb at that load.
+fn run_sweep(scene: &ModeScene, job: &SeedLoad) -> Result<ModeResult> {
+    let base = scene.base();
+    let r = base.realization(job.seed)?;
+    let e_star = r.model.halfspace.e_star();
+    let bands = scene
+        .targets
+        .iter()
+        .map(|&t| Band::new(&r.surface, t, scene.band, e_star))
+        .collect::<Result<Vec<_>>>()?;
+    let zetas = scene.steps();
+    let mut recorder = BandRecorder {
+        model: &r.model,
+        bands: &bands,
+        contact_area: Vec::with_capacity(zetas.len()),
+        band_energy: vec![Vec::with_capacity(zetas.len()); bands.len()],
+    };
+    let climbed = climb(&base, &r, job.contact_area, &zetas, &mut recorder, None)?;
+    Ok(ModeResult {
+        p0: climbed.p0,
+        zetas,
+        contact_area: recorder.contact_area,
+        band_energy: recorder.band_energy,
+        band_nominal: bands.iter().map(|b| b.nominal).collect(),
+        max_residual: climbed.max_residual,
+    })
+}
+
+/// Ensemble statistics of the single-mode sweeps at one load.
+pub(super) type Load<'a> = LoadGroup<'a, ModeResult>;
+
+/// The ensemble values of a load's sweeps.
+pub(super) trait ModeEnsemble {
+    /// Ensemble `E_norm` of target `t` at step `k`.
+    fn e_norm(&self, t: usize, zeta_t: f64, k: usize) -> Estimate;
+    /// Ensemble contact area at step `k`.
+    fn contact_area_at(&self, k: usize) -> Estimate;
+    /// Ensemble change `E_norm(k1) - E_norm(k0)` of target `t`.
+    fn change(&self, t: usize, zeta_t: f64, k0: usize, k1: usize) -> Estimate;
+}
+
+impl ModeEnsemble for Load<'_> {
+    fn e_norm(&self, t: usize, zeta_t: f64, k: usize) -> Estimate {
+        self.ratio(|r| (r.band_energy[t][k], r.denominator(t, zeta_t)))
+    }
+
+    fn contact_area_at(&self, k: usize) -> Estimate {
+        self.mean(|r| r.contact_area[k])
+    }
+
+    fn change(&self, t: usize, zeta_t: f64, k0: usize, k1: usize) -> Estimate {
+        self.ratio(|r| {
+            let e = &r.band_energy[t];
+            (e[k1] - e[k0], r.denominator(t, zeta_t))
+        })
+    }
+}
+
+/// The table of every ensemble `E_norm` (all loads, targets and steps).
+pub(super) fn curve_table(name: &str, scene: &ModeScene, loads: &[Load]) -> Table {
+    let steps = scene.steps();
+    let mut table = Table::new(
+        name,
+        &[
+            "contact_area_full",
+            "zeta_t",
+            "zeta",
+            "e_norm",
+            "std_error",
+            "persson_original",
+            "persson_corrected",
+            "contact_area",
+        ],
+    );
+    for load in loads {
+        for (t, &zt) in scene.targets.iter().enumerate() {
+            let s = scene
+                .correction
+                .factor(load.contact_area_at(step_of(&steps, zt)).value);
+            for (k, &z) in steps.iter().enumerate() {
+                let e = load.e_norm(t, zt, k);
+                let theta = if z >= zt { 1.0 } else { 0.0 };
+                table.push(vec![
+                    load.contact_area,
+                    zt,
+                    z,
+                    e.value,
+                    e.std_error,
+                    theta,
+                    s * theta,
+                    load.contact_area_at(k).value,
+                ]);
+            }
+        }
+    }
+    table
+}
+
+/// One figure per load: `E_norm` of every target against `zeta`, Persson's `S Theta` beside
+/// it, and the measured contact area on the right axis (the paper's figures 11 and 12).
+pub(super) fn curve_figures(prefix: &str, scene: &ModeScene, loads: &[Load]) -> Vec<Figure> {
+    let steps = scene.steps();
+    let mut figures = Vec::new();
+    for load in loads {
+        let mut fig = Figure {
+            name: format!("{prefix}_ar{}", load.contact_area),
+            title: format!(
+                "Normalised mode energy, H = {}, a_r = {} at full resolution",
+                scene.hurst, load.contact_area
+            ),
+            x: Axis::log("magnification zeta"),
+            y: Axis::linear("E_norm = E_exa / E_P (band around q_t)"),
+            y2: Some(Axis::linear("relative contact area a_r")),
+            series: Vec::new(),
+        };
+        for (t, &zt) in scene.targets.iter().enumerate() {
+            fig.series.push(Series::with_errors(
+                format!("simulation, zeta_t = {zt}"),
+                Style::LinePoints,
+                steps.iter().enumerate().map(|(k, &z)| {
+                    let e = load.e_norm(t, zt, k);
+                    (z, e.value, e.std_error)
+                }),
+            ));
+            let s = scene
+                .correction
+                .factor(load.contact_area_at(step_of(&steps, zt)).value);
+            let (z0, z1) = (steps[0], steps[steps.len() - 1]);
+            fig.series.push(Series::xy(
+                format!("Persson S Theta(zeta - {zt})"),
+                Style::Dashed,
+                [(z0, 0.0), (zt, 0.0), (zt, s), (z1, s)],
+            ));
+        }
+        fig.series.push(
+            Series::with_errors(
+                "contact area",
+                Style::Line,
+                steps.iter().enumerate().map(|(k, &z)| {
+                    let a = load.contact_area_at(k);
+                    (z, a.value, a.std_error)
+                }),
+            )
+            .on_right(),
+        );
+        figures.push(fig);
+    }
+    figures
+}
+
+/// A golden value of `E_norm`: two significant digits, and no digits below `1e-4` (an
+/// onset of a few `1e-6` near full contact is solver noise, not a result).
+pub(super) fn golden(x: f64) -> f64 {
+    if x.abs() < 1e-3 {
+        (x * 1e4).round() / 1e4
+    } else {
+        round_sig(x, 2)
+    }
+}
+
+pub(super) fn z_text(e: Estimate, reference: f64) -> String {
+    format!("{:.1}", e.z_score(reference))
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+    use crate::engine::solver::{SolveOptions, SolverKind};
+    use crate::engine::surface::{Surface, SurfaceParams};
+    use crate::engine::sweep::Sweep;
+    use crate::experiments::Criteria;
+
+    #[test]
+    fn full_contact_gives_persson_exactly() {
+        // At a load far above the pressure fluctuations the contact stays complete: u = h
+        // + const, so a band holds nothing before resolution and exactly its full-contact
+        // energy once resolved, E_norm = Theta(zeta - zeta_t) with a_r = 1.
+        let surface = Surface::generate(&SurfaceParams::new(64, 0.8, 32.0, 4.0, 3)).unwrap();
+        let model = Model::new(surface.grid().clone(), 1.0).unwrap();
+        let band = Band::new(&surface, 3.0, 0.1, 1.0).unwrap();
+        assert!(band.zeta_lo < 3.0 && band.zeta_hi > 3.0 && band.modes.len() > 10);
+        let mut sweep = Sweep::new(
+            &surface,
+            &model,
+            SolverKind::Cg,
+            SolveOptions::with_tol(1e-10),
+        );
+        let p0 = 6.0; // g_bar = 1: pressure fluctuations have rms 1/2.
+        for (zeta, expected) in [
+            (2.0, 0.0),
+            (0.99 * band.zeta_lo, 0.0),
+            (band.zeta_hi, 1.0),
+            (6.0, 1.0),
+            (8.0, 1.0),
+        ] {
+            let s = sweep.solve_at(zeta, p0).unwrap();
+            assert_eq!(s.contact_area(), 1.0, "zeta = {zeta}");
+            let e = band_energies(&model, s, std::slice::from_ref(&band))[0];
+            let e_norm = e / band.nominal;
+            assert!(
+                (e_norm - expected).abs() < 1e-9,
+                "zeta = {zeta}: E_norm = {e_norm:e}, expected {expected}"
+            );
+        }
+    }
+
+    /// The shipped scenes of `name` (`d_onset` or `e_frozen`), and its criteria.
+    pub(crate) fn shipped(name: &str) -> (ModeScene, ModeScene, Criteria) {
+        crate::experiments::shipped_scenes(name)
+    }
+
+    /// Synthetic sweeps with known answers: at load `l` the contact area falls as
+    /// `a_r = a_l (zeta / zeta_end)^(-x_l)`, every band holds `onset` below resolution and
+    /// `K1 exp(-K2 x_l) + b / zeta` in the frozen window.
+    pub(crate) fn synthetic(
+        scene: &ModeScene,
+        k: (f64, f64),
+        b: f64,
+        onset: f64,
+    ) -> Vec<(SeedLoad, ModeResult)> {
+        let zetas = scene.steps();
+        let mut out = Vec::new();
+        for (l, &a_l) in scene.contact_areas.iter().enumerate() {
+            let x = 0.1 * (l + 1) as f64;
+            let area: Vec<f64> = zetas
+                .iter()
+                .map(|z| a_l * (z / scene.zeta_end).powf(-x))
+                .collect();
+            for &seed in &scene.seeds {
+                let band_energy = scene
+                    .targets
+                    .iter()
+                    .map(|&zt| {
+                        let a_t = area[step_of(&zetas, zt)];
+                        zetas
+                            .iter()
+                            .map(|&z| {
+                                let e = if z < zt {
+                                    onset
+                                } else {
+                                    k.0 * (-k.1 * x).exp() + b / z
+                                };
+                                // E_norm = energy / (a_r(zeta_t) nominal), nominal = 2.
+                                e * a_t * 2.0
+                            })
+                            .collect()
+                    })
+                    .collect();
+                out.push((
+                    SeedLoad {
+                        seed,
+                        contact_area: a_l,
+                    },
+                    ModeResult {
+                        p0: 0.1,
+                        zetas: zetas.clone(),
+                        contact_area: area.clone(),
+                        band_energy,
+                        band_nominal: vec![2.0; scene.targets.len()],
+                        max_residual: 1e-9,
+                    },
+                ));
+            }
+        }
+        out
+    }
+}

@@ -1,0 +1,190 @@
+//! The tables and figures of the total-energy experiment: the paper's figures of the
+//! integrated normalised energy against magnification and against contact area, and of the
+//! incremental correction factor `S~`.
+
+use super::stats::{corrected_area, measured_area, original_area, ratio, s_tilde, Load, Theory};
+use crate::experiments::Table;
+use crate::persson::Correction;
+use crate::plot::{Axis, Figure, Series, Style};
+use crate::stats::round_sig;
+
+/// Every ensemble ratio at every step of every load.
+pub fn curve_table(name: &str, loads: &[Load], zetas: &[f64]) -> Table {
+    let mut table = Table::new(
+        name,
+        &[
+            "contact_area_full",
+            "zeta",
+            "contact_area",
+            "e_exa_over_e_p",
+            "e_exa_over_e_p_std_error",
+            "e_exa_over_e_c",
+            "e_exa_over_e_c_std_error",
+            "persson_area",
+            "corrected_area",
+        ],
+    );
+    for load in loads {
+        for (k, &z) in zetas.iter().enumerate() {
+            let o = ratio(load, k, Theory::Original);
+            let q = ratio(load, k, Theory::Corrected);
+            table.push(vec![
+                load.contact_area,
+                z,
+                measured_area(load, k).value,
+                o.value,
+                o.std_error,
+                q.value,
+                q.std_error,
+                original_area(load, k).value,
+                corrected_area(load, k).value,
+            ]);
+        }
+    }
+    table
+}
+
+/// `S~` of every single-shell increment of every window, beside `S(a_r)` of eq. (gamma).
+pub fn s_tilde_table(
+    loads: &[Load],
+    zetas: &[f64],
+    windows: &[Vec<usize>],
+    correction: Correction,
+) -> Table {
+    let mut table = Table::new(
+        "s_tilde",
+        &[
+            "contact_area_full",
+            "zeta",
+            "s_tilde",
+            "std_error",
+            "persson_s",
+            "contact_area",
+        ],
+    );
+    for load in loads {
+        for window in windows {
+            for pair in window.windows(2) {
+                let (a, b) = (pair[0], pair[1]);
+                let s = s_tilde(load, a, b);
+                table.push(vec![
+                    load.contact_area,
+                    zetas[b],
+                    s.value,
+                    s.std_error,
+                    correction.factor(original_area(load, b).value),
+                    measured_area(load, b).value,
+                ]);
+            }
+        }
+    }
+    table
+}
+
+/// The normalised energy against magnification, against the measured contact area at
+/// the end of the sweep, and the incremental correction factor.
+pub fn figures(
+    hurst: f64,
+    loads: &[Load],
+    zetas: &[f64],
+    windows: &[Vec<usize>],
+    correction: Correction,
+) -> Vec<Figure> {
+    let end = zetas.len() - 1;
+    let mut vs_zeta = Figure {
+        name: "energy_vs_zeta".into(),
+        title: format!("Integrated normalised elastic energy against magnification, H = {hurst}"),
+        x: Axis::log("magnification zeta"),
+        y: Axis::linear("E_exa / E_P"),
+        y2: None,
+        series: Vec::new(),
+    };
+    let mut vs_area = Figure {
+        name: "energy_vs_area".into(),
+        title: format!(
+            "Integrated normalised elastic energy against contact area at zeta = {}, H = {}",
+            round_sig(zetas[end], 4),
+            hurst
+        ),
+        x: Axis::log("relative contact area a_r"),
+        y: Axis::linear("E_exa / E_P"),
+        y2: None,
+        series: Vec::new(),
+    };
+    let mut s_fig = Figure {
+        name: "s_tilde".into(),
+        title: format!("Incremental correction factor S~ (eq. S_q_numerical), H = {hurst}"),
+        x: Axis::log("magnification zeta"),
+        y: Axis::linear("S~"),
+        y2: None,
+        series: Vec::new(),
+    };
+    let (mut orig_pts, mut corr_pts) = (Vec::new(), Vec::new());
+    for load in loads {
+        for (theory, label, style) in [
+            (
+                Theory::Original,
+                format!("S = 1, a_r = {} at full resolution", load.contact_area),
+                Style::Line,
+            ),
+            (
+                Theory::Corrected,
+                format!("S of eq. (gamma), a_r = {}", load.contact_area),
+                Style::Dashed,
+            ),
+        ] {
+            vs_zeta.series.push(Series::with_errors(
+                label,
+                style,
+                zetas.iter().enumerate().map(|(k, &z)| {
+                    let e = ratio(load, k, theory);
+                    (z, e.value, e.std_error)
+                }),
+            ));
+        }
+        let a = measured_area(load, end);
+        let o = ratio(load, end, Theory::Original);
+        let q = ratio(load, end, Theory::Corrected);
+        orig_pts.push((a.value, o.value, o.std_error));
+        corr_pts.push((a.value, q.value, q.std_error));
+
+        let mut pts = Vec::new();
+        let mut theory = Vec::new();
+        for window in windows {
+            for pair in window.windows(2) {
+                let (a, b) = (pair[0], pair[1]);
+                let s = s_tilde(load, a, b);
+                pts.push((zetas[b], s.value, s.std_error));
+                theory.push((zetas[b], correction.factor(original_area(load, b).value)));
+            }
+        }
+        s_fig.series.push(Series::with_errors(
+            format!("S~, a_r = {} at full resolution", load.contact_area),
+            Style::Points,
+            pts,
+        ));
+        s_fig.series.push(Series::xy(
+            format!("S(a_r) of eq. (gamma), a_r = {}", load.contact_area),
+            Style::Dashed,
+            theory,
+        ));
+    }
+    vs_area
+        .series
+        .push(Series::with_errors("S = 1", Style::LinePoints, orig_pts));
+    vs_area.series.push(Series::with_errors(
+        "S of eq. (gamma)",
+        Style::LinePoints,
+        corr_pts,
+    ));
+    for fig in [&mut vs_zeta, &mut vs_area] {
+        let lo = zetas[0].min(1e-3);
+        let hi = zetas[end].max(1.0);
+        fig.series.push(Series::xy(
+            "exact agreement",
+            Style::Line,
+            [(lo, 1.0), (hi, 1.0)],
+        ));
+    }
+    vec![vs_zeta, vs_area, s_fig]
+}

@@ -1,0 +1,146 @@
+//! The statistics of the total-energy experiment, as pure functions of the sweeps.
+//!
+//! Ensemble ratios are ratios of sums over realizations, load by load
+//! ([`crate::experiments::ensemble::LoadGroup::ratio`]).
+
+use super::EnergyResult;
+use crate::experiments::ensemble::LoadGroup;
+use crate::stats::Estimate;
+
+/// The realizations of one load.
+pub type Load<'a> = LoadGroup<'a, EnergyResult>;
+
+/// Which theory's total energy a ratio divides by.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Theory {
+    /// The original theory, `E_P` (`S = 1`), eq. (elasticEnergy_h_tot).
+    Original,
+    /// The corrected theory, `E_c` (`S` of eq. gamma), eq. (elasticEnergy_h_tot_wS).
+    Corrected,
+}
+
+impl Theory {
+    /// The theory's energy at every step of a sweep.
+    pub fn energy(self, r: &EnergyResult) -> &[f64] {
+        match self {
+            Theory::Original => &r.e_p,
+            Theory::Corrected => &r.e_c,
+        }
+    }
+}
+
+/// `E_exa / E_theory` at step `k`: the ratio of sums over realizations.
+pub fn ratio(load: &Load, k: usize, theory: Theory) -> Estimate {
+    load.ratio(|r| (r.e_exa[k], theory.energy(r)[k]))
+}
+
+/// The measured contact area at step `k`, averaged over realizations.
+pub fn measured_area(load: &Load, k: usize) -> Estimate {
+    load.mean(|r| r.contact_area[k])
+}
+
+/// The original theory's contact area at step `k`, averaged over realizations.
+pub fn original_area(load: &Load, k: usize) -> Estimate {
+    load.mean(|r| r.area_original[k])
+}
+
+/// The corrected theory's contact area at step `k`, averaged over realizations.
+pub fn corrected_area(load: &Load, k: usize) -> Estimate {
+    load.mean(|r| r.area_corrected[k])
+}
+
+/// `S~` of the step from index `a` to index `b`, eq. (S_q_numerical): the increment of
+/// `E_exa` over the increment of `E_P`, as a ratio of sums over realizations.
+pub fn s_tilde(load: &Load, a: usize, b: usize) -> Estimate {
+    load.ratio(|r| (r.e_exa[b] - r.e_exa[a], r.e_p[b] - r.e_p[a]))
+}
+
+/// One realization's `S~` averaged over the consecutive steps of a window (indices into
+/// its sweep).
+pub fn window_mean(r: &EnergyResult, window: &[usize]) -> f64 {
+    let steps: Vec<f64> = window
+        .windows(2)
+        .map(|p| (r.e_exa[p[1]] - r.e_exa[p[0]]) / (r.e_p[p[1]] - r.e_p[p[0]]))
+        .collect();
+    steps.iter().sum::<f64>() / steps.len().max(1) as f64
+}
+
+/// The index of the step closest (in `ln zeta`) to a quarter of the last magnification:
+/// two octaves below the end.
+pub fn two_octaves_below_end(zetas: &[f64]) -> usize {
+    let end = zetas.len() - 1;
+    (0..end)
+        .min_by(|&i, &j| {
+            let d = |k: usize| (zetas[k] / zetas[end] * 4.0).ln().abs();
+            d(i).total_cmp(&d(j))
+        })
+        .unwrap_or(0)
+}
+
+/// How `E_exa / E_c` still moves at the end of the sweep: its change from step `from` to the
+/// last step, per realization, averaged.
+pub fn corrected_drift(load: &Load, from: usize) -> Estimate {
+    load.mean(|r| {
+        let end = r.zetas.len() - 1;
+        r.e_exa[end] / r.e_c[end] - r.e_exa[from] / r.e_c[from]
+    })
+}
+
+/// How much more the corrected energy deviates from the measurement at a low load than at
+/// the headline load: `|low - 1| - |head - 1|`, with the combined standard error.
+pub fn deviation_growth(low: Estimate, head: Estimate) -> Estimate {
+    Estimate::new(
+        (low.value - 1.0).abs() - (head.value - 1.0).abs(),
+        low.std_error.hypot(head.std_error),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn run(e_exa: Vec<f64>, e_p: Vec<f64>) -> EnergyResult {
+        let n = e_exa.len();
+        EnergyResult {
+            p0: 0.1,
+            zetas: (1..=n).map(|k| k as f64).collect(),
+            contact_area: vec![0.2; n],
+            e_c: e_p.iter().map(|e| 0.8 * e).collect(),
+            e_exa,
+            e_p,
+            area_original: vec![0.1; n],
+            area_corrected: vec![0.3; n],
+            windows: Vec::new(),
+            max_residual: 0.0,
+        }
+    }
+
+    #[test]
+    fn s_tilde_is_the_ratio_of_increments() {
+        let a = run(vec![1.0, 1.5, 2.5], vec![2.0, 3.0, 5.0]);
+        let b = run(vec![2.0, 2.5, 3.0], vec![4.0, 5.0, 6.0]);
+        let load = Load {
+            contact_area: 0.2,
+            runs: vec![&a, &b],
+        };
+        // (0.5 + 0.5) / (1 + 1) from step 0 to 1.
+        assert_eq!(s_tilde(&load, 0, 1).value, 0.5);
+        assert_eq!(window_mean(&a, &[0, 1, 2]), 0.5);
+        let r = ratio(&load, 2, Theory::Corrected);
+        assert!((r.value - 5.5 / 8.8).abs() < 1e-15, "{r:?}");
+    }
+
+    #[test]
+    fn the_reference_step_is_two_octaves_below_the_end() {
+        let zetas = [1.0, 2.0, 3.0, 4.0, 8.0, 16.0];
+        assert_eq!(two_octaves_below_end(&zetas), 3);
+    }
+
+    #[test]
+    fn growth_of_the_deviation_is_signed_and_combines_errors() {
+        let g = deviation_growth(Estimate::new(0.7, 0.04), Estimate::new(0.9, 0.03));
+        assert!((g.value - 0.2).abs() < 1e-15 && (g.std_error - 0.05).abs() < 1e-15);
+        let g = deviation_growth(Estimate::new(0.95, 0.0), Estimate::new(0.9, 0.0));
+        assert!(g.value < 0.0);
+    }
+}

@@ -1,0 +1,147 @@
+//! The registry: which code runs a definition's `experiment = "..."`.
+//!
+//! [`BUILTIN`] is the one table that names every experiment. Adding an experiment is its
+//! module under [`crate::experiments`] (a type implementing [`Experiment`]) and one line
+//! here; running, checking and listing follow from the table. A [`Registry`] can also be
+//! extended at run time ([`Registry::with`]), which is how the tests register an
+//! experiment of their own.
+
+use std::marker::PhantomData;
+
+use super::outcome::Outcome;
+use super::runner::{check_experiment, run_experiment, RunOptions};
+use super::source::Source;
+use crate::error::{Error, Result};
+use crate::experiments::{contact_area, modes, reentry, total_energy, transitions, Experiment};
+
+/// What the runner needs of an experiment, without its types.
+pub trait Entry: Send + Sync {
+    /// Runs a definition of this experiment.
+    fn run(&self, source: &Source, opts: &RunOptions) -> Result<Outcome>;
+    /// Checks a definition of this experiment (both scenes) without running it.
+    fn check(&self, source: &Source) -> Result<()>;
+}
+
+/// The entry of experiment `E`.
+pub struct Of<E>(PhantomData<fn() -> E>);
+
+impl<E> Of<E> {
+    /// The entry.
+    pub const NEW: Self = Of(PhantomData);
+}
+
+impl<E: Experiment> Entry for Of<E> {
+    fn run(&self, source: &Source, opts: &RunOptions) -> Result<Outcome> {
+        run_experiment::<E>(source, opts)
+    }
+
+    fn check(&self, source: &Source) -> Result<()> {
+        check_experiment::<E>(source)
+    }
+}
+
+/// Every built-in experiment, by the name definitions give in `experiment = "..."`.
+pub const BUILTIN: &[(&str, &dyn Entry)] = &[
+    ("contact_area", &Of::<contact_area::ContactArea>::NEW),
+    ("diffusion", &Of::<transitions::Diffusion>::NEW),
+    ("drift", &Of::<transitions::Drift>::NEW),
+    ("mode_frozen", &Of::<modes::ModeFrozen>::NEW),
+    ("mode_onset", &Of::<modes::ModeOnset>::NEW),
+    ("reentry", &Of::<reentry::Reentry>::NEW),
+    ("total_energy", &Of::<total_energy::TotalEnergy>::NEW),
+];
+
+/// Experiments by name.
+pub struct Registry {
+    entries: Vec<(String, Box<dyn Entry>)>,
+}
+
+/// A boxed reference to a `'static` entry.
+struct Static(&'static dyn Entry);
+
+impl Entry for Static {
+    fn run(&self, source: &Source, opts: &RunOptions) -> Result<Outcome> {
+        self.0.run(source, opts)
+    }
+
+    fn check(&self, source: &Source) -> Result<()> {
+        self.0.check(source)
+    }
+}
+
+impl Registry {
+    /// The built-in experiments ([`BUILTIN`]).
+    pub fn builtin() -> Self {
+        Self {
+            entries: BUILTIN
+                .iter()
+                .map(|&(name, e)| (name.to_string(), Box::new(Static(e)) as Box<dyn Entry>))
+                .collect(),
+        }
+    }
+
+    /// This registry with experiment `E` under `name` (replacing one of that name).
+    pub fn with<E: Experiment + 'static>(mut self, name: &str) -> Self {
+        self.entries.retain(|(n, _)| n != name);
+        self.entries
+            .push((name.to_string(), Box::new(Of::<E>::NEW)));
+        self
+    }
+
+    /// The experiment names, in registration order.
+    pub fn names(&self) -> Vec<&str> {
+        self.entries.iter().map(|(n, _)| n.as_str()).collect()
+    }
+
+    /// The entry for `source`'s `experiment`; an unknown name is an error that lists the
+    /// known ones.
+    pub fn entry(&self, source: &Source) -> Result<&dyn Entry> {
+        let (_, experiment) = source.header()?;
+        self.entries
+            .iter()
+            .find(|(n, _)| *n == experiment)
+            .map(|(_, e)| e.as_ref())
+            .ok_or_else(|| {
+                Error::bad_file(
+                    &source.path,
+                    format!(
+                        "experiment = \"{experiment}\" is unknown; expected one of {:?}",
+                        self.names()
+                    ),
+                )
+            })
+    }
+
+    /// Runs `source`.
+    pub fn run(&self, source: &Source, opts: &RunOptions) -> Result<Outcome> {
+        self.entry(source)?.run(source, opts)
+    }
+
+    /// Checks `source` without running it: its header, the experiment it names, and the
+    /// ranges of both of its scenes. Errors name the file, the scene's table and the field.
+    pub fn check(&self, source: &Source) -> Result<()> {
+        self.entry(source)?.check(source)
+    }
+
+    /// Runs several definitions in turn; one failure does not stop the others.
+    pub fn run_all(
+        &self,
+        sources: &[Source],
+        opts: &RunOptions,
+    ) -> Vec<(std::path::PathBuf, Result<Outcome>)> {
+        sources
+            .iter()
+            .map(|s| (s.path.clone(), self.run(s, opts)))
+            .collect()
+    }
+}
+
+/// Runs `source` with the built-in experiments.
+pub fn run(source: &Source, opts: &RunOptions) -> Result<Outcome> {
+    Registry::builtin().run(source, opts)
+}
+
+/// Checks `source` against the built-in experiments.
+pub fn check(source: &Source) -> Result<()> {
+    Registry::builtin().check(source)
+}

@@ -1,0 +1,88 @@
+//! Job results on disk: `<out>/jobs/<family>/<scale>/<key>.json`, each written atomically
+//! as soon as its job finishes, and the job's checkpoint folder beside it
+//! (`<key>.checkpoint/`).
+//!
+//! The key is a short hash of everything that determines a job's result (scale, scene and
+//! job), so validations whose scenes are equal share their jobs (assumptions (a) and (b)
+//! run the same transitions), and a changed scene never reuses an old result.
+
+use std::collections::HashSet;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+use serde::de::DeserializeOwned;
+use serde::{Deserialize, Serialize};
+use sha2::{Digest, Sha256};
+
+use super::definition::Scale;
+use crate::error::{Error, Result};
+
+/// The jobs folder of a family at a scale.
+pub fn jobs_dir(out: &Path, family: &str, scale: Scale) -> PathBuf {
+    out.join("jobs").join(family).join(scale.to_string())
+}
+
+/// A short hash of everything that determines a job's result.
+pub fn job_key(scale: Scale, scene: &serde_json::Value, job: &str) -> String {
+    let mut h = Sha256::new();
+    h.update(scale.to_string().as_bytes());
+    h.update(scene.to_string().as_bytes());
+    h.update(job.as_bytes());
+    h.finalize()
+        .iter()
+        .take(8)
+        .map(|b| format!("{b:02x}"))
+        .collect()
+}
+
+/// A job's result as stored on disk.
+#[derive(Serialize, Deserialize)]
+pub struct Stored<J, R> {
+    /// The job.
+    pub job: J,
+    /// Its result.
+    pub result: R,
+}
+
+/// A stored result, if present and readable (a damaged file is recomputed).
+pub fn load<J: DeserializeOwned, R: DeserializeOwned>(path: &Path) -> Option<R> {
+    let bytes = std::fs::read(path).ok()?;
+    let stored: Stored<J, R> = serde_json::from_slice(&bytes).ok()?;
+    Some(stored.result)
+}
+
+/// Stores a job's result atomically.
+pub fn store<J: Serialize, R: Serialize>(path: &Path, stored: &Stored<J, R>) -> Result<()> {
+    let bytes = serde_json::to_vec(stored).expect("results serialise");
+    crate::io::write_atomic(path, &bytes)
+}
+
+/// Removes a job's state folder (its checkpoints), if there is one.
+pub fn remove_state(dir: &Path) -> Result<()> {
+    match std::fs::remove_dir_all(dir) {
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => Err(Error::io(dir, e)),
+        _ => Ok(()),
+    }
+}
+
+/// Job files written by this process: reused without `--resume`, since they hold this
+/// run's own results (a job shared by two validations runs once).
+static WRITTEN: Mutex<Option<HashSet<PathBuf>>> = Mutex::new(None);
+
+/// Whether this process wrote `path`.
+pub fn written_here(path: &Path) -> bool {
+    WRITTEN
+        .lock()
+        .expect("no panics while holding the lock")
+        .as_ref()
+        .is_some_and(|set| set.contains(path))
+}
+
+/// Notes that this process wrote `path`.
+pub fn mark_written(path: PathBuf) {
+    WRITTEN
+        .lock()
+        .expect("no panics while holding the lock")
+        .get_or_insert_with(HashSet::new)
+        .insert(path);
+}

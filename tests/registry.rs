@@ -1,0 +1,131 @@
+//! An experiment is added by writing its module and registering it once: here a tiny one,
+//! defined in this test, runs through the same runner, verdict and outputs as the built-in
+//! ones.
+
+use serde::{Deserialize, Serialize};
+
+use persson_check::error::Result;
+use persson_check::experiments::{Check, Conclusion, Criteria, Detail, Experiment, JobContext};
+use persson_check::stats::Estimate;
+use persson_check::validation::{Registry, RunOptions, Scale, Source, Verdict};
+
+/// The scene: realizations, and the value each one "measures" around.
+#[derive(Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CoinScene {
+    seeds: Vec<u64>,
+    centre: f64,
+}
+
+/// Measures `centre + (seed mod 3 - 1) / 100` for each seed.
+struct Coin;
+
+impl Experiment for Coin {
+    const FAMILY: &'static str = "coin";
+    type Scene = CoinScene;
+    type Job = u64;
+    type JobResult = f64;
+
+    fn validate(scene: &CoinScene) -> Result<()> {
+        persson_check::error::check_seeds(&scene.seeds)
+    }
+
+    fn jobs(scene: &CoinScene) -> Vec<u64> {
+        scene.seeds.clone()
+    }
+
+    fn run_job(scene: &CoinScene, seed: &u64, _ctx: &JobContext) -> Result<f64> {
+        Ok(scene.centre + ((seed % 3) as f64 - 1.0) / 100.0)
+    }
+
+    fn conclude(
+        criteria: &Criteria,
+        _scene: &CoinScene,
+        results: &[(u64, f64)],
+    ) -> Result<Conclusion> {
+        let values: Vec<f64> = results.iter().map(|r| r.1).collect();
+        let m = Estimate::mean_of(&values);
+        Ok(Conclusion {
+            measured: Some(m),
+            persson: 0.5,
+            details: vec![Detail::new(
+                "count",
+                "realizations",
+                Estimate::new(values.len() as f64, 0.0),
+            )],
+            checks: vec![Check::new(
+                "above_half",
+                "the mean is above one half",
+                m.value > 0.5,
+                format!("{} ({})", m.value, criteria.name),
+            )],
+            account: "A coin.".into(),
+            ..Default::default()
+        })
+    }
+}
+
+const DEFINITION: &str = r#"
+name = "coin"
+experiment = "coin"
+title = "Coin"
+assumption = "the coin is fair"
+statistic = "mean"
+persson = "one half"
+
+[verdict]
+significance = 3.0
+resolution = 0.01
+
+[paper]
+finding = "the coin is biased"
+verdict = "violated"
+
+[reduced]
+seeds = [1, 2, 3, 4, 5, 6]
+centre = 0.7
+
+[full]
+seeds = [1, 2, 3]
+centre = 0.7
+"#;
+
+#[test]
+fn a_registered_experiment_runs_like_a_built_in_one() {
+    let source = Source {
+        path: "builtin:coin".into(),
+        text: DEFINITION.to_string(),
+    };
+    let out = tempfile::tempdir().unwrap();
+    let opts = RunOptions {
+        scale: Scale::Reduced,
+        out: out.path().to_path_buf(),
+        resume: false,
+        progress: false,
+    };
+    // Unknown to the built-in table, with the known names listed.
+    let e = Registry::builtin()
+        .run(&source, &opts)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("\"coin\" is unknown") && e.contains("reentry"),
+        "{e}"
+    );
+
+    let registry = Registry::builtin().with::<Coin>("coin");
+    registry.check(&source).unwrap();
+    let o = registry.run(&source, &opts).unwrap();
+    assert!((o.value - 0.7).abs() < 1e-12, "{}", o.value);
+    assert_eq!(o.verdict, Verdict::Violated);
+    assert_eq!(o.reproduced, Some(true));
+    assert_eq!(o.details[0].key, "count");
+    assert!(out.path().join("coin.json").exists());
+    assert_eq!(
+        std::fs::read_dir(out.path().join("jobs/coin/reduced"))
+            .unwrap()
+            .count(),
+        6,
+        "one stored result per job"
+    );
+}
