@@ -1,6 +1,7 @@
 //! The integration tests, as one crate (one binary, linked once): a module per subject,
 //! with the helpers they share in [`common`].
 
+mod architecture;
 mod bad_input;
 mod common;
 mod determinism;

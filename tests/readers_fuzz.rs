@@ -116,7 +116,7 @@ proptest! {
 
     #[test]
     fn npy_arbitrary_bytes(bytes in prop::collection::vec(any::<u8>(), 0..600)) {
-        if let Ok(field) = npy::parse_field(&bytes) {
+        if let Ok(field) = npy::parse_field(&bytes, MIN_N..=MAX_N) {
             assert_sound(&field);
         }
     }
@@ -129,14 +129,14 @@ proptest! {
         let mut bytes = b"\x93NUMPY".to_vec();
         bytes.extend([version, 0]);
         bytes.extend(tail);
-        if let Ok(field) = npy::parse_field(&bytes) {
+        if let Ok(field) = npy::parse_field(&bytes, MIN_N..=MAX_N) {
             assert_sound(&field);
         }
     }
 
     #[test]
     fn npy_valid_fields_round_trip_exactly((n, values) in square_field()) {
-        let field = npy::parse_field(&written(n, &values)).unwrap();
+        let field = npy::parse_field(&written(n, &values), MIN_N..=MAX_N).unwrap();
         prop_assert_eq!(field.n, n);
         let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
         prop_assert_eq!(bits(&field.values), bits(&values));
@@ -146,7 +146,7 @@ proptest! {
     fn npy_fortran_order_is_transposed((n, values) in square_field()) {
         let data: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
         let dict = format!("{{'descr': '<f8', 'fortran_order': True, 'shape': ({n}, {n}), }}");
-        let field = npy::parse_field(&with_header(&dict, &data)).unwrap();
+        let field = npy::parse_field(&with_header(&dict, &data), MIN_N..=MAX_N).unwrap();
         for i in 0..n {
             for j in 0..n {
                 prop_assert_eq!(field.values[i * n + j].to_bits(), values[j * n + i].to_bits());
@@ -169,7 +169,7 @@ proptest! {
         if truncate {
             bytes.truncate(cut.index(bytes.len()));
         }
-        if let Ok(field) = npy::parse_field(&bytes) {
+        if let Ok(field) = npy::parse_field(&bytes, MIN_N..=MAX_N) {
             assert_sound(&field);
         }
     }
@@ -179,7 +179,7 @@ proptest! {
         dict in header_dict(),
         data in prop::collection::vec(any::<u8>(), 0..1200),
     ) {
-        match npy::parse_field(&with_header(&dict, &data)) {
+        match npy::parse_field(&with_header(&dict, &data), MIN_N..=MAX_N) {
             Ok(field) => {
                 assert_sound(&field);
                 let shape = format!("({}, {})", field.n, field.n);

@@ -7,7 +7,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 
 use persson_check::engine::contact::{ContactProblem, ContactSolution, Model, Residual};
-use persson_check::engine::grid::Grid;
+use persson_check::engine::grid::{Grid, MAX_N, MIN_N};
 use persson_check::engine::load::{persson_load_guess, solve_for_area, AreaSearch, AreaTarget};
 use persson_check::engine::scene::{check_zeta, SolveScene};
 use persson_check::engine::solver::SolverKind;
@@ -239,7 +239,7 @@ fn check_flags(args: &Args) -> Result<()> {
 /// The surface of a heights file; a `--file-lambda-l` beyond the box is named as the flag,
 /// anything else as the file.
 fn read_heights(path: &std::path::Path, file_lambda_l: Option<f64>) -> Result<Surface> {
-    let field = persson_check::io::npy::read_field(path)?;
+    let field = persson_check::io::npy::read_field(path, MIN_N..=MAX_N)?;
     let grid = Grid::new(field.n, 1.0).map_err(|e| Error::bad_file(path, e.to_string()))?;
     Surface::from_heights(grid, &field.values, file_lambda_l).map_err(|e| match &e {
         Error::InvalidInput { field, .. } if field == "lambda_l" => e.with_field("--file-lambda-l"),

@@ -1,4 +1,4 @@
-//! `.npy` field files (SPEC section 7): float64, shape `(N, N)`, row-major.
+//! `.npy` field files (the command-line contract, [`crate::conventions`]): float64, shape `(N, N)`, row-major.
 //!
 //! Reading checks everything a field must satisfy and names what is wrong: a file that is
 //! not `.npy`, truncated data, another dtype, another rank, a non-square or empty array,
@@ -6,9 +6,9 @@
 //! data. Fortran-ordered arrays are accepted and transposed. Writing is atomic
 //! ([`crate::io`]).
 
+use std::ops::RangeInclusive;
 use std::path::Path;
 
-use crate::engine::grid::{MAX_N, MIN_N};
 use crate::error::{Error, Result};
 
 /// A square float64 field read from a `.npy` file.
@@ -20,15 +20,19 @@ pub struct Field {
     pub values: Vec<f64>,
 }
 
-/// Reads a square float64 field from `path`.
-pub fn read_field(path: &Path) -> Result<Field> {
+/// Reads a square float64 field from `path`, with `N` in `sizes` (the grid sizes the
+/// caller accepts: nothing outside them is allocated).
+pub fn read_field(path: &Path, sizes: RangeInclusive<usize>) -> Result<Field> {
     let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
-    parse_field(&bytes).map_err(|m| Error::bad_file(path, m))
+    parse_field(&bytes, sizes).map_err(|m| Error::bad_file(path, m))
 }
 
-/// Parses a square float64 field from the bytes of a `.npy` file; the error says what is
-/// wrong.
-pub fn parse_field(bytes: &[u8]) -> std::result::Result<Field, String> {
+/// Parses a square float64 field with `N` in `sizes` from the bytes of a `.npy` file; the
+/// error says what is wrong.
+pub fn parse_field(
+    bytes: &[u8],
+    sizes: RangeInclusive<usize>,
+) -> std::result::Result<Field, String> {
     let mut rest = bytes;
     let npy = npyz::NpyFile::new(&mut rest).map_err(|e| header_error(&e))?;
     let dtype = npy.dtype();
@@ -57,8 +61,12 @@ pub fn parse_field(bytes: &[u8]) -> std::result::Result<Field, String> {
         ));
     }
     let n = shape[0] as usize;
-    if !(MIN_N..=MAX_N).contains(&n) {
-        return Err(format!("N = {n} is outside [{MIN_N}, {MAX_N}]"));
+    if !sizes.contains(&n) {
+        return Err(format!(
+            "N = {n} is outside [{}, {}]",
+            sizes.start(),
+            sizes.end()
+        ));
     }
     let fortran = npy.order() == npyz::Order::Fortran;
     let mut values: Vec<f64> = npy.into_vec().map_err(|e| {
@@ -142,7 +150,7 @@ mod tests {
         let path = dir.path().join("f.npy");
         let values: Vec<f64> = (0..25).map(|i| i as f64 * 0.5 - 3.0).collect();
         write_field(&path, 5, &values).unwrap();
-        let f = read_field(&path).unwrap();
+        let f = read_field(&path, 4..=32768).unwrap();
         assert_eq!(f.n, 5);
         assert_eq!(f.values, values);
     }
@@ -154,12 +162,12 @@ mod tests {
         let mut values = vec![1.0; 16];
         values[6] = f64::INFINITY;
         write_field(&path, 4, &values).unwrap();
-        let e = read_field(&path).unwrap_err().to_string();
+        let e = read_field(&path, 4..=32768).unwrap_err().to_string();
         assert!(e.contains("row 1, column 2"), "{e}");
         let bytes = std::fs::read(&path).unwrap();
-        let e = parse_field(&bytes[..bytes.len() - 9]).unwrap_err();
+        let e = parse_field(&bytes[..bytes.len() - 9], 4..=32768).unwrap_err();
         assert!(e.contains("truncated"), "{e}");
-        let e = parse_field(b"hello").unwrap_err();
+        let e = parse_field(b"hello", 4..=32768).unwrap_err();
         assert!(e.contains("not a valid .npy"), "{e}");
     }
 }

@@ -1,0 +1,224 @@
+//! The layers of `src/` depend on one another in one direction only, and no two modules
+//! depend on each other.
+//!
+//! Layers, from the bottom: `error`; `io`, `stats`, `provenance`; `plot`; `engine`;
+//! `persson`; `experiments` and `speed`; `validation`; `report`. A module may use modules of
+//! its own layer's folder and of lower layers only. Within and across folders, the
+//! "uses" relation between modules that are not ancestors of each other has no cycle.
+//! References are read from `crate::...` paths and `super::` imports outside comments
+//! and `#[cfg(test)]` code.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+/// The rank of each top-level module: a module may use only lower ranks.
+const LAYERS: &[(&str, u32)] = &[
+    ("error", 0),
+    ("io", 1),
+    ("stats", 1),
+    ("provenance", 1),
+    ("plot", 2),
+    ("engine", 3),
+    ("persson", 4),
+    ("experiments", 5),
+    ("speed", 5),
+    ("validation", 6),
+    ("report", 7),
+];
+
+/// Every library source file with its module path (`engine::solver::cg`).
+fn modules() -> Vec<(Vec<String>, PathBuf)> {
+    fn walk(dir: &Path, prefix: &[String], out: &mut Vec<(Vec<String>, PathBuf)>) {
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            let stem = path.file_stem().unwrap().to_string_lossy().to_string();
+            if path.is_dir() {
+                let mut p = prefix.to_vec();
+                p.push(stem);
+                walk(&path, &p, out);
+            } else if path.extension().is_some_and(|e| e == "rs") {
+                let mut p = prefix.to_vec();
+                if stem != "mod" {
+                    p.push(stem);
+                }
+                out.push((p, path));
+            }
+        }
+    }
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut out = Vec::new();
+    walk(&src, &[], &mut out);
+    // The binary and its commands sit on top of everything.
+    out.retain(|(m, _)| !m.is_empty() && m[0] != "main" && m[0] != "lib" && m[0] != "commands");
+    out
+}
+
+/// The code of a file without comments, strings' contents aside, and without its
+/// `#[cfg(test)]` module (which, by convention here, comes last).
+fn code(path: &Path) -> String {
+    let text = std::fs::read_to_string(path).unwrap();
+    let text = text.split("#[cfg(test)]").next().unwrap_or("");
+    text.lines()
+        .map(|l| match l.find("//") {
+            Some(i) => &l[..i],
+            None => l,
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// The module paths a file refers to.
+fn references(module: &[String], text: &str) -> BTreeSet<Vec<String>> {
+    let mut out = BTreeSet::new();
+    let bytes = text.as_bytes();
+    let ident = |c: u8| c.is_ascii_alphanumeric() || c == b'_';
+    // A path that starts here, not in the middle of another one.
+    let starts = |i: usize| i == 0 || !(ident(bytes[i - 1]) || bytes[i - 1] == b':');
+    let mut i = 0;
+    while i < bytes.len() {
+        let rest = &bytes[i..];
+        let (base, skip) = if rest.starts_with(b"crate::") && starts(i) {
+            (Vec::new(), "crate::".len())
+        } else if rest.starts_with(b"super::") && starts(i) {
+            // `super` is the parent module (of `a` in `a/mod.rs`, `a` in `a/b.rs`).
+            let mut b = module.to_vec();
+            b.pop();
+            (b, "super::".len())
+        } else {
+            i += 1;
+            continue;
+        };
+        let mut path = base;
+        let mut j = i + skip;
+        loop {
+            let start = j;
+            while j < bytes.len() && ident(bytes[j]) {
+                j += 1;
+            }
+            if j == start {
+                break;
+            }
+            path.push(text[start..j].to_string());
+            if bytes[j..].starts_with(b"::") {
+                j += 2;
+            } else {
+                break;
+            }
+        }
+        out.insert(path);
+        i = j.max(i + 1);
+    }
+    out
+}
+
+/// The longest prefix of `path` that is a module.
+fn resolve(path: &[String], known: &BTreeSet<Vec<String>>) -> Option<Vec<String>> {
+    (1..=path.len())
+        .rev()
+        .map(|k| path[..k].to_vec())
+        .find(|p| known.contains(p))
+}
+
+fn rank(top: &str) -> u32 {
+    LAYERS
+        .iter()
+        .find(|(n, _)| *n == top)
+        .unwrap_or_else(|| panic!("src/{top} is in no layer: add it to LAYERS"))
+        .1
+}
+
+fn graph() -> BTreeMap<Vec<String>, BTreeSet<Vec<String>>> {
+    let mods = modules();
+    let known: BTreeSet<Vec<String>> = mods.iter().map(|(m, _)| m.clone()).collect();
+    let mut g = BTreeMap::new();
+    for (m, path) in &mods {
+        let text = code(path);
+        let refs: BTreeSet<Vec<String>> = references(m, &text)
+            .into_iter()
+            .filter_map(|r| resolve(&r, &known))
+            .filter(|r| r != m)
+            .collect();
+        g.insert(m.clone(), refs);
+    }
+    g
+}
+
+#[test]
+fn layers_depend_downwards_only() {
+    let mut wrong = Vec::new();
+    for (m, refs) in graph() {
+        for r in refs {
+            if r[0] != m[0] && rank(&r[0]) >= rank(&m[0]) {
+                wrong.push(format!("{} uses {}", m.join("::"), r.join("::")));
+            }
+        }
+    }
+    assert!(
+        wrong.is_empty(),
+        "uses against the layers:\n{}",
+        wrong.join("\n")
+    );
+}
+
+#[test]
+fn no_two_modules_depend_on_each_other() {
+    let g = graph();
+    let ancestor = |a: &[String], b: &[String]| b.starts_with(a) || a.starts_with(b);
+    // Depth-first search for a cycle among edges between non-ancestors.
+    fn visit(
+        n: &Vec<String>,
+        g: &BTreeMap<Vec<String>, BTreeSet<Vec<String>>>,
+        ancestor: &dyn Fn(&[String], &[String]) -> bool,
+        state: &mut BTreeMap<Vec<String>, u8>,
+        stack: &mut Vec<Vec<String>>,
+    ) -> Option<Vec<Vec<String>>> {
+        state.insert(n.clone(), 1);
+        stack.push(n.clone());
+        for m in g.get(n).into_iter().flatten() {
+            if ancestor(n, m) {
+                continue;
+            }
+            match state.get(m).copied().unwrap_or(0) {
+                1 => {
+                    let i = stack.iter().position(|x| x == m).unwrap();
+                    return Some(stack[i..].to_vec());
+                }
+                0 => {
+                    if let Some(c) = visit(m, g, ancestor, state, stack) {
+                        return Some(c);
+                    }
+                }
+                _ => {}
+            }
+        }
+        stack.pop();
+        state.insert(n.clone(), 2);
+        None
+    }
+    let mut state = BTreeMap::new();
+    for n in g.keys() {
+        if state.get(n).copied().unwrap_or(0) == 0 {
+            if let Some(c) = visit(n, &g, &ancestor, &mut state, &mut Vec::new()) {
+                let names: Vec<String> = c.iter().map(|m| m.join("::")).collect();
+                panic!("a dependency cycle: {} -> back", names.join(" -> "));
+            }
+        }
+    }
+}
+
+#[test]
+fn the_reader_finds_crate_and_super_paths() {
+    // In experiments/modes/onset.rs.
+    let here = vec![
+        "experiments".to_string(),
+        "modes".to_string(),
+        "onset".to_string(),
+    ];
+    let refs = references(
+        &here,
+        "use crate::engine::grid::Grid;\nuse super::{band, Load};\nx::crate::no",
+    );
+    assert!(refs.contains(&vec!["engine".into(), "grid".into(), "Grid".into()]));
+    assert!(refs.contains(&vec!["experiments".into(), "modes".into()]));
+    assert_eq!(refs.len(), 2, "{refs:?}");
+}
