@@ -7,34 +7,56 @@
 //! gradients while roughness is added one magnification at a time, and each assumption of
 //! Persson's theory is measured against the simulation.
 //!
-//! ## Units
+//! Units, the Fourier convention, magnification, the residual, the validations and the
+//! command-line contract are fixed in [`conventions`]; in short: lengths in grid spacings,
+//! pressures in units of `E*`, surfaces of unit rms gradient, and
+//! `f~(q) = N^-2 sum_r f(r) exp(-i q.r)`.
 //!
-//! Lengths are in grid spacings (`a = 1`), pressures in units of `E*` (`E* = 1`), and
-//! generated surfaces have unit rms gradient at full resolution, so that `p0` is also the
-//! reduced pressure `p0 / (E* g_bar)` at full resolution.
+//! ## Layers
 //!
-//! ## Fourier convention
+//! Each folder is a layer and uses only the layers below it (a test in `tests/` checks
+//! this, and that no two modules depend on each other):
 //!
-//! `f~(q) = N^-2 sum_r f(r) exp(-i q.r)`, `f(r) = sum_q f~(q) exp(i q.r)`, so that
-//! `mean(f^2) = sum_q |f~(q)|^2`, with `q = 2 pi (m, n) / L`. Real fields are stored as
-//! half spectra ([`grid`]).
+//! | layer | what it is |
+//! |---|---|
+//! | [`report`] | the Markdown scorecard, from outcome files |
+//! | [`validation`] | definitions, verdicts, the registry of experiments, the runner |
+//! | [`experiments`], [`speed`] | the measurements behind the validations; the speed study |
+//! | [`persson`] | Persson's theory on a realization's own spectrum |
+//! | [`engine`] | grid, FFT, surfaces, half-space, contact problem, solvers, sweeps |
+//! | [`plot`] | figure descriptions and their rendering |
+//! | [`io`], [`stats`], [`provenance`] | atomic files, `.npy`, checkpoints; estimates with errors; provenance |
+//! | [`error`] | the error type |
 //!
-//! ## Map
+//! The binary's subcommands (`src/commands/`) sit on top.
 //!
-//! * [`grid`], [`fft`], [`field`]: the periodic grid, its transforms and reductions;
-//! * [`spectrum`], [`surface`]: self-affine spectra and realizations;
-//! * [`elastic`]: the half-space Green's function and elastic energy;
-//! * [`contact`], [`solver`], [`load`]: the hard-wall problem, its two solvers, and the
-//!   load that gives a target contact area;
-//! * [`persson`]: Persson's theory, original and corrected, on a realization's own spectrum;
-//! * [`sweep`]: magnification sweeps with warm starts;
-//! * [`validation`], [`area`]: named validations with verdicts, and the experiments
-//!   behind them;
-//! * [`modes`]: the single-mode elastic energy, Persson's assumptions (d) and (e);
-//! * [`energy`]: the total elastic energy and the incremental correction factor;
-//! * [`stats`], [`plot`]: estimates with error bars, and figures;
-//! * [`crate::engine::reference`]: closed-form solutions the solvers are tested against;
-//! * [`npy`], [`scene`], [`io`]: `.npy` fields, scene files, atomic writes.
+//! ## The paper's equations
+//!
+//! The code cites the paper's equations by their LaTeX labels; their printed numbers:
+//!
+//! | label | printed | what |
+//! |---|---|---|
+//! | `1Gaussian` | (2) | Gaussian transition probability |
+//! | `broadening` | (3) | shell broadening `Dp^2` |
+//! | `transitionFinal` | (4) | mirror-Gaussian transition probability |
+//! | `pressureDistOri` | (5) | pressure distribution of the original theory |
+//! | `gamma` | (8) | correction factor `S(a_r) = gamma + (1 - gamma) a_r^2` |
+//! | `elasticEnergy_h_q` | (9) | Persson's energy of a mode, `E_P(p0, q)` |
+//! | `elasticEnergy_h_tot` | (11a) | total `E_P(p0)` |
+//! | `elasticEnergy_h_tot_wS` | (11b) | total corrected `E_c(p0)` |
+//! | `elasticEnergy_u` | (12) | the exact energies, (12a) and (12b) |
+//! | `elasticEnergy_u_q` | (12a) | exact energy of a mode, `E_exa(p0, q, zeta)` |
+//! | `elasticEnergy_u_tot` | (12b) | exact total `E_exa(p0, zeta)` |
+//! | `contactArea` | (15) | empirical contact-area law |
+//! | `switching` | (16) | its switching function |
+//! | `elastic_energy_norm` | (19) | normalised energy of a band, `E_norm` |
+//! | `elastic_energy_norm_predicted` | (20) | its prediction, `S Theta(zeta - zeta_t)` |
+//! | `S_q_numerical` | (21) | incremental correction factor `S~` |
+//! | `2ndMoment` | (A.3) | second moment of the mirror Gaussian |
+//! | `approxDeltaPress` | (A.4) | closed-form start of its inversion |
+
+#[doc = include_str!("../docs/conventions.md")]
+pub mod conventions {}
 
 pub mod engine;
 pub mod error;

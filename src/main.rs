@@ -1,4 +1,4 @@
-//! `persson-check`: the command line (SPEC section 7).
+//! `persson-check`: the command line (conventions, section 7, in the library's docs).
 //!
 //! ```text
 //! persson-check surface  (--scene FILE.toml | --n N --hurst H --lambda-l L --lambda-s S --seed K)

@@ -1,4 +1,4 @@
-//! Numerically hard scenes (SPEC section 6) for both solvers.
+//! Numerically hard scenes (the hard cases every solver must survive) for both solvers.
 //!
 //! Every solve here must either converge, with fields that satisfy the hard-wall
 //! conditions to the requested tolerance ([`check_solution`]), or fail with

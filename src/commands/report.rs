@@ -1,4 +1,4 @@
-//! `report`: the scorecard of the outcomes in a folder (SPEC section 7), with the
+//! `report`: the scorecard of the outcomes in a folder (conventions, section 7, in the library's docs), with the
 //! speed-against-error study.
 
 use std::path::PathBuf;

@@ -59,7 +59,7 @@ pub struct Args {
     out: PathBuf,
 }
 
-/// `summary.json` (SPEC section 7, plus additions).
+/// `summary.json` (conventions, section 7, plus additions).
 #[derive(Debug, Serialize)]
 struct Summary {
     n: usize,

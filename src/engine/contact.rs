@@ -1,6 +1,6 @@
 //! The hard-wall contact problem, its solution, and the solver-independent residual.
 //!
-//! Problem (SPEC section 1): find the displacement `u` of the elastic surface and the
+//! Problem ([`crate::conventions`], section 2): find the displacement `u` of the elastic surface and the
 //! contact pressure `p` over a rigid substrate of heights `h` such that
 //!
 //! ```text

@@ -1,4 +1,4 @@
-//! The elastic half-space: its Green's function and its elastic energy (SPEC section 1).
+//! The elastic half-space: its Green's function and its elastic energy ([`crate::conventions`], section 2).
 //!
 //! In the small-slope, frictionless approximation the surface displacement `u` and the
 //! normal stress `p` are related mode by mode (paper section 2.1, refs Campana & Müser):

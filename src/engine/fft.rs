@@ -1,6 +1,6 @@
 //! Real two-dimensional FFTs on the half spectrum, parallel over rows and columns.
 //!
-//! Convention (SPEC section 1): `f~(q) = N^-2 sum_r f(r) exp(-i q.r)` and
+//! Convention ([`crate::conventions`], section 2): `f~(q) = N^-2 sum_r f(r) exp(-i q.r)` and
 //! `f(r) = sum_q f~(q) exp(i q.r)`, so that `mean(f^2) = sum_q |f~(q)|^2`. The forward
 //! transform carries the whole `1/N^2`; the inverse carries none.
 //!

@@ -1,4 +1,4 @@
-//! The periodic square grid and its wavevector tables (SPEC section 1).
+//! The periodic square grid and its wavevector tables ([`crate::conventions`], section 2).
 //!
 //! A grid is `n x n` points with spacing `a`, side `L = n a`, stored row-major: the point
 //! `(i, j)` (row `i` along y, column `j` along x) sits at index `i * n + j`.

@@ -1,4 +1,4 @@
-//! The load that gives a target relative contact area (SPEC section 2).
+//! The load that gives a target relative contact area ([`crate::conventions`], section 3).
 //!
 //! Validations state their load as a contact area at a given magnification, because
 //! `p~0 = p0 / (E* g_bar(zeta))` changes with `zeta` at fixed `p0` (paper section 3.1). The

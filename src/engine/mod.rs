@@ -13,7 +13,7 @@
 //! * [`load`]: the load that gives a target contact area;
 //! * [`sweep`]: one realization solved at a sequence of magnifications, warm-started;
 //! * [`scene`]: scene files (a surface and a solve);
-//! * [`reference`]: closed-form solutions the solvers are tested against.
+//! * [`mod@reference`]: closed-form solutions the solvers are tested against.
 
 pub mod contact;
 pub mod elastic;

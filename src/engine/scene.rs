@@ -1,4 +1,4 @@
-//! Scene files: TOML descriptions of a surface and of a solve (SPEC section 7).
+//! Scene files: TOML descriptions of a surface and of a solve ([`crate::conventions`], section 7).
 //!
 //! ```toml
 //! [surface]

@@ -1,6 +1,6 @@
 //! Power spectra: the self-affine model spectrum and a realization's own shell spectrum.
 //!
-//! The model (SPEC section 2, paper section 2): an isotropic spectrum
+//! The model ([`crate::conventions`], section 3; paper section 2): an isotropic spectrum
 //! `C(q) ~ q^(-2(1+H))` for `q_l <= q <= q_s`, zero outside, with an optional roll-off
 //! plateau `C(q) = C(q_l)` for `q_r <= q < q_l`. `q_l = 2 pi / lambda_l`,
 //! `q_s = 2 pi / lambda_s`.
@@ -31,7 +31,7 @@ pub struct SelfAffine {
 }
 
 impl SelfAffine {
-    /// Checks the parameters against the grid (SPEC section 2 and section 6).
+    /// Checks the parameters against the grid ([`crate::conventions`], section 3).
     pub fn validate(&self, grid: &Grid) -> Result<()> {
         check_open("hurst", self.hurst, 0.0, 1.0)?;
         let a = grid.spacing();

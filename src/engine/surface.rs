@@ -1,6 +1,6 @@
 //! Rigid rough surfaces: generated self-affine realizations and measured height maps.
 //!
-//! Generation (SPEC section 2): `h~(q) = sqrt(C(q)) xi(q)` with `xi` complex Gaussian,
+//! Generation ([`crate::conventions`], section 3): `h~(q) = sqrt(C(q)) xi(q)` with `xi` complex Gaussian,
 //! `E|xi|^2 = 1` (or a random phase, `|xi| = 1`), Hermitian so that `h` is real, Nyquist
 //! rows and the `q = 0` mode empty, and an overall factor that sets the rms gradient
 //! `g_bar^2 = sum_q q^2 |h~(q)|^2` at full resolution (1 by default: pressures are then in

@@ -1,4 +1,4 @@
-//! The contact-area law: relative contact area against reduced pressure (SPEC section 5,
+//! The contact-area law: relative contact area against reduced pressure ([`crate::conventions`], section 6,
 //! row "contact area"; paper section 3.1, eq. (contactArea)).
 //!
 //! For each Hurst exponent and realization the load is raised step by step at full

@@ -13,7 +13,7 @@
 //! tol = 1e-8         # solver residual (see engine::contact::Residual)
 //! ```
 //!
-//! [`scene!`] declares a scene struct with these fields followed by the experiment's own,
+//! `scene!` declares a scene struct with these fields followed by the experiment's own,
 //! and gives it [`Base`]: the surface parameters of a seed, its realization, a sweep, and
 //! the range checks, so that no experiment writes them again. (The fields are written into
 //! the struct rather than flattened with `#[serde(flatten)]`: flattening loses the

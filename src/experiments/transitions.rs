@@ -1,5 +1,5 @@
 //! Pressure transitions between two magnifications: assumptions (a) pressure-independent
-//! diffusion and (b) no drift (SPEC section 5, rows a and b; paper section 3.2 and the
+//! diffusion and (b) no drift ([`crate::conventions`], section 6, rows a and b; paper section 3.2 and the
 //! Appendix).
 //!
 //! Persson's theory treats every interface point as a walker whose pressure diffuses as

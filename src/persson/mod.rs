@@ -1,5 +1,5 @@
 //! Persson's contact mechanics theory, evaluated on a realization's own discrete spectrum
-//! (SPEC section 4; paper section "Persson theory", the contact-area section of Results and
+//! ([`crate::conventions`], section 5; paper section "Persson theory", the contact-area section of Results and
 //! the Appendix).
 //!
 //! Everything here is a function of the shells of a [`ShellSpectrum`]: the modes of one
@@ -19,7 +19,7 @@
 //!
 //! * Shell broadening, eq. (broadening): `Dp^2 = sum (q E*/2)^2 |h~(q)|^2` over the modes
 //!   with `zeta < |q|/q_l <= zeta + dzeta`, i.e. exactly the modes that raising the
-//!   magnification from `zeta` to `zeta + dzeta` adds (SPEC's convention; the paper writes
+//!   magnification from `zeta` to `zeta + dzeta` adds ([`crate::conventions`], section 5; the paper writes
 //!   the interval half-open on the other side, which differs only for a `zeta` that sits
 //!   exactly on a shell). Total `Dp_tot^2(zeta)` over `|q| <= zeta q_l`; diffusion
 //!   coefficient `D_P = Dp^2 / dzeta`. [`Broadening`] keeps cumulative sums over shells,

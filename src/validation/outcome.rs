@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 use super::definition::{Scale, Verdict, VerdictRule};
 use crate::experiments::{Check, Detail};
 
-/// The record of one validation run: `<name>.json` (SPEC section 7).
+/// The record of one validation run: `<name>.json` ([`crate::conventions`], section 7).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Outcome {
     /// Name.

@@ -1,4 +1,4 @@
-//! Hard-wall contact solvers (SPEC section 3).
+//! Hard-wall contact solvers ([`crate::conventions`], section 4).
 //!
 //! * [`Gfmd`]: Green's function molecular dynamics as in the paper: damped dynamics of the
 //!   displacement modes in reciprocal space with the hard wall applied in real space,
@@ -62,7 +62,7 @@ pub(crate) fn ensure_len<T: Clone + Default>(v: &mut Vec<T>, len: usize) {
 /// Solver settings shared by every solver.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct SolveOptions {
-    /// Requested residual (see [`Residual`]).
+    /// Requested residual (see [`Residual`](crate::engine::contact::Residual)).
     pub tol: f64,
     /// Iteration budget; exceeding it is an error carrying the residual reached.
     pub max_iter: usize,

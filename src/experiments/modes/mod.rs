@@ -1,5 +1,5 @@
-//! Single-mode analysis of the elastic energy: Persson's assumptions (d) and (e) (SPEC
-//! section 5, rows d and e; paper section "Single-mode analysis of the elastic energy").
+//! Single-mode analysis of the elastic energy: Persson's assumptions (d) and (e) ([`crate::conventions`],
+//! section 6, rows d and e; paper section "Single-mode analysis of the elastic energy").
 //!
 //! Persson's theory gives a Fourier mode of the displacement elastic energy only once the
 //! roughness of that wavevector is resolved, eq. (elasticEnergy_h_q),

@@ -1,4 +1,4 @@
-//! Re-entry into contact: assumption (c), `p = 0` absorbs (SPEC section 5, row c; paper
+//! Re-entry into contact: assumption (c), `p = 0` absorbs ([`crate::conventions`], section 6, row c; paper
 //! section 3.3).
 //!
 //! In Persson's diffusion picture a walker that reaches `p = 0` is lost to non-contact for
@@ -7,7 +7,7 @@
 //! gives the scene's contact area at `zeta_max`; each solve is warm-started from the last.
 //! For every point the sweep records how often it left contact and how often it came back.
 //!
-//! * **Re-entry share** (SPEC's convention): among the points in contact at `zeta_max`, the
+//! * **Re-entry share** (the convention of [`crate::conventions`], section 6): among the points in contact at `zeta_max`, the
 //!   share that was out of contact at some earlier step, the first shell (`zeta = 1`)
 //!   included. Also reported: the share that left contact *after* the first shell and came
 //!   back, so both readings are visible. Persson: 0. Paper (H = 0.8, 1024^2,

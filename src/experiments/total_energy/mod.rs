@@ -1,4 +1,4 @@
-//! The integrated elastic energy against Persson's theory (SPEC section 5, row "total
+//! The integrated elastic energy against Persson's theory ([`crate::conventions`], section 6, row "total
 //! energy"; paper section "Analysis of the integrated elastic energy").
 //!
 //! Only the net elastic energy enters contact stiffness and mean gap. The simulation's
@@ -36,7 +36,7 @@
 //! against `a_r` is taken). At that fixed `p0` the sweep climbs from `zeta_start` to
 //! `zeta_max` in log-spaced steps merged with the shells of the increment windows, every
 //! solve warm-started from the previous one. Ensemble ratios are ratios of sums over
-//! realizations ([`Estimate::ratio_of_sums`]). The headline is `E_exa / E_c` at full
+//! realizations ([`crate::stats::Estimate::ratio_of_sums`]). The headline is `E_exa / E_c` at full
 //! resolution and the headline load.
 
 mod figures;
