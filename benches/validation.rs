@@ -34,12 +34,7 @@ fn reduced(c: &mut Criterion) {
         b.iter_batched(
             || {
                 let dir = tempfile::tempdir().expect("temporary directory");
-                let opts = RunOptions {
-                    scale: Scale::Reduced,
-                    out: dir.path().to_path_buf(),
-                    resume: false,
-                    progress: false,
-                };
+                let opts = RunOptions::new(Scale::Reduced, dir.path());
                 (dir, opts)
             },
             |(dir, opts)| {

@@ -97,12 +97,7 @@ fn a_registered_experiment_runs_like_a_built_in_one() {
         text: DEFINITION.to_string(),
     };
     let out = tempfile::tempdir().unwrap();
-    let opts = RunOptions {
-        scale: Scale::Reduced,
-        out: out.path().to_path_buf(),
-        resume: false,
-        progress: false,
-    };
+    let opts = RunOptions::new(Scale::Reduced, out.path());
     // Unknown to the built-in table, with the known names listed.
     let e = Registry::builtin()
         .run(&source, &opts)
@@ -120,12 +115,16 @@ fn a_registered_experiment_runs_like_a_built_in_one() {
     assert_eq!(o.verdict, Verdict::Violated);
     assert_eq!(o.reproduced, Some(true));
     assert_eq!(o.details[0].key, "count");
+    // Both solvers ran (the toy ignores them): the cross-check agrees exactly.
+    assert_eq!(o.solver, "gfmd");
+    let cross = o.cross_check.as_ref().expect("a cross-check");
+    assert!(cross.agrees && cross.value == o.value, "{cross:?}");
     assert!(out.path().join("coin.json").exists());
     assert_eq!(
         std::fs::read_dir(out.path().join("jobs/coin/reduced"))
             .unwrap()
             .count(),
-        6,
-        "one stored result per job"
+        12,
+        "one stored result per job and solver"
     );
 }

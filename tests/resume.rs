@@ -32,7 +32,6 @@ paper_shares = [0.62]
 flux_zeta = 12
 flux_dzeta = 1
 checkpoint_seconds = 0.1
-solver = \"cg\"
 tol = 1e-8
 
 ";
@@ -55,7 +54,7 @@ fn validate(threads: usize, defs: &Path, out: &Path, resume: bool) -> Command {
     let mut cmd = Command::new(env!("CARGO_BIN_EXE_persson-check"));
     cmd.arg("--threads")
         .arg(threads.to_string())
-        .args(["validate", "c_reentry", "--dir"])
+        .args(["validate", "c_reentry", "--solver", "cg", "--dir"])
         .arg(defs)
         .arg("--out")
         .arg(out);

@@ -1,8 +1,16 @@
 //! The scientific regression suite: every validation's reduced scene, its verdict, and its
-//! golden values (insta snapshots under `golden/`).
+//! golden values (insta snapshots under `golden/`), from the headline solver (GFMD); two
+//! validations (one of the transitions, the total energy) also run the CG cross-check and
+//! must agree with it.
 
+use persson_check::engine::solver::SolverKind;
 use persson_check::validation::source::{builtin_sources, sources_in, DEFINITIONS};
 use persson_check::validation::{run, Outcome, Registry, RunOptions, Scale, Source, Verdict};
+
+/// The headline solver only.
+const HEADLINE: &[SolverKind] = &[SolverKind::Gfmd];
+/// The headline solver and its cross-check.
+const BOTH: &[SolverKind] = &RunOptions::BOTH;
 
 fn source(name: &str) -> Source {
     builtin_sources()
@@ -11,15 +19,12 @@ fn source(name: &str) -> Source {
         .unwrap_or_else(|| panic!("no built-in validation {name}"))
 }
 
-/// Runs `name`'s reduced scene, checks its golden values, and returns the outcome.
-fn run_reduced(name: &str) -> Outcome {
+/// Runs `name`'s reduced scene with `solvers`, checks its golden values, and returns the
+/// outcome.
+fn run_reduced(name: &str, solvers: &[SolverKind]) -> Outcome {
     let out = tempfile::tempdir().unwrap();
-    let opts = RunOptions {
-        scale: Scale::Reduced,
-        out: out.path().to_path_buf(),
-        resume: false,
-        progress: false,
-    };
+    let mut opts = RunOptions::new(Scale::Reduced, out.path());
+    opts.solvers = solvers.to_vec();
     let outcome = run(&source(name), &opts).unwrap_or_else(|e| panic!("{name}: {e}"));
     eprintln!(
         "{name}: {} = {} +- {} (Persson {}), {}; reproduced {:?}\n{}",
@@ -39,12 +44,34 @@ fn run_reduced(name: &str) -> Outcome {
         assert!(out.path().join(f).exists(), "{name}: {f} missing");
     }
     assert!(out.path().join(format!("{name}.json")).exists());
+    assert_eq!(outcome.solver, solvers[0].name());
     outcome
+}
+
+/// The cross-check of an outcome run with both solvers: present, from CG, and in agreement
+/// with the headline within their combined error.
+fn assert_solvers_agree(o: &Outcome) {
+    let c = o.cross_check.as_ref().expect("a cross-check");
+    assert_eq!(c.solver, "cg");
+    let combined = o.std_error.hypot(c.std_error);
+    assert!(
+        c.agrees && (o.value - c.value).abs() <= o.rule.significance * combined,
+        "{}: gfmd {} +- {}, cg {} +- {}",
+        o.name,
+        o.value,
+        o.std_error,
+        c.value,
+        c.std_error
+    );
+    // The outcome file carries both keys (conventions, section 7).
+    let json = serde_json::to_value(o).unwrap();
+    assert_eq!(json["solver"], "gfmd");
+    assert!(json["cross_check"]["agrees"].as_bool().unwrap());
 }
 
 #[test]
 fn contact_area_law() {
-    let o = run_reduced("contact_area");
+    let o = run_reduced("contact_area", HEADLINE);
     // Persson's kappa = sqrt(8/pi) is violated; the paper's kappa ~ 2 and its eq.
     // (contactArea) reproduce once the grid is extrapolated to the continuum.
     assert_eq!(o.verdict, Verdict::Violated);
@@ -53,7 +80,8 @@ fn contact_area_law() {
 
 #[test]
 fn a_diffusion_depends_on_pressure() {
-    let o = run_reduced("a_diffusion");
+    let o = run_reduced("a_diffusion", BOTH);
+    assert_solvers_agree(&o);
     // Violated at p << p0/a_r; D_n / D_P ~ 1 (the original theory) at p >~ p0/a_r.
     assert_eq!(o.verdict, Verdict::Violated);
     assert!(
@@ -66,7 +94,7 @@ fn a_diffusion_depends_on_pressure() {
 
 #[test]
 fn b_drift_is_negative_in_contact() {
-    let o = run_reduced("b_drift");
+    let o = run_reduced("b_drift", HEADLINE);
     // mu_c < 0 beyond three standard errors.
     assert_eq!(o.verdict, Verdict::Violated);
     assert!(
@@ -80,7 +108,7 @@ fn b_drift_is_negative_in_contact() {
 
 #[test]
 fn c_points_re_enter_contact() {
-    let o = run_reduced("c_reentry");
+    let o = run_reduced("c_reentry", HEADLINE);
     // A re-entry share clearly above 0, largest at the lowest load.
     assert_eq!(o.verdict, Verdict::Violated);
     assert!(o.value > 0.3, "re-entry share {}", o.value);
@@ -89,7 +117,7 @@ fn c_points_re_enter_contact() {
 
 #[test]
 fn mode_onset_populates_modes_before_resolution() {
-    let o = run_reduced("d_onset");
+    let o = run_reduced("d_onset", HEADLINE);
     // Persson's zero below resolution is violated: bands hold a sizeable share of their
     // resolved energy before any of their modes is resolved.
     assert_eq!(o.verdict, Verdict::Violated);
@@ -103,7 +131,7 @@ fn mode_onset_populates_modes_before_resolution() {
 
 #[test]
 fn mode_frozen_long_wavelengths_recede_at_low_load() {
-    let o = run_reduced("e_frozen");
+    let o = run_reduced("e_frozen", HEADLINE);
     // A resolved long-wavelength band loses energy as finer roughness is added.
     assert_eq!(o.verdict, Verdict::Violated);
     assert!(o.value < -0.05, "change after resolution {}", o.value);
@@ -112,7 +140,8 @@ fn mode_frozen_long_wavelengths_recede_at_low_load() {
 
 #[test]
 fn total_energy_against_the_corrected_theory() {
-    let o = run_reduced("total_energy");
+    let o = run_reduced("total_energy", BOTH);
+    assert_solvers_agree(&o);
     // At zeta = 16 the corrected theory's net energy is within a few percent of the
     // measurement at a_r = 0.2, and the spread over realizations leaves the verdict open
     // (the full scene, zeta = 64, decides); the correction does improve on S = 1, whose
@@ -173,17 +202,9 @@ fn every_definition_parses_at_both_scales() {
             path: s.path.clone(),
             text: s.text.replace("[reduced]", "[reduced]\nbogus_key = 1"),
         };
-        let e = run(
-            &broken,
-            &RunOptions {
-                scale: Scale::Reduced,
-                out: out.path().to_path_buf(),
-                resume: false,
-                progress: false,
-            },
-        )
-        .unwrap_err()
-        .to_string();
+        let e = run(&broken, &RunOptions::new(Scale::Reduced, out.path()))
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("bogus_key") && e.contains(&name), "{name}: {e}");
         assert!(
             std::fs::read_dir(out.path()).unwrap().next().is_none(),

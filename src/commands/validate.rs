@@ -3,9 +3,10 @@
 use std::path::PathBuf;
 
 use clap::Args as ClapArgs;
+use persson_check::engine::solver::SolverKind;
 use persson_check::error::{Error, Result};
 use persson_check::validation::source::{builtin_sources, select, sources_in, Source};
-use persson_check::validation::{Registry, RunOptions, Scale};
+use persson_check::validation::{Outcome, Registry, RunOptions, Scale};
 
 /// Arguments of `validate`.
 #[derive(ClapArgs, Debug)]
@@ -24,6 +25,9 @@ pub struct Args {
     /// Output folder: <name>.json, <name>.csv and figures.
     #[arg(long)]
     out: PathBuf,
+    /// Run one solver only (default: GFMD for the headline and CG for the cross-check).
+    #[arg(long, value_enum)]
+    solver: Option<SolverKind>,
 }
 
 pub fn run(args: Args) -> Result<()> {
@@ -47,25 +51,15 @@ pub fn run(args: Args) -> Result<()> {
         out: args.out.clone(),
         resume: args.resume,
         progress: true,
+        solvers: match args.solver {
+            Some(kind) => vec![kind],
+            None => RunOptions::BOTH.to_vec(),
+        },
     };
     let mut failed = Vec::new();
     for (path, result) in registry.run_all(&sources, &opts) {
         match result {
-            Ok(o) => println!(
-                "{:<16} {} = {:.4} +- {:.4} (Persson {:.4}): {}, paper {} [{:.1} s]",
-                o.name,
-                o.statistic,
-                o.value,
-                o.std_error,
-                o.persson,
-                o.verdict,
-                match o.reproduced {
-                    Some(true) => "reproduced",
-                    Some(false) => "NOT reproduced",
-                    None => "undecided",
-                },
-                o.wall_s
-            ),
+            Ok(o) => println!("{}", summary_line(&o)),
             Err(e) => {
                 eprintln!("error: {e}");
                 failed.push(path.display().to_string());
@@ -81,6 +75,46 @@ pub fn run(args: Args) -> Result<()> {
             format!("all to run ({})", failed.join(", ")),
         ))
     }
+}
+
+/// One line per outcome: the headline with its error bar (or the plain statement that
+/// there is none), the verdict, the paper's finding, the cross-check and the wall time.
+fn summary_line(o: &Outcome) -> String {
+    let measured = if o.std_error.is_finite() {
+        format!("{:.4} +- {:.4}", o.value, o.std_error)
+    } else {
+        format!("{:.4} (one realization: no error bar, no verdict)", o.value)
+    };
+    let cross = match &o.cross_check {
+        Some(c) if c.std_error.is_finite() => format!(
+            "; {} {:.4} +- {:.4}, {}",
+            c.solver,
+            c.value,
+            c.std_error,
+            if c.agrees { "agrees" } else { "DISAGREES" }
+        ),
+        Some(c) => format!(
+            "; {} {:.4}, {}",
+            c.solver,
+            c.value,
+            if c.agrees { "agrees" } else { "DISAGREES" }
+        ),
+        None => String::new(),
+    };
+    format!(
+        "{:<16} {} = {measured} ({}; Persson {:.4}): {}, paper {}{cross} [{:.1} s]",
+        o.name,
+        o.statistic,
+        o.solver,
+        o.persson,
+        o.verdict,
+        match o.reproduced {
+            Some(true) => "reproduced",
+            Some(false) => "NOT reproduced",
+            None => "undecided",
+        },
+        o.wall_s
+    )
 }
 
 /// The definitions in `--dir` (at least one).

@@ -22,6 +22,7 @@ use serde::{Deserialize, Serialize};
 
 use super::scene::{Base, Realization};
 use crate::engine::contact::{ContactSolution, Residual, SolveStats};
+use crate::engine::solver::SolverKind;
 use crate::error::{Error, Result};
 use crate::io::checkpoint::{Array, Checkpoints};
 
@@ -112,10 +113,11 @@ pub fn step_of(steps: &[f64], zeta: f64) -> usize {
         .expect("the ladder holds every requested point")
 }
 
-/// Climbs `realization` through the magnifications `steps` at the load that gives
-/// `contact_area` at full resolution, recording every step.
+/// Climbs `realization` through the magnifications `steps` with `solver`, at the load that
+/// gives `contact_area` at full resolution, recording every step.
 pub fn climb(
     base: &Base,
+    solver: SolverKind,
     realization: &Realization,
     contact_area: f64,
     steps: &[f64],
@@ -123,7 +125,7 @@ pub fn climb(
     checkpointing: Option<Checkpointing>,
 ) -> Result<Climbed> {
     let timer = Instant::now();
-    let mut sweep = base.sweep(realization);
+    let mut sweep = base.sweep(realization, solver);
     let mut checkpoints = checkpointing.map(|c| Checkpoints::new(c.dir));
     let saved = checkpoints.as_mut().and_then(|c| c.load_meta::<Progress>());
     let (mut next, p0, mut iterations, wall_before, mut max_residual) = match saved {
@@ -135,7 +137,7 @@ pub fn climb(
                 displacement: ck.load_f64("displacement")?,
                 p0: pr.p0,
                 stats: SolveStats {
-                    solver: base.solver.name(),
+                    solver: solver.name(),
                     iterations: 0,
                     residual: Residual::default(),
                     wall_s: 0.0,

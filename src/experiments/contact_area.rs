@@ -28,7 +28,6 @@ use serde::{Deserialize, Serialize};
 use super::{Check, Conclusion, Criteria, Detail, Experiment, JobContext, Table};
 use crate::engine::contact::Model;
 use crate::engine::solver::SolveOptions;
-use crate::engine::solver::SolverKind;
 use crate::engine::surface::{Surface, SurfaceParams};
 use crate::engine::sweep::Sweep;
 use crate::error::{check_open, check_positive, Error, Result};
@@ -61,8 +60,6 @@ pub struct AreaScene {
     pub law_range: (f64, f64),
     /// Largest relative deviation from eq. (contactArea) that reproduces the paper.
     pub law_tolerance: f64,
-    /// Solver.
-    pub solver: SolverKind,
     /// Residual tolerance.
     pub tol: f64,
 }
@@ -183,7 +180,7 @@ impl Experiment for ContactArea {
         jobs
     }
 
-    fn run_job(scene: &AreaScene, job: &AreaJob, _ctx: &JobContext) -> Result<AreaResult> {
+    fn run_job(scene: &AreaScene, job: &AreaJob, ctx: &JobContext) -> Result<AreaResult> {
         let surface = Surface::generate(&scene.params(job))?;
         let model = Model::new(surface.grid().clone(), 1.0)?;
         let g_bar = surface.rms_gradient(f64::INFINITY);
@@ -191,7 +188,7 @@ impl Experiment for ContactArea {
         let mut sweep = Sweep::new(
             &surface,
             &model,
-            scene.solver,
+            ctx.solver,
             SolveOptions::with_tol(scene.tol),
         );
         let mut contact_area = Vec::new();

@@ -220,9 +220,11 @@ impl Conclusion {
     }
 }
 
-/// Where a job keeps state that must survive interruption.
+/// How a job runs: its solver, and where it keeps state that must survive interruption.
 #[derive(Debug, Clone)]
 pub struct JobContext {
+    /// The solver of every solve of the job.
+    pub solver: crate::engine::solver::SolverKind,
     /// Directory for the job's checkpoints. The runner empties it before a fresh run and
     /// removes it once the job's result is stored; a job only reads and writes it.
     pub state_dir: PathBuf,

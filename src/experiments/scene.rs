@@ -1,7 +1,7 @@
 //! The fields every experiment's scene repeats, declared once.
 //!
 //! A scene of the validations that follow one self-affine surface model over several
-//! realizations starts with the same seven keys:
+//! realizations starts with the same six keys:
 //!
 //! ```toml
 //! n = 128            # points per side
@@ -9,13 +9,15 @@
 //! lambda_l = 64      # long-wavelength cutoff (grid units), at most n
 //! lambda_s = 4       # short-wavelength cutoff, at least 2 grid spacings
 //! seeds = [1, 2, 3]  # realizations, distinct
-//! solver = "cg"      # or "gfmd"
 //! tol = 1e-8         # solver residual (see engine::contact::Residual)
 //! ```
 //!
 //! `scene!` declares a scene struct with these fields followed by the experiment's own,
 //! and gives it [`Base`]: the surface parameters of a seed, its realization, a sweep, and
-//! the range checks, so that no experiment writes them again. (The fields are written into
+//! the range checks, so that no experiment writes them again. The solver is not part of a
+//! scene: the runner runs every scene with each solver it is asked for (GFMD for the
+//! headline, CG for the cross-check), and a job learns its solver from its
+//! [`JobContext`](super::JobContext). (The fields are written into
 //! the struct rather than flattened with `#[serde(flatten)]`: flattening loses the
 //! position of a bad value in the file and the name of its key in the error message.)
 
@@ -39,8 +41,6 @@ pub struct Base<'a> {
     pub lambda_s: f64,
     /// Realizations.
     pub seeds: &'a [u64],
-    /// Solver.
-    pub solver: SolverKind,
     /// Residual tolerance.
     pub tol: f64,
 }
@@ -85,14 +85,14 @@ impl Base<'_> {
         Ok(Realization { surface, model })
     }
 
-    /// A magnification sweep of `r` with this scene's solver and tolerance.
-    pub fn sweep<'r>(&self, r: &'r Realization) -> Sweep<'r> {
-        Sweep::new(&r.surface, &r.model, self.solver, self.solve_options())
+    /// A magnification sweep of `r` with `solver` at this scene's tolerance.
+    pub fn sweep<'r>(&self, r: &'r Realization, solver: SolverKind) -> Sweep<'r> {
+        Sweep::new(&r.surface, &r.model, solver, self.solve_options())
     }
 }
 
 /// Declares an experiment's scene: the fields of [`Base`] (`n`, `hurst`, `lambda_l`,
-/// `lambda_s`, `seeds`, `solver`, `tol`) followed by the experiment's own, with serde
+/// `lambda_s`, `seeds`, `tol`) followed by the experiment's own, with serde
 /// derives that refuse unknown keys, and a `base()` accessor.
 macro_rules! scene {
     (
@@ -115,8 +115,6 @@ macro_rules! scene {
             pub lambda_s: f64,
             /// Realizations.
             pub seeds: Vec<u64>,
-            /// Solver.
-            pub solver: $crate::engine::solver::SolverKind,
             /// Residual tolerance.
             pub tol: f64,
             $( $(#[$fmeta])* pub $field: $ty, )*
@@ -131,7 +129,6 @@ macro_rules! scene {
                     lambda_l: self.lambda_l,
                     lambda_s: self.lambda_s,
                     seeds: &self.seeds,
-                    solver: self.solver,
                     tol: self.tol,
                 }
             }

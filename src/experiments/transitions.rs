@@ -35,6 +35,7 @@ use serde::{Deserialize, Serialize};
 
 use super::scene::scene;
 use super::{Check, Conclusion, Criteria, Detail, Experiment, JobContext, Table};
+use crate::engine::solver::SolverKind;
 use crate::error::{check_open, check_positive, Error, Result};
 use crate::persson::{moments, Broadening, Correction};
 use crate::plot::{Axis, Figure, Series, Style};
@@ -151,10 +152,14 @@ impl TransitionScene {
 }
 
 /// Solves one realization at `zeta` and `zeta + dzeta` and bins its walkers.
-fn run_transition(scene: &TransitionScene, seed: u64) -> Result<TransitionResult> {
+fn run_transition(
+    scene: &TransitionScene,
+    seed: u64,
+    solver: SolverKind,
+) -> Result<TransitionResult> {
     let base = scene.base();
     let r = base.realization(seed)?;
-    let mut sweep = base.sweep(&r);
+    let mut sweep = base.sweep(&r, solver);
     let p0 = sweep.find_load(scene.zeta, scene.contact_area)?;
     let old = sweep
         .solution()
@@ -434,8 +439,8 @@ impl Experiment for Diffusion {
         scene.seeds.clone()
     }
 
-    fn run_job(scene: &TransitionScene, seed: &u64, _ctx: &JobContext) -> Result<TransitionResult> {
-        run_transition(scene, *seed)
+    fn run_job(scene: &TransitionScene, seed: &u64, ctx: &JobContext) -> Result<TransitionResult> {
+        run_transition(scene, *seed, ctx.solver)
     }
 
     fn conclude(
@@ -568,8 +573,8 @@ impl Experiment for Drift {
         scene.seeds.clone()
     }
 
-    fn run_job(scene: &TransitionScene, seed: &u64, _ctx: &JobContext) -> Result<TransitionResult> {
-        run_transition(scene, *seed)
+    fn run_job(scene: &TransitionScene, seed: &u64, ctx: &JobContext) -> Result<TransitionResult> {
+        run_transition(scene, *seed, ctx.solver)
     }
 
     fn conclude(

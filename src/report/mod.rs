@@ -1178,6 +1178,8 @@ mod tests {
                 format!("{name}/fig.png"),
             ],
             threads: 2,
+            solver: "gfmd".into(),
+            cross_check: None,
         }
     }
 

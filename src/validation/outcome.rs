@@ -60,4 +60,25 @@ pub struct Outcome {
     pub files: Vec<String>,
     /// Worker threads used.
     pub threads: usize,
+    /// The solver of the headline statistic.
+    #[serde(default)]
+    pub solver: String,
+    /// The same statistic from the other solver on the same scene, if it was run.
+    #[serde(default)]
+    pub cross_check: Option<CrossCheck>,
+}
+
+/// The headline statistic measured again with the other solver (same surfaces, loads and
+/// tolerance).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CrossCheck {
+    /// The solver.
+    pub solver: String,
+    /// Its value of the statistic.
+    pub value: f64,
+    /// Its standard error.
+    pub std_error: f64,
+    /// Whether the two solvers agree within their combined error (see
+    /// [`super::runner::agree`]).
+    pub agrees: bool,
 }

@@ -12,12 +12,14 @@ use std::time::Instant;
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 
-use super::definition::{Definition, Scale, Verdict};
-use super::outcome::Outcome;
+use super::definition::{Definition, Scale, Verdict, VerdictRule};
+use super::outcome::{CrossCheck, Outcome};
 use super::source::Source;
 use super::store::{self, job_key, jobs_dir, mark_written, remove_state, written_here, Stored};
+use crate::engine::solver::SolverKind;
 use crate::error::{Error, Result};
 use crate::experiments::{Experiment, JobContext};
+use crate::stats::Estimate;
 
 /// How to run validations.
 #[derive(Debug, Clone)]
@@ -31,66 +33,197 @@ pub struct RunOptions {
     pub resume: bool,
     /// Show progress bars on stderr (when it is a terminal).
     pub progress: bool,
+    /// The solvers to run every scene with: the first gives the headline statistic, the
+    /// second (if any) its cross-check.
+    pub solvers: Vec<SolverKind>,
+}
+
+impl RunOptions {
+    /// The headline solver (GFMD, the paper's method) and the cross-check (CG).
+    pub const BOTH: [SolverKind; 2] = [SolverKind::Gfmd, SolverKind::Cg];
+
+    /// Options for `scale` written to `out`: both solvers, no resume, no progress bars.
+    pub fn new(scale: Scale, out: impl Into<PathBuf>) -> Self {
+        Self {
+            scale,
+            out: out.into(),
+            resume: false,
+            progress: false,
+            solvers: Self::BOTH.to_vec(),
+        }
+    }
+}
+
+/// One job of one solver, and where its result and checkpoints live.
+pub(crate) struct Unit<J> {
+    pub solver: SolverKind,
+    pub job: J,
+    /// The job as JSON (what its key hashes, beside the scale and the scene).
+    pub job_json: String,
+    /// The stored result's file.
+    pub path: PathBuf,
+    /// The checkpoint folder.
+    pub state_dir: PathBuf,
+}
+
+/// A parsed, checked definition with its units of work.
+pub(crate) struct Prepared<E: Experiment> {
+    pub def: Definition<E::Scene>,
+    pub scene_json: serde_json::Value,
+    pub units: Vec<Unit<E::Job>>,
+}
+
+impl<E: Experiment> Prepared<E> {
+    /// The scene being run.
+    pub fn scene(&self, scale: Scale) -> &E::Scene {
+        self.def.scene(scale)
+    }
+}
+
+/// Parses and checks `source` and lists its jobs for every solver of `opts`.
+pub(crate) fn prepare<E: Experiment>(source: &Source, opts: &RunOptions) -> Result<Prepared<E>> {
+    if opts.solvers.is_empty() {
+        return Err(Error::invalid("solvers", "none", "at least one solver"));
+    }
+    let def = source.parse::<E::Scene>()?;
+    let (scene, jobs) = checked_scene::<E>(source, &def, opts.scale)?;
+    let scene_json = serde_json::to_value(scene).expect("scenes serialise");
+    let state = jobs_dir(&opts.out, E::FAMILY, opts.scale);
+    let mut units = Vec::new();
+    for &solver in &opts.solvers {
+        for job in &jobs {
+            let job_json = serde_json::to_string(job).expect("jobs serialise");
+            let key = job_key(opts.scale, &scene_json, solver, &job_json);
+            units.push(Unit {
+                solver,
+                job: job.clone(),
+                job_json,
+                path: state.join(format!("{key}.json")),
+                state_dir: state.join(format!("{key}.checkpoint")),
+            });
+        }
+    }
+    Ok(Prepared {
+        def,
+        scene_json,
+        units,
+    })
+}
+
+/// Runs (or, with `--resume` or when this process already stored it, loads) one unit.
+fn execute<E: Experiment>(
+    source: &Source,
+    scene: &E::Scene,
+    unit: &Unit<E::Job>,
+    opts: &RunOptions,
+) -> Result<E::JobResult> {
+    let ctx = JobContext {
+        solver: unit.solver,
+        state_dir: unit.state_dir.clone(),
+    };
+    if opts.resume || written_here(&unit.path) {
+        if let Some(stored) = store::load::<E::Job, E::JobResult>(&unit.path) {
+            // Checkpoints of a run killed after storing this result are spent.
+            remove_state(&ctx.state_dir).ok();
+            return Ok(stored.result);
+        }
+    }
+    if !opts.resume {
+        // A fresh run recomputes the job from the start: checkpoints an interrupted run
+        // left behind are continued only on request.
+        remove_state(&ctx.state_dir)?;
+    }
+    let result = E::run_job(scene, &unit.job, &ctx).map_err(|e| {
+        Error::bad_file(
+            &source.path,
+            format!(
+                "[{}, {}] job {}: {e}",
+                opts.scale,
+                unit.solver.name(),
+                unit.job_json
+            ),
+        )
+    })?;
+    let stored = Stored {
+        solver: unit.solver,
+        job: unit.job.clone(),
+        result,
+    };
+    store::store(&unit.path, &stored)?;
+    // Only now that the result is stored are the job's checkpoints dispensable; a run
+    // killed before this point resumes from them. A leftover is harmless (the next run of
+    // the job removes it), hence `ok()`.
+    remove_state(&ctx.state_dir).ok();
+    mark_written(unit.path.clone());
+    Ok(stored.result)
 }
 
 /// Runs experiment `E` on `source`.
 pub fn run_experiment<E: Experiment>(source: &Source, opts: &RunOptions) -> Result<Outcome> {
     let timer = Instant::now();
-    let def = source.parse::<E::Scene>()?;
-    let (scene, jobs) = checked_scene::<E>(source, &def, opts.scale)?;
-    let scene_json = serde_json::to_value(scene).expect("scenes serialise");
-    let dir = opts.out.join(&def.name);
-    let state = jobs_dir(&opts.out, E::FAMILY, opts.scale);
-
-    let bar = progress_bar(opts.progress, &def.name, jobs.len());
-    let results: Vec<(E::Job, E::JobResult)> = jobs
+    let prepared = prepare::<E>(source, opts)?;
+    let scene = prepared.scene(opts.scale);
+    let bar = progress_bar(opts.progress, &prepared.def.name, prepared.units.len());
+    let results: Vec<E::JobResult> = prepared
+        .units
         .par_iter()
-        .map(|job| -> Result<(E::Job, E::JobResult)> {
-            let job_json = serde_json::to_string(job).expect("jobs serialise");
-            let key = job_key(opts.scale, &scene_json, &job_json);
-            let path = state.join(format!("{key}.json"));
-            let job_ctx = JobContext {
-                state_dir: state.join(format!("{key}.checkpoint")),
-            };
-            if opts.resume || written_here(&path) {
-                if let Some(result) = store::load::<E::Job, E::JobResult>(&path) {
-                    // Checkpoints of a run killed after storing this result are spent.
-                    remove_state(&job_ctx.state_dir).ok();
-                    bar.inc(1);
-                    return Ok((job.clone(), result));
-                }
-            }
-            if !opts.resume {
-                // A fresh run recomputes the job from the start: checkpoints an interrupted
-                // run left behind are continued only on request.
-                remove_state(&job_ctx.state_dir)?;
-            }
-            let result = E::run_job(scene, job, &job_ctx).map_err(|e| {
-                Error::bad_file(
-                    &source.path,
-                    format!("[{}] job {job_json}: {e}", opts.scale),
-                )
-            })?;
-            let stored = Stored {
-                job: job.clone(),
-                result,
-            };
-            store::store(&path, &stored)?;
-            // Only now that the result is stored are the job's checkpoints dispensable; a
-            // run killed before this point resumes from them. A leftover is harmless (the
-            // next run of the job removes it), hence `ok()`.
-            remove_state(&job_ctx.state_dir).ok();
-            mark_written(path);
+        .map(|unit| {
+            let r = execute::<E>(source, scene, unit, opts);
             bar.inc(1);
-            Ok((stored.job, stored.result))
+            r
         })
         .collect::<Result<Vec<_>>>()?;
     bar.finish_and_clear();
+    conclude::<E>(
+        source,
+        &prepared,
+        results,
+        opts,
+        timer.elapsed().as_secs_f64(),
+    )
+}
 
-    let conclusion = E::conclude(&def.criteria(), scene, &results)?;
-    let measured = conclusion
-        .measured
-        .ok_or_else(|| Error::bad_file(&source.path, "the experiment measured nothing"))?;
+/// The headline and the cross-check from the units' results (in unit order), the verdict,
+/// and the outcome and its files.
+pub(crate) fn conclude<E: Experiment>(
+    source: &Source,
+    prepared: &Prepared<E>,
+    results: Vec<E::JobResult>,
+    opts: &RunOptions,
+    wall_s: f64,
+) -> Result<Outcome> {
+    let def = &prepared.def;
+    let scene = prepared.scene(opts.scale);
+    let criteria = def.criteria();
+    let mut by_solver: Vec<(SolverKind, Vec<(E::Job, E::JobResult)>)> = Vec::new();
+    for (unit, result) in prepared.units.iter().zip(results) {
+        match by_solver.iter_mut().find(|(s, _)| *s == unit.solver) {
+            Some((_, v)) => v.push((unit.job.clone(), result)),
+            None => by_solver.push((unit.solver, vec![(unit.job.clone(), result)])),
+        }
+    }
+    let mut conclusions = Vec::new();
+    for (solver, results) in &by_solver {
+        let c = E::conclude(&criteria, scene, results)
+            .map_err(|e| Error::bad_file(&source.path, format!("[{}] {e}", solver.name())))?;
+        let measured = c
+            .measured
+            .ok_or_else(|| Error::bad_file(&source.path, "the experiment measured nothing"))?;
+        conclusions.push((*solver, c, measured));
+    }
+    let max_residual = conclusions
+        .iter()
+        .map(|(_, c, _)| c.max_residual)
+        .fold(0.0, f64::max);
+    let mut rest = conclusions.into_iter();
+    let (solver, conclusion, measured) = rest.next().expect("at least one solver");
+    let cross_check = rest.next().map(|(s, _, m)| CrossCheck {
+        solver: s.name().to_string(),
+        value: m.value,
+        std_error: m.std_error,
+        agrees: agree(measured, m, &def.verdict),
+    });
+
     let verdict = def.verdict.judge(measured, conclusion.persson);
     let in_range = def.paper.range.is_none_or(|(lo, hi)| {
         // The measurement's interval overlaps the paper's range.
@@ -102,6 +235,7 @@ pub fn run_experiment<E: Experiment>(source: &Source, opts: &RunOptions) -> Resu
         v => Some(v == def.paper.verdict && in_range && conclusion.checks.iter().all(|c| c.passed)),
     };
 
+    let dir = opts.out.join(&def.name);
     let mut files = Vec::new();
     for (k, table) in conclusion.tables.iter().enumerate() {
         let path = if k == 0 {
@@ -139,20 +273,35 @@ pub fn run_experiment<E: Experiment>(source: &Source, opts: &RunOptions) -> Resu
         reproduced,
         rule: def.verdict,
         scale: opts.scale,
-        scene: scene_json,
+        scene: prepared.scene_json.clone(),
         definition_sha256: source.sha256(),
-        wall_s: timer.elapsed().as_secs_f64(),
-        max_residual: conclusion.max_residual,
+        wall_s,
+        max_residual,
         details: conclusion.details,
         checks: conclusion.checks,
         account: conclusion.account,
         golden: conclusion.golden,
         files,
         threads: rayon::current_num_threads(),
+        solver: solver.name().to_string(),
+        cross_check,
     };
     let json = serde_json::to_vec_pretty(&outcome).expect("outcomes serialise");
     crate::io::write_atomic(&opts.out.join(format!("{}.json", def.name)), &json)?;
     Ok(outcome)
+}
+
+/// Whether two solvers' estimates of one statistic agree: their difference within the
+/// verdict's significance times their combined standard error. Without an error bar (one
+/// realization) they agree when they differ by less than the verdict's resolution.
+pub fn agree(a: Estimate, b: Estimate, rule: &VerdictRule) -> bool {
+    let diff = (a.value - b.value).abs();
+    let combined = a.std_error.hypot(b.std_error);
+    if combined.is_finite() {
+        diff <= rule.significance * combined
+    } else {
+        diff <= rule.resolution
+    }
 }
 
 /// Parses `source` as a definition of experiment `E` and checks both of its scenes,

@@ -15,6 +15,7 @@ use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 
 use super::definition::Scale;
+use crate::engine::solver::SolverKind;
 use crate::error::{Error, Result};
 
 /// The jobs folder of a family at a scale.
@@ -22,11 +23,13 @@ pub fn jobs_dir(out: &Path, family: &str, scale: Scale) -> PathBuf {
     out.join("jobs").join(family).join(scale.to_string())
 }
 
-/// A short hash of everything that determines a job's result.
-pub fn job_key(scale: Scale, scene: &serde_json::Value, job: &str) -> String {
+/// A short hash of everything that determines a job's result: the scale, the scene, the
+/// solver and the job.
+pub fn job_key(scale: Scale, scene: &serde_json::Value, solver: SolverKind, job: &str) -> String {
     let mut h = Sha256::new();
     h.update(scale.to_string().as_bytes());
     h.update(scene.to_string().as_bytes());
+    h.update(solver.name().as_bytes());
     h.update(job.as_bytes());
     h.finalize()
         .iter()
@@ -38,6 +41,8 @@ pub fn job_key(scale: Scale, scene: &serde_json::Value, job: &str) -> String {
 /// A job's result as stored on disk.
 #[derive(Serialize, Deserialize)]
 pub struct Stored<J, R> {
+    /// The solver that ran it.
+    pub solver: SolverKind,
     /// The job.
     pub job: J,
     /// Its result.
@@ -45,10 +50,9 @@ pub struct Stored<J, R> {
 }
 
 /// A stored result, if present and readable (a damaged file is recomputed).
-pub fn load<J: DeserializeOwned, R: DeserializeOwned>(path: &Path) -> Option<R> {
+pub fn load<J: DeserializeOwned, R: DeserializeOwned>(path: &Path) -> Option<Stored<J, R>> {
     let bytes = std::fs::read(path).ok()?;
-    let stored: Stored<J, R> = serde_json::from_slice(&bytes).ok()?;
-    Some(stored.result)
+    serde_json::from_slice(&bytes).ok()
 }
 
 /// Stores a job's result atomically.

@@ -60,8 +60,8 @@ impl Experiment for ModeFrozen {
         seed_load_jobs(&scene.contact_areas, &scene.seeds)
     }
 
-    fn run_job(scene: &ModeScene, job: &SeedLoad, _ctx: &JobContext) -> Result<ModeResult> {
-        run_sweep(scene, job)
+    fn run_job(scene: &ModeScene, job: &SeedLoad, ctx: &JobContext) -> Result<ModeResult> {
+        run_sweep(scene, job, ctx.solver)
     }
 
     fn conclude(

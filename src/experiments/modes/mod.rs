@@ -83,6 +83,7 @@ use super::ensemble::{check_contact_areas, check_headline, LoadGroup, SeedLoad};
 use super::scene::scene;
 use super::Table;
 use crate::engine::contact::{ContactSolution, Model};
+use crate::engine::solver::SolverKind;
 use crate::error::{check_open, check_positive, Error, Result};
 use crate::persson::Correction;
 use crate::plot::{Axis, Figure, Series, Style};
@@ -242,7 +243,7 @@ impl Recorder for BandRecorder<'_> {
 }
 
 /// Runs one job: the load at full resolution, then the climb at that load.
-fn run_sweep(scene: &ModeScene, job: &SeedLoad) -> Result<ModeResult> {
+fn run_sweep(scene: &ModeScene, job: &SeedLoad, solver: SolverKind) -> Result<ModeResult> {
     let base = scene.base();
     let r = base.realization(job.seed)?;
     let e_star = r.model.halfspace.e_star();
@@ -258,7 +259,15 @@ fn run_sweep(scene: &ModeScene, job: &SeedLoad) -> Result<ModeResult> {
         contact_area: Vec::with_capacity(zetas.len()),
         band_energy: vec![Vec::with_capacity(zetas.len()); bands.len()],
     };
-    let climbed = climb(&base, &r, job.contact_area, &zetas, &mut recorder, None)?;
+    let climbed = climb(
+        &base,
+        solver,
+        &r,
+        job.contact_area,
+        &zetas,
+        &mut recorder,
+        None,
+    )?;
     Ok(ModeResult {
         p0: climbed.p0,
         zetas,

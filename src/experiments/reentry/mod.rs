@@ -141,6 +141,7 @@ fn run_history(
     let mut history = History::new(r.model.grid.points(), interval);
     let climbed = climb(
         &base,
+        ctx.solver,
         &r,
         job.contact_area,
         &steps,

@@ -55,6 +55,7 @@ use super::ensemble::{
 use super::scene::scene;
 use super::{max_residual, Check, Conclusion, Criteria, Detail, Experiment, JobContext};
 use crate::engine::contact::{ContactSolution, Model};
+use crate::engine::solver::SolverKind;
 use crate::engine::surface::Surface;
 use crate::engine::sweep::shell_steps;
 use crate::error::{check_positive, Error, Result};
@@ -161,7 +162,7 @@ impl Recorder for EnergyRecorder<'_> {
     }
 }
 
-fn run_sweep(scene: &EnergyScene, job: &SeedLoad) -> Result<EnergyResult> {
+fn run_sweep(scene: &EnergyScene, job: &SeedLoad, solver: SolverKind) -> Result<EnergyResult> {
     let base = scene.base();
     let real = base.realization(job.seed)?;
     let zeta_max = real.surface.zeta_max();
@@ -190,7 +191,15 @@ fn run_sweep(scene: &EnergyScene, job: &SeedLoad) -> Result<EnergyResult> {
             max_residual: 0.0,
         },
     };
-    let climbed = climb(&base, &real, job.contact_area, &zetas, &mut recorder, None)?;
+    let climbed = climb(
+        &base,
+        solver,
+        &real,
+        job.contact_area,
+        &zetas,
+        &mut recorder,
+        None,
+    )?;
     let mut r = recorder.r;
     r.max_residual = climbed.max_residual;
     Ok(r)
@@ -252,8 +261,8 @@ impl Experiment for TotalEnergy {
         seed_load_jobs(&scene.contact_areas, &scene.seeds)
     }
 
-    fn run_job(scene: &EnergyScene, job: &SeedLoad, _ctx: &JobContext) -> Result<EnergyResult> {
-        run_sweep(scene, job)
+    fn run_job(scene: &EnergyScene, job: &SeedLoad, ctx: &JobContext) -> Result<EnergyResult> {
+        run_sweep(scene, job, ctx.solver)
     }
 
     fn conclude(
@@ -579,7 +588,6 @@ mod tests {
             increments_at: vec![3.0],
             increments: 4,
             correction: Correction::default(),
-            solver: SolverKind::Cg,
             tol: 1e-8,
         };
         let w = &window_shells(&surface, &scene)[0];
