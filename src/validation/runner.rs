@@ -54,6 +54,9 @@ impl RunOptions {
     }
 }
 
+/// The jobs of one solver with their results, in job order.
+type Results<E> = Vec<(<E as Experiment>::Job, <E as Experiment>::JobResult)>;
+
 /// One job of one solver, and where its result and checkpoints live.
 pub(crate) struct Unit<J> {
     pub solver: SolverKind,
@@ -195,7 +198,7 @@ pub(crate) fn conclude<E: Experiment>(
     let def = &prepared.def;
     let scene = prepared.scene(opts.scale);
     let criteria = def.criteria();
-    let mut by_solver: Vec<(SolverKind, Vec<(E::Job, E::JobResult)>)> = Vec::new();
+    let mut by_solver: Vec<(SolverKind, Results<E>)> = Vec::new();
     for (unit, result) in prepared.units.iter().zip(results) {
         match by_solver.iter_mut().find(|(s, _)| *s == unit.solver) {
             Some((_, v)) => v.push((unit.job.clone(), result)),
