@@ -10,5 +10,6 @@ mod persson;
 mod readers_fuzz;
 mod registry;
 mod resume;
+mod shard;
 mod solvers;
 mod validations;

@@ -5,7 +5,9 @@
 use serde::{Deserialize, Serialize};
 
 use persson_check::error::Result;
-use persson_check::experiments::{Check, Conclusion, Criteria, Detail, Experiment, JobContext};
+use persson_check::experiments::{
+    Check, Conclusion, Criteria, Detail, Experiment, JobContext, Work,
+};
 use persson_check::stats::Estimate;
 use persson_check::validation::{Registry, RunOptions, Scale, Source, Verdict};
 
@@ -32,6 +34,11 @@ impl Experiment for Coin {
 
     fn jobs(scene: &CoinScene) -> Vec<u64> {
         scene.seeds.clone()
+    }
+
+    fn work(_scene: &CoinScene, _seed: &u64) -> Work {
+        // No solves: a coin costs nothing.
+        Work::default()
     }
 
     fn run_job(scene: &CoinScene, seed: &u64, _ctx: &JobContext) -> Result<f64> {
@@ -110,7 +117,10 @@ fn a_registered_experiment_runs_like_a_built_in_one() {
 
     let registry = Registry::builtin().with::<Coin>("coin");
     registry.check(&source).unwrap();
-    let o = registry.run(&source, &opts).unwrap();
+    let o = registry
+        .run(&source, &opts)
+        .unwrap()
+        .expect("a whole run has an outcome");
     assert!((o.value - 0.7).abs() < 1e-12, "{}", o.value);
     assert_eq!(o.verdict, Verdict::Violated);
     assert_eq!(o.reproduced, Some(true));

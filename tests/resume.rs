@@ -13,12 +13,14 @@ use std::os::unix::fs::MetadataExt;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::sync::OnceLock;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use persson_check::io::checkpoint::{Array, Checkpoints};
 use serde_json::Value;
 
-use crate::common::{definitions_with_reentry, outcome_numbers, table_without_wall};
+use crate::common::{
+    definitions_with_reentry, finish, kill_when, outcome_numbers, table_without_wall,
+};
 
 /// The reduced re-entry scene of these tests, spliced into the real definition's header.
 const SCENE: &str = "[reduced]
@@ -41,9 +43,6 @@ tol = 1e-8
 /// one. Wall times are excluded from every comparison of numbers.
 const MARK: f64 = 1e6;
 
-/// Longest a single run may take before the test gives up.
-const TIMEOUT: Duration = Duration::from_secs(180);
-
 /// A folder holding `c_reentry.toml` with the reduced scene [`SCENE`].
 fn definitions() -> tempfile::TempDir {
     definitions_with_reentry(SCENE, &[])
@@ -62,38 +61,6 @@ fn validate(threads: usize, defs: &Path, out: &Path, resume: bool) -> Command {
         cmd.arg("--resume");
     }
     cmd
-}
-
-/// Runs `cmd` to completion and checks that it succeeded.
-fn finish(mut cmd: Command) {
-    let output = cmd.output().unwrap();
-    assert!(
-        output.status.success(),
-        "{cmd:?} failed:\n{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-}
-
-/// Starts `cmd`, waits until `ready()` holds, and kills the process (SIGKILL).
-fn kill_when(mut cmd: Command, what: &str, ready: impl Fn() -> bool) {
-    let mut child = cmd
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .spawn()
-        .unwrap();
-    let start = Instant::now();
-    loop {
-        if ready() {
-            child.kill().unwrap();
-            child.wait().unwrap();
-            return;
-        }
-        if let Some(status) = child.try_wait().unwrap() {
-            panic!("the run ended ({status}) before {what}: make the scene longer");
-        }
-        assert!(start.elapsed() < TIMEOUT, "no {what} after {TIMEOUT:?}");
-        std::thread::sleep(Duration::from_millis(2));
-    }
 }
 
 /// Where the re-entry family keeps its job results and checkpoints.

@@ -1,12 +1,15 @@
 //! `validate`: run named validations (all by default) and write their outcomes.
 
 use std::path::PathBuf;
+use std::sync::Arc;
 
 use clap::Args as ClapArgs;
 use persson_check::engine::solver::SolverKind;
 use persson_check::error::{Error, Result};
+use persson_check::validation::plan::{definition_hashes, Plan};
+use persson_check::validation::shard::Shard;
 use persson_check::validation::source::{builtin_sources, select, sources_in, Source};
-use persson_check::validation::{Outcome, Registry, RunOptions, Scale};
+use persson_check::validation::{Mode, Outcome, Registry, RunOptions, Scale};
 
 /// Arguments of `validate`.
 #[derive(ClapArgs, Debug)]
@@ -22,16 +25,39 @@ pub struct Args {
     /// Reuse job results already in the output folder (continue an interrupted run).
     #[arg(long)]
     resume: bool,
-    /// Output folder: <name>.json, <name>.csv and figures.
-    #[arg(long)]
-    out: PathBuf,
+    /// Output folder: <name>.json, <name>.csv and figures (optional with --plan, where
+    /// it adds the measured time of every finished job).
+    #[arg(long, required_unless_present = "plan")]
+    out: Option<PathBuf>,
     /// Run one solver only (default: GFMD for the headline and CG for the cross-check).
     #[arg(long, value_enum)]
     solver: Option<SolverKind>,
+    /// Run only share K of N of the jobs (K/N, 1 <= K <= N), or the share the scheduler
+    /// gives (auto: a Slurm job array, or a Kubernetes indexed job with --shards N); writes
+    /// job results under <out>/jobs/ and no outcome. Finished jobs are skipped.
+    #[arg(long, conflicts_with_all = ["merge", "plan", "resume"])]
+    shard: Option<String>,
+    /// Number of shares, for --plan and for --shard auto in a Kubernetes indexed job.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    shards: Option<u32>,
+    /// Write the outcomes from the job results the shares stored under <out>/jobs/,
+    /// exactly as one process running every job would; runs nothing.
+    #[arg(long, conflicts_with_all = ["plan", "resume"])]
+    merge: bool,
+    /// With --merge: accept job results computed by another commit (recorded in the
+    /// outcome).
+    #[arg(long, requires = "merge")]
+    accept_other_commit: bool,
+    /// Print the jobs with their estimated cost (and share, with --shards N) as JSON; runs
+    /// nothing.
+    #[arg(long)]
+    plan: bool,
 }
 
 pub fn run(args: Args) -> Result<()> {
-    super::check_out_dir(&args.out)?;
+    if let Some(out) = &args.out {
+        super::check_out_dir(out)?;
+    }
     let sources = match &args.dir {
         Some(dir) => definitions_in(dir)?,
         None => builtin_sources(),
@@ -42,24 +68,70 @@ pub fn run(args: Args) -> Result<()> {
     for source in &sources {
         registry.check(source)?;
     }
-    let opts = RunOptions {
+    // Without --out (a plan only), results are looked for nowhere.
+    let out = args.out.clone().unwrap_or_default();
+    let mut opts = RunOptions {
         scale: if args.full {
             Scale::Full
         } else {
             Scale::Reduced
         },
-        out: args.out.clone(),
+        out: out.clone(),
         resume: args.resume,
         progress: true,
         solvers: match args.solver {
             Some(kind) => vec![kind],
             None => RunOptions::BOTH.to_vec(),
         },
+        mode: Mode::All,
     };
+    let shard = match args.shard.as_deref() {
+        None => None,
+        Some("auto") => Some(Shard::from_env(
+            |name| std::env::var(name).ok(),
+            args.shards.map(|n| n as usize),
+        )?),
+        Some(text) => Some(Shard::parse(text)?),
+    };
+    if args.plan || shard.is_some() || args.merge {
+        let mut units = Vec::new();
+        for source in &sources {
+            units.extend(registry.jobs(source, &opts)?);
+        }
+        let shards = shard.map(|s| s.n).or(args.shards.map(|n| n as usize));
+        let plan = Plan::new(units, shards);
+        if args.plan {
+            let json = serde_json::to_string_pretty(&plan).expect("plans serialise");
+            println!("{json}");
+            return Ok(());
+        }
+        if let Some(shard) = shard {
+            let jobs = plan.share(shard);
+            eprintln!(
+                "shard {shard}: {} of {} jobs (estimated {:.2} core-hours of {:.2})",
+                jobs.len(),
+                plan.jobs.len(),
+                plan.share_costs[shard.k - 1] / 3600.0,
+                plan.core_hours
+            );
+            opts.mode = Mode::Share {
+                shard,
+                jobs: Arc::new(jobs),
+            };
+        } else {
+            // Merge: every job's result must be there (and usable) before anything is
+            // written.
+            plan.check_merge(&definition_hashes(&sources)?, args.accept_other_commit)?;
+            opts.mode = Mode::Merge {
+                other_commits_accepted: args.accept_other_commit,
+            };
+        }
+    }
     let mut failed = Vec::new();
     for (path, result) in registry.run_all(&sources, &opts) {
         match result {
-            Ok(o) => println!("{}", summary_line(&o)),
+            Ok(Some(o)) => println!("{}", summary_line(&o)),
+            Ok(None) => {}
             Err(e) => {
                 eprintln!("error: {e}");
                 failed.push(path.display().to_string());

@@ -25,7 +25,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{Check, Conclusion, Criteria, Detail, Experiment, JobContext, Table};
+use super::{Check, Conclusion, Criteria, Detail, Experiment, JobContext, Table, Work};
 use crate::engine::contact::Model;
 use crate::engine::solver::SolveOptions;
 use crate::engine::surface::{Surface, SurfaceParams};
@@ -178,6 +178,17 @@ impl Experiment for ContactArea {
             }
         }
         jobs
+    }
+
+    fn work(scene: &AreaScene, job: &AreaJob) -> Work {
+        // One solve per load, each from the previous one (the first from cold).
+        let n = scene.n * job.refine;
+        Work {
+            points: n * n,
+            searches: 0.0,
+            solves: scene.reduced_pressures.len() as f64,
+            shells: 0.0,
+        }
     }
 
     fn run_job(scene: &AreaScene, job: &AreaJob, ctx: &JobContext) -> Result<AreaResult> {

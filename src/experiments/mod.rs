@@ -230,6 +230,36 @@ pub struct JobContext {
     pub state_dir: PathBuf,
 }
 
+/// What a job costs: the solves it makes on its grid. The runner turns it into an
+/// estimated time per solver ([`crate::validation::plan`]).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Work {
+    /// Grid points of each solve.
+    pub points: usize,
+    /// Searches for the load that gives a contact area (several solves each, the first
+    /// from cold).
+    pub searches: f64,
+    /// Solves at a given load, each started from the previous solution.
+    pub solves: f64,
+    /// Solves that add a single shell of modes to the previous solution's surface (the
+    /// cheapest warm starts).
+    pub shells: f64,
+}
+
+impl Work {
+    /// A search for the load on an `n x n` grid followed by `solves` warm-started solves
+    /// and `shells` single-shell steps (a magnification climb, or a transition with one
+    /// step).
+    pub fn climb(n: usize, solves: usize, shells: usize) -> Self {
+        Self {
+            points: n * n,
+            searches: 1.0,
+            solves: solves as f64,
+            shells: shells as f64,
+        }
+    }
+}
+
 /// The code behind a family of validations.
 pub trait Experiment {
     /// Name of the job family: experiments that share a family share job results (two
@@ -248,6 +278,10 @@ pub trait Experiment {
 
     /// The jobs of a scene.
     fn jobs(scene: &Self::Scene) -> Vec<Self::Job>;
+
+    /// What one job costs (its grid and its solves), for splitting a run into shares
+    /// before anything runs.
+    fn work(scene: &Self::Scene, job: &Self::Job) -> Work;
 
     /// Runs one job.
     fn run_job(scene: &Self::Scene, job: &Self::Job, ctx: &JobContext) -> Result<Self::JobResult>;

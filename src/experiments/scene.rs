@@ -64,6 +64,36 @@ impl Base<'_> {
         self.lambda_l / self.lambda_s
     }
 
+    /// How many distinct shells (`k2 = mx^2 + my^2`) a magnification climb from `zeta_from`
+    /// (excluded) to `zeta_to` (included) resolves one at a time: the steps of a climb
+    /// through every shell, counted on the grid without generating a surface.
+    pub fn shells(&self, zeta_from: f64, zeta_to: f64) -> usize {
+        let Ok(grid) = Grid::new(self.n, 1.0) else {
+            return 0;
+        };
+        let lo = if zeta_from > 0.0 {
+            grid.shell_limit(zeta_from, self.lambda_l)
+        } else {
+            0
+        };
+        let half = (self.n / 2) as u64;
+        let hi = (grid.shell_limit(zeta_to, self.lambda_l) as u64).min(2 * half * half);
+        let mut seen = vec![false; hi as usize + 1];
+        let r = (hi as f64).sqrt() as u64;
+        for i in 0..=r.min(half) {
+            for j in i..=r.min(half) {
+                let k2 = i * i + j * j;
+                if k2 <= hi {
+                    seen[k2 as usize] = true;
+                }
+            }
+        }
+        seen.iter()
+            .enumerate()
+            .filter(|&(k2, &s)| s && k2 as u64 > lo as u64)
+            .count()
+    }
+
     /// The solver's options.
     pub fn solve_options(&self) -> SolveOptions {
         SolveOptions::with_tol(self.tol)

@@ -34,7 +34,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::scene::scene;
-use super::{Check, Conclusion, Criteria, Detail, Experiment, JobContext, Table};
+use super::{Check, Conclusion, Criteria, Detail, Experiment, JobContext, Table, Work};
 use crate::engine::solver::SolverKind;
 use crate::error::{check_open, check_positive, Error, Result};
 use crate::persson::{moments, Broadening, Correction};
@@ -439,6 +439,11 @@ impl Experiment for Diffusion {
         scene.seeds.clone()
     }
 
+    fn work(scene: &TransitionScene, _seed: &u64) -> Work {
+        // The load at zeta, then one step of dzeta.
+        Work::climb(scene.n, 1, 0)
+    }
+
     fn run_job(scene: &TransitionScene, seed: &u64, ctx: &JobContext) -> Result<TransitionResult> {
         run_transition(scene, *seed, ctx.solver)
     }
@@ -571,6 +576,11 @@ impl Experiment for Drift {
 
     fn jobs(scene: &TransitionScene) -> Vec<u64> {
         scene.seeds.clone()
+    }
+
+    fn work(scene: &TransitionScene, _seed: &u64) -> Work {
+        // The load at zeta, then one step of dzeta.
+        Work::climb(scene.n, 1, 0)
     }
 
     fn run_job(scene: &TransitionScene, seed: &u64, ctx: &JobContext) -> Result<TransitionResult> {

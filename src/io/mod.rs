@@ -1,7 +1,8 @@
 //! Atomic file writes: results appear whole or not at all.
 //!
-//! A file is written to a temporary sibling (`NAME.tmp.PID.K`, unique to the process and
-//! the call, so that threads writing the same file never share one), flushed to disk, and
+//! A file is written to a temporary sibling (`NAME.tmp.HOST.PID.K`, unique to the machine,
+//! the process and the call, so that neither threads nor processes on different machines
+//! sharing a folder ever share one), flushed to disk, and
 //! renamed over its final name; a run killed halfway leaves the previous file (or none) in
 //! place, never a truncated one.
 
@@ -12,6 +13,7 @@ use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::OnceLock;
 
 use crate::error::{Error, Result};
 
@@ -51,10 +53,23 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
 
 fn temp_name(path: &Path) -> PathBuf {
     static CALLS: AtomicU64 = AtomicU64::new(0);
+    static HOST: OnceLock<String> = OnceLock::new();
     let k = CALLS.fetch_add(1, Ordering::Relaxed);
+    let host = HOST.get_or_init(host_name);
     let mut name = path.file_name().unwrap_or_default().to_os_string();
-    name.push(format!(".tmp.{}.{k}", std::process::id()));
+    name.push(format!(".tmp.{host}.{}.{k}", std::process::id()));
     path.with_file_name(name)
+}
+
+/// This machine's host name (from the kernel, else `$HOSTNAME`; "unknown" where neither
+/// is readable).
+pub fn host_name() -> String {
+    std::fs::read_to_string("/proc/sys/kernel/hostname")
+        .ok()
+        .or_else(|| std::env::var("HOSTNAME").ok())
+        .map(|h| h.trim().to_string())
+        .filter(|h| !h.is_empty())
+        .unwrap_or_else(|| "unknown".into())
 }
 
 #[cfg(test)]

@@ -1180,6 +1180,7 @@ mod tests {
             threads: 2,
             solver: "gfmd".into(),
             cross_check: None,
+            merge: None,
         }
     }
 

@@ -20,19 +20,23 @@
 //! * [`outcome`]: the record of a run;
 //! * [`store`]: job results and checkpoints on disk;
 //! * [`runner`]: running one experiment's definition;
-//! * [`registry`]: the table of experiments.
+//! * [`registry`]: the table of experiments;
+//! * [`shard`] and [`plan`]: runs split into shares over many machines (a scheduler's job
+//!   array over a shared output folder) and merged into the outcomes of one run.
 
 pub mod definition;
 pub mod outcome;
+pub mod plan;
 pub mod registry;
 pub mod runner;
+pub mod shard;
 pub mod source;
 pub mod store;
 
 pub use definition::{Definition, PaperFinding, Scale, Verdict, VerdictRule};
 pub use outcome::Outcome;
 pub use registry::{check, run, Registry};
-pub use runner::RunOptions;
+pub use runner::{Mode, RunOptions};
 pub use source::Source;
 
 // The outcome's secondary statistics and checks are the experiments' own records.

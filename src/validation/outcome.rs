@@ -5,6 +5,7 @@ use std::collections::BTreeMap;
 use serde::{Deserialize, Serialize};
 
 use super::definition::{Scale, Verdict, VerdictRule};
+use super::store::JobRun;
 use crate::experiments::{Check, Detail};
 
 /// The record of one validation run: `<name>.json` ([`crate::conventions`], section 7).
@@ -66,6 +67,72 @@ pub struct Outcome {
     /// The same statistic from the other solver on the same scene, if it was run.
     #[serde(default)]
     pub cross_check: Option<CrossCheck>,
+    /// For an outcome merged from a sharded run: the shares that computed its jobs.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub merge: Option<MergeRecord>,
+}
+
+/// The provenance of an outcome merged from the stored results of a sharded run.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MergeRecord {
+    /// The commit of the merging code.
+    pub commit: String,
+    /// Whether job results of another commit were accepted (`--accept-other-commit`).
+    pub other_commits_accepted: bool,
+    /// Every share (or unsharded run) whose results went into the outcome.
+    pub shards: Vec<ShardRecord>,
+}
+
+/// One share of a sharded run, as its stored results record it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ShardRecord {
+    /// `K/N`, or "unsharded" for results of a plain run.
+    pub shard: String,
+    /// Host name.
+    pub host: String,
+    /// Start of its first job, RFC 3339 UTC.
+    pub start: String,
+    /// End of its last job, RFC 3339 UTC.
+    pub end: String,
+    /// Jobs of this outcome it computed.
+    pub jobs: usize,
+    /// Its commit.
+    pub commit: String,
+}
+
+impl ShardRecord {
+    /// The shares of a set of job provenances, one record per share and host, in order.
+    pub fn from_runs(runs: &[JobRun]) -> Vec<Self> {
+        let mut groups: BTreeMap<(String, String, String), Vec<&JobRun>> = BTreeMap::new();
+        for r in runs {
+            let shard = r.shard.clone().unwrap_or_else(|| "unsharded".into());
+            groups
+                .entry((shard, r.host.clone(), r.commit.clone()))
+                .or_default()
+                .push(r);
+        }
+        groups
+            .into_iter()
+            .map(|((shard, host, commit), rs)| {
+                let first = rs
+                    .iter()
+                    .min_by(|a, b| a.span.0.total_cmp(&b.span.0))
+                    .expect("non-empty group");
+                let last = rs
+                    .iter()
+                    .max_by(|a, b| a.span.1.total_cmp(&b.span.1))
+                    .expect("non-empty group");
+                ShardRecord {
+                    shard,
+                    host,
+                    start: first.start.clone(),
+                    end: last.end.clone(),
+                    jobs: rs.len(),
+                    commit,
+                }
+            })
+            .collect()
+    }
 }
 
 /// The headline statistic measured again with the other solver (same surfaces, loads and

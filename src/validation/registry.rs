@@ -9,17 +9,21 @@
 use std::marker::PhantomData;
 
 use super::outcome::Outcome;
-use super::runner::{check_experiment, run_experiment, RunOptions};
+use super::plan::PlannedUnit;
+use super::runner::{check_experiment, planned_units, run_experiment, RunOptions};
 use super::source::Source;
 use crate::error::{Error, Result};
 use crate::experiments::{contact_area, modes, reentry, total_energy, transitions, Experiment};
 
 /// What the runner needs of an experiment, without its types.
 pub trait Entry: Send + Sync {
-    /// Runs a definition of this experiment.
-    fn run(&self, source: &Source, opts: &RunOptions) -> Result<Outcome>;
+    /// Runs a definition of this experiment: its outcome, or `None` for one share of a
+    /// sharded run ([`super::runner::Mode`]).
+    fn run(&self, source: &Source, opts: &RunOptions) -> Result<Option<Outcome>>;
     /// Checks a definition of this experiment (both scenes) without running it.
     fn check(&self, source: &Source) -> Result<()>;
+    /// The jobs a run of the definition with `opts` would run, with their costs.
+    fn jobs(&self, source: &Source, opts: &RunOptions) -> Result<Vec<PlannedUnit>>;
 }
 
 /// The entry of experiment `E`.
@@ -31,12 +35,16 @@ impl<E> Of<E> {
 }
 
 impl<E: Experiment> Entry for Of<E> {
-    fn run(&self, source: &Source, opts: &RunOptions) -> Result<Outcome> {
+    fn run(&self, source: &Source, opts: &RunOptions) -> Result<Option<Outcome>> {
         run_experiment::<E>(source, opts)
     }
 
     fn check(&self, source: &Source) -> Result<()> {
         check_experiment::<E>(source)
+    }
+
+    fn jobs(&self, source: &Source, opts: &RunOptions) -> Result<Vec<PlannedUnit>> {
+        planned_units::<E>(source, opts)
     }
 }
 
@@ -60,12 +68,16 @@ pub struct Registry {
 struct Static(&'static dyn Entry);
 
 impl Entry for Static {
-    fn run(&self, source: &Source, opts: &RunOptions) -> Result<Outcome> {
+    fn run(&self, source: &Source, opts: &RunOptions) -> Result<Option<Outcome>> {
         self.0.run(source, opts)
     }
 
     fn check(&self, source: &Source) -> Result<()> {
         self.0.check(source)
+    }
+
+    fn jobs(&self, source: &Source, opts: &RunOptions) -> Result<Vec<PlannedUnit>> {
+        self.0.jobs(source, opts)
     }
 }
 
@@ -112,9 +124,14 @@ impl Registry {
             })
     }
 
-    /// Runs `source`.
-    pub fn run(&self, source: &Source, opts: &RunOptions) -> Result<Outcome> {
+    /// Runs `source`: its outcome, or `None` for one share of a sharded run.
+    pub fn run(&self, source: &Source, opts: &RunOptions) -> Result<Option<Outcome>> {
         self.entry(source)?.run(source, opts)
+    }
+
+    /// The jobs of `source` run with `opts`, with their costs.
+    pub fn jobs(&self, source: &Source, opts: &RunOptions) -> Result<Vec<PlannedUnit>> {
+        self.entry(source)?.jobs(source, opts)
     }
 
     /// Checks `source` without running it: its header, the experiment it names, and the
@@ -128,7 +145,7 @@ impl Registry {
         &self,
         sources: &[Source],
         opts: &RunOptions,
-    ) -> Vec<(std::path::PathBuf, Result<Outcome>)> {
+    ) -> Vec<(std::path::PathBuf, Result<Option<Outcome>>)> {
         sources
             .iter()
             .map(|s| (s.path.clone(), self.run(s, opts)))
@@ -136,9 +153,11 @@ impl Registry {
     }
 }
 
-/// Runs `source` with the built-in experiments.
+/// Runs `source` with the built-in experiments (every job, to its outcome).
 pub fn run(source: &Source, opts: &RunOptions) -> Result<Outcome> {
-    Registry::builtin().run(source, opts)
+    Registry::builtin()
+        .run(source, opts)?
+        .ok_or_else(|| Error::bad_file(&source.path, "a share of a run has no outcome"))
 }
 
 /// Checks `source` against the built-in experiments.

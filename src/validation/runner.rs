@@ -6,19 +6,25 @@
 //! left alone with `--resume` (so the job continues from its last checkpoint), and removed
 //! once the job's result is stored, never before.
 
+use std::collections::HashSet;
 use std::path::{Path, PathBuf};
-use std::time::Instant;
+use std::sync::Arc;
+use std::time::{Instant, SystemTime, UNIX_EPOCH};
 
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 
 use super::definition::{Definition, Scale, Verdict, VerdictRule};
-use super::outcome::{CrossCheck, Outcome};
+use super::outcome::{CrossCheck, MergeRecord, Outcome, ShardRecord};
+use super::plan::{estimate_seconds, PlannedUnit};
+use super::shard::Shard;
 use super::source::Source;
-use super::store::{self, job_key, jobs_dir, mark_written, remove_state, written_here, Stored};
+use super::store::{
+    self, job_key, jobs_dir, mark_written, remove_state, written_here, JobRun, Stored,
+};
 use crate::engine::solver::SolverKind;
 use crate::error::{Error, Result};
-use crate::experiments::{Experiment, JobContext};
+use crate::experiments::{Experiment, JobContext, Work};
 use crate::stats::Estimate;
 
 /// How to run validations.
@@ -36,6 +42,30 @@ pub struct RunOptions {
     /// The solvers to run every scene with: the first gives the headline statistic, the
     /// second (if any) its cross-check.
     pub solvers: Vec<SolverKind>,
+    /// Run everything, one share of the jobs, or merge the shares' results.
+    pub mode: Mode,
+}
+
+/// What a run does with a definition's jobs.
+#[derive(Debug, Clone, Default)]
+pub enum Mode {
+    /// Run every job (or reuse stored results, see [`RunOptions::resume`]) and conclude.
+    #[default]
+    All,
+    /// Run only the jobs whose result files are in `jobs` (one share of a sharded run,
+    /// resuming from stored results and checkpoints) and conclude nothing.
+    Share {
+        /// Which share, recorded with every result.
+        shard: Shard,
+        /// The result files of this share's jobs.
+        jobs: Arc<HashSet<PathBuf>>,
+    },
+    /// Run nothing: conclude from the stored results of every job (all present, checked
+    /// by [`super::plan::check_merge`] first), recording the shares that computed them.
+    Merge {
+        /// Whether results of another commit were accepted.
+        other_commits_accepted: bool,
+    },
 }
 
 impl RunOptions {
@@ -50,7 +80,22 @@ impl RunOptions {
             resume: false,
             progress: false,
             solvers: Self::BOTH.to_vec(),
+            mode: Mode::All,
         }
+    }
+
+    /// The share of a sharded run, if this is one.
+    pub fn shard(&self) -> Option<Shard> {
+        match &self.mode {
+            Mode::Share { shard, .. } => Some(*shard),
+            _ => None,
+        }
+    }
+
+    /// Whether stored results are reused: with `--resume`, and always by a share (which
+    /// continues where a killed run of it stopped) or a merge.
+    fn reuses_results(&self) -> bool {
+        self.resume || !matches!(self.mode, Mode::All)
     }
 }
 
@@ -67,6 +112,8 @@ pub(crate) struct Unit<J> {
     pub path: PathBuf,
     /// The checkpoint folder.
     pub state_dir: PathBuf,
+    /// What it costs.
+    pub work: Work,
 }
 
 /// A parsed, checked definition with its units of work.
@@ -103,6 +150,7 @@ pub(crate) fn prepare<E: Experiment>(source: &Source, opts: &RunOptions) -> Resu
                 job_json,
                 path: state.join(format!("{key}.json")),
                 state_dir: state.join(format!("{key}.checkpoint")),
+                work: E::work(scene, job),
             });
         }
     }
@@ -113,9 +161,30 @@ pub(crate) fn prepare<E: Experiment>(source: &Source, opts: &RunOptions) -> Resu
     })
 }
 
+/// The units of `source` run with `opts`, for planning a sharded run.
+pub(crate) fn planned_units<E: Experiment>(
+    source: &Source,
+    opts: &RunOptions,
+) -> Result<Vec<PlannedUnit>> {
+    let prepared = prepare::<E>(source, opts)?;
+    Ok(prepared
+        .units
+        .into_iter()
+        .map(|u| PlannedUnit {
+            validation: prepared.def.name.clone(),
+            solver: u.solver,
+            job: serde_json::from_str(&u.job_json).expect("jobs serialise"),
+            cost: estimate_seconds(u.work, u.solver),
+            work: u.work,
+            path: u.path,
+        })
+        .collect())
+}
+
 /// Runs (or, with `--resume` or when this process already stored it, loads) one unit.
 fn execute<E: Experiment>(
     source: &Source,
+    name: &str,
     scene: &E::Scene,
     unit: &Unit<E::Job>,
     opts: &RunOptions,
@@ -124,18 +193,26 @@ fn execute<E: Experiment>(
         solver: unit.solver,
         state_dir: unit.state_dir.clone(),
     };
-    if opts.resume || written_here(&unit.path) {
+    if opts.reuses_results() || written_here(&unit.path) {
         if let Some(stored) = store::load::<E::Job, E::JobResult>(&unit.path) {
             // Checkpoints of a run killed after storing this result are spent.
             remove_state(&ctx.state_dir).ok();
             return Ok(stored.result);
         }
     }
-    if !opts.resume {
+    if matches!(opts.mode, Mode::Merge { .. }) {
+        return Err(Error::bad_file(
+            &unit.path,
+            "no readable job result to merge (removed after the check?)",
+        ));
+    }
+    if !opts.reuses_results() {
         // A fresh run recomputes the job from the start: checkpoints an interrupted run
         // left behind are continued only on request.
         remove_state(&ctx.state_dir)?;
     }
+    let started = SystemTime::now();
+    let timer = Instant::now();
     let result = E::run_job(scene, &unit.job, &ctx).map_err(|e| {
         Error::bad_file(
             &source.path,
@@ -147,10 +224,23 @@ fn execute<E: Experiment>(
             ),
         )
     })?;
+    let wall_s = timer.elapsed().as_secs_f64();
+    let ended = SystemTime::now();
     let stored = Stored {
         solver: unit.solver,
         job: unit.job.clone(),
         result,
+        run: Some(JobRun {
+            host: crate::io::host_name(),
+            start: crate::provenance::rfc3339_utc(started),
+            end: crate::provenance::rfc3339_utc(ended),
+            span: (epoch_seconds(started), epoch_seconds(ended)),
+            wall_s,
+            commit: crate::provenance::commit_label(),
+            definition: name.to_string(),
+            definition_sha256: source.sha256(),
+            shard: opts.shard().map(|s| s.to_string()),
+        }),
     };
     store::store(&unit.path, &stored)?;
     // Only now that the result is stored are the job's checkpoints dispensable; a run
@@ -161,29 +251,63 @@ fn execute<E: Experiment>(
     Ok(stored.result)
 }
 
-/// Runs experiment `E` on `source`.
-pub fn run_experiment<E: Experiment>(source: &Source, opts: &RunOptions) -> Result<Outcome> {
+fn epoch_seconds(t: SystemTime) -> f64 {
+    t.duration_since(UNIX_EPOCH)
+        .map_or(0.0, |d| d.as_secs_f64())
+}
+
+/// Runs experiment `E` on `source`: every job and the outcome ([`Mode::All`]), the
+/// outcome from stored results ([`Mode::Merge`]), or one share's jobs and no outcome
+/// ([`Mode::Share`], returns `None`).
+pub fn run_experiment<E: Experiment>(
+    source: &Source,
+    opts: &RunOptions,
+) -> Result<Option<Outcome>> {
     let timer = Instant::now();
     let prepared = prepare::<E>(source, opts)?;
     let scene = prepared.scene(opts.scale);
-    let bar = progress_bar(opts.progress, &prepared.def.name, prepared.units.len());
-    let results: Vec<E::JobResult> = prepared
-        .units
+    let selected: Vec<&Unit<E::Job>> = match &opts.mode {
+        Mode::Share { jobs, .. } => prepared
+            .units
+            .iter()
+            .filter(|u| jobs.contains(&u.path))
+            .collect(),
+        _ => prepared.units.iter().collect(),
+    };
+    let bar = progress_bar(opts.progress, &prepared.def.name, selected.len());
+    let results: Vec<E::JobResult> = selected
         .par_iter()
         .map(|unit| {
-            let r = execute::<E>(source, scene, unit, opts);
+            let r = execute::<E>(source, &prepared.def.name, scene, unit, opts);
             bar.inc(1);
             r
         })
         .collect::<Result<Vec<_>>>()?;
     bar.finish_and_clear();
-    conclude::<E>(
-        source,
-        &prepared,
-        results,
-        opts,
-        timer.elapsed().as_secs_f64(),
-    )
+    if let Mode::Share { .. } = opts.mode {
+        return Ok(None);
+    }
+    let (wall_s, merge) = match &opts.mode {
+        Mode::Merge {
+            other_commits_accepted,
+        } => {
+            let runs = prepared
+                .units
+                .iter()
+                .filter_map(|u| store::load_run(&u.path).and_then(|s| s.run))
+                .collect::<Vec<_>>();
+            let first = runs.iter().map(|r| r.span.0).fold(f64::INFINITY, f64::min);
+            let last = runs.iter().map(|r| r.span.1).fold(0.0, f64::max);
+            let record = MergeRecord {
+                commit: crate::provenance::commit_label(),
+                other_commits_accepted: *other_commits_accepted,
+                shards: ShardRecord::from_runs(&runs),
+            };
+            ((last - first).max(0.0), Some(record))
+        }
+        _ => (timer.elapsed().as_secs_f64(), None),
+    };
+    conclude::<E>(source, &prepared, results, opts, wall_s, merge).map(Some)
 }
 
 /// The headline and the cross-check from the units' results (in unit order), the verdict,
@@ -194,6 +318,7 @@ pub(crate) fn conclude<E: Experiment>(
     results: Vec<E::JobResult>,
     opts: &RunOptions,
     wall_s: f64,
+    merge: Option<MergeRecord>,
 ) -> Result<Outcome> {
     let def = &prepared.def;
     let scene = prepared.scene(opts.scale);
@@ -288,6 +413,7 @@ pub(crate) fn conclude<E: Experiment>(
         threads: rayon::current_num_threads(),
         solver: solver.name().to_string(),
         cross_check,
+        merge,
     };
     let json = serde_json::to_vec_pretty(&outcome).expect("outcomes serialise");
     crate::io::write_atomic(&opts.out.join(format!("{}.json", def.name)), &json)?;

@@ -47,6 +47,49 @@ pub struct Stored<J, R> {
     pub job: J,
     /// Its result.
     pub result: R,
+    /// Where, when and by which code it ran (absent in results of older versions).
+    #[serde(default)]
+    pub run: Option<JobRun>,
+}
+
+/// The provenance of one stored job result.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct JobRun {
+    /// Host name of the machine.
+    pub host: String,
+    /// Start, RFC 3339 UTC.
+    pub start: String,
+    /// End, RFC 3339 UTC.
+    pub end: String,
+    /// Start and end, seconds since the Unix epoch (for spans across shards).
+    pub span: (f64, f64),
+    /// Wall time of the job, seconds.
+    pub wall_s: f64,
+    /// The commit of the code (see [`crate::provenance::commit_label`]).
+    pub commit: String,
+    /// The validation whose run computed it.
+    pub definition: String,
+    /// The SHA-256 of that validation's definition file.
+    pub definition_sha256: String,
+    /// The share of a sharded run (`K/N`), if it was one.
+    pub shard: Option<String>,
+}
+
+/// The provenance part of a stored result, read without knowing the job's types.
+#[derive(Deserialize)]
+pub struct StoredRun {
+    /// The solver that ran it.
+    pub solver: SolverKind,
+    /// The provenance.
+    #[serde(default)]
+    pub run: Option<JobRun>,
+}
+
+/// The provenance of a stored result at `path`: `None` when there is no readable result
+/// (missing, or a damaged file, which is recomputed).
+pub fn load_run(path: &Path) -> Option<StoredRun> {
+    let bytes = std::fs::read(path).ok()?;
+    serde_json::from_slice(&bytes).ok()
 }
 
 /// A stored result, if present and readable (a damaged file is recomputed).

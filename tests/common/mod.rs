@@ -2,8 +2,13 @@
 //! outcomes and tables without what depends on the clock or the machine.
 
 use std::path::Path;
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
 
 use serde_json::Value;
+
+/// Longest a single run may take before a test gives up.
+pub const TIMEOUT: Duration = Duration::from_secs(180);
 
 /// The validation definitions shipped in `validations/`.
 pub fn validations_dir() -> std::path::PathBuf {
@@ -31,14 +36,15 @@ pub fn definitions_with_reentry(reduced: &str, copies: &[&str]) -> tempfile::Tem
 }
 
 /// An outcome (`<out>/<name>.json`) without what depends on the clock or the machine: the
-/// wall time, the thread count, and the re-entry account's sentence on the mean time of a
-/// sweep.
+/// wall time, the thread count, the provenance of a merge, and the re-entry account's
+/// sentence on the mean time of a sweep.
 pub fn outcome_numbers(out: &Path, name: &str) -> Value {
     let bytes = std::fs::read(out.join(format!("{name}.json"))).unwrap();
     let mut v: Value = serde_json::from_slice(&bytes).unwrap();
     let o = v.as_object_mut().unwrap();
     o.remove("wall_s");
     o.remove("threads");
+    o.remove("merge");
     let account = o["account"].as_str().unwrap();
     let cut = account.find("A sweep took").unwrap_or(account.len());
     o["account"] = account[..cut].to_string().into();
@@ -59,4 +65,36 @@ pub fn table_without_wall(out: &Path, name: &str) -> Vec<Vec<String>> {
                 .collect()
         })
         .collect()
+}
+
+/// Runs `cmd` to completion and checks that it succeeded.
+pub fn finish(mut cmd: Command) {
+    let output = cmd.output().unwrap();
+    assert!(
+        output.status.success(),
+        "{cmd:?} failed:\n{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+}
+
+/// Starts `cmd`, waits until `ready()` holds, and kills the process (SIGKILL).
+pub fn kill_when(mut cmd: Command, what: &str, ready: impl Fn() -> bool) {
+    let mut child = cmd
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    loop {
+        if ready() {
+            child.kill().unwrap();
+            child.wait().unwrap();
+            return;
+        }
+        if let Some(status) = child.try_wait().unwrap() {
+            panic!("the run ended ({status}) before {what}: make the scene longer");
+        }
+        assert!(start.elapsed() < TIMEOUT, "no {what} after {TIMEOUT:?}");
+        std::thread::sleep(Duration::from_millis(2));
+    }
 }

@@ -5,7 +5,7 @@ use crate::error::{Error, Result};
 use crate::experiments::climb::step_of;
 use crate::experiments::ensemble::{by_load, group, load_range, seed_load_jobs, SeedLoad};
 use crate::experiments::{
-    max_residual, Check, Conclusion, Criteria, Detail, Experiment, JobContext, Table,
+    max_residual, Check, Conclusion, Criteria, Detail, Experiment, JobContext, Table, Work,
 };
 use crate::plot::{Axis, Figure, Series, Style};
 use crate::stats::{round_sig, Estimate, LineFit};
@@ -58,6 +58,10 @@ impl Experiment for ModeFrozen {
 
     fn jobs(scene: &ModeScene) -> Vec<SeedLoad> {
         seed_load_jobs(&scene.contact_areas, &scene.seeds)
+    }
+
+    fn work(scene: &ModeScene, _job: &SeedLoad) -> Work {
+        Work::climb(scene.n, scene.steps().len(), 0)
     }
 
     fn run_job(scene: &ModeScene, job: &SeedLoad, ctx: &JobContext) -> Result<ModeResult> {

@@ -7,7 +7,7 @@ use crate::error::Result;
 use crate::experiments::climb::step_of;
 use crate::experiments::ensemble::{by_load, group, load_range, seed_load_jobs, SeedLoad};
 use crate::experiments::{
-    max_residual, Check, Conclusion, Criteria, Detail, Experiment, JobContext,
+    max_residual, Check, Conclusion, Criteria, Detail, Experiment, JobContext, Work,
 };
 use crate::stats::round_sig;
 
@@ -38,6 +38,10 @@ impl Experiment for ModeOnset {
 
     fn jobs(scene: &ModeScene) -> Vec<SeedLoad> {
         seed_load_jobs(&scene.contact_areas, &scene.seeds)
+    }
+
+    fn work(scene: &ModeScene, _job: &SeedLoad) -> Work {
+        Work::climb(scene.n, scene.steps().len(), 0)
     }
 
     fn run_job(scene: &ModeScene, job: &SeedLoad, ctx: &JobContext) -> Result<ModeResult> {

@@ -34,7 +34,9 @@ use self::history::{pack_categories, unpack_categories, History};
 use super::climb::{climb, Checkpointing};
 use super::ensemble::{by_load, check_contact_areas, seed_load_jobs, LoadGroup, SeedLoad};
 use super::scene::scene;
-use super::{max_residual, Check, Conclusion, Criteria, Detail, Experiment, JobContext, Table};
+use super::{
+    max_residual, Check, Conclusion, Criteria, Detail, Experiment, JobContext, Table, Work,
+};
 use crate::engine::scene::check_zeta;
 use crate::engine::sweep::shell_steps;
 use crate::error::{check_positive, Error, Result};
@@ -213,6 +215,12 @@ impl Experiment for Reentry {
 
     fn jobs(scene: &ReentryScene) -> Vec<SeedLoad> {
         seed_load_jobs(&scene.contact_areas, &scene.seeds)
+    }
+
+    fn work(scene: &ReentryScene, _job: &SeedLoad) -> Work {
+        // The load at full resolution, then every shell from the first.
+        let base = scene.base();
+        Work::climb(scene.n, 0, base.shells(0.0, base.zeta_max()))
     }
 
     fn run_job(scene: &ReentryScene, job: &SeedLoad, ctx: &JobContext) -> Result<ReentryResult> {

@@ -50,10 +50,10 @@ use self::stats::{
 };
 use super::climb::{climb, ladder, step_of, Recorder};
 use super::ensemble::{
-    by_load, check_contact_areas, check_headline, group, seed_load_jobs, SeedLoad,
+    by_load, check_contact_areas, check_headline, group, load_range, seed_load_jobs, SeedLoad,
 };
 use super::scene::scene;
-use super::{max_residual, Check, Conclusion, Criteria, Detail, Experiment, JobContext};
+use super::{max_residual, Check, Conclusion, Criteria, Detail, Experiment, JobContext, Work};
 use crate::engine::contact::{ContactSolution, Model};
 use crate::engine::solver::SolverKind;
 use crate::engine::surface::Surface;
@@ -72,6 +72,11 @@ scene! {
         pub contact_areas: Vec<f64>,
         /// The load of the headline (one of `contact_areas`).
         pub headline_contact_area: f64,
+        /// More realizations, distinct from `seeds`, run only at the lowest load when it is
+        /// below `a_r = 0.05`: the load of the low-load check, where the spread over
+        /// realizations is largest.
+        #[serde(default)]
+        pub low_load_seeds: Vec<u64>,
         /// First magnification of the sweep.
         pub zeta_start: f64,
         /// Log-spaced sweep steps per octave of `zeta`.
@@ -217,6 +222,13 @@ impl Experiment for TotalEnergy {
     fn validate(scene: &EnergyScene) -> Result<()> {
         let base = scene.base();
         base.validate()?;
+        let all: Vec<u64> = scene
+            .seeds
+            .iter()
+            .chain(&scene.low_load_seeds)
+            .copied()
+            .collect();
+        crate::error::check_seeds(&all).map_err(|e| e.with_field("low_load_seeds"))?;
         check_contact_areas(&scene.contact_areas)?;
         check_headline(scene.headline_contact_area, &scene.contact_areas)?;
         check_positive("zeta_start", scene.zeta_start)?;
@@ -258,7 +270,23 @@ impl Experiment for TotalEnergy {
     }
 
     fn jobs(scene: &EnergyScene) -> Vec<SeedLoad> {
-        seed_load_jobs(&scene.contact_areas, &scene.seeds)
+        let (lowest, _) = load_range(&scene.contact_areas);
+        let mut jobs = Vec::new();
+        for &a in &scene.contact_areas {
+            jobs.extend(seed_load_jobs(&[a], &scene.seeds));
+            if a == lowest && a < PAPER_FAILURE_AREA {
+                jobs.extend(seed_load_jobs(&[a], &scene.low_load_seeds));
+            }
+        }
+        jobs
+    }
+
+    fn work(scene: &EnergyScene, _job: &SeedLoad) -> Work {
+        // The ladder's steps plus the windows of single-shell increments.
+        let zeta_max = scene.base().zeta_max();
+        let ladder = (zeta_max / scene.zeta_start).log2() * scene.steps_per_octave as f64;
+        let windows = scene.increments_at.len() * (scene.increments + 1);
+        Work::climb(scene.n, ladder.ceil() as usize + 1, windows)
     }
 
     fn run_job(scene: &EnergyScene, job: &SeedLoad, ctx: &JobContext) -> Result<EnergyResult> {
@@ -362,8 +390,12 @@ impl Experiment for TotalEnergy {
                 ),
             ));
             format!(
-                " At the lowest load (a_r = {:.4}) E_exa / E_c = {:.3} +- {:.3}.",
-                a_low.value, low.value, low.std_error
+                " At the lowest load (a_r = {:.4}, {} realizations) E_exa / E_c = {:.3} +- \
+                 {:.3}.",
+                a_low.value,
+                lowest.runs.len(),
+                low.value,
+                low.std_error
             )
         } else {
             String::new()
@@ -583,6 +615,7 @@ mod tests {
             seeds: vec![1],
             contact_areas: vec![0.3],
             headline_contact_area: 0.3,
+            low_load_seeds: Vec::new(),
             zeta_start: 1.0,
             steps_per_octave: 2,
             increments_at: vec![3.0],

@@ -1,0 +1,269 @@
+//! Sharded runs: shares of the jobs run by separate processes at the same time over one
+//! output folder, then `--merge`, give the outcomes of one process running everything;
+//! a merge with a job missing or a result of another definition writes nothing; a share
+//! killed mid-job and started again continues; bad share specs are refused.
+//!
+//! Scenes: the reduced re-entry history of the resume tests (64^2, three realizations,
+//! checkpoints every 0.1 s) and the reduced contact-area ensemble, with CG.
+
+#![cfg(unix)]
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::sync::OnceLock;
+
+use crate::common::{
+    definitions_with_reentry, finish, kill_when, outcome_numbers, table_without_wall,
+};
+
+/// The reduced re-entry scene (as in the resume tests).
+const SCENE: &str = "[reduced]
+n = 64
+hurst = 0.8
+lambda_l = 32
+lambda_s = 2
+seeds = [1, 2, 3]
+contact_areas = [0.14]
+paper_shares = [0.62]
+flux_zeta = 12
+flux_dzeta = 1
+checkpoint_seconds = 0.1
+tol = 1e-8
+
+";
+
+/// The validations of these tests.
+const NAMES: [&str; 2] = ["c_reentry", "contact_area"];
+
+/// `persson-check --threads 1 validate NAMES --solver cg --dir DEFS --out OUT EXTRA...`.
+fn validate(defs: &Path, out: &Path, names: &[&str], extra: &[&str]) -> Command {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_persson-check"));
+    cmd.args(["--threads", "1", "validate"])
+        .args(names)
+        .args(["--solver", "cg", "--dir"])
+        .arg(defs)
+        .arg("--out")
+        .arg(out)
+        .args(extra)
+        // A test run under a scheduler must not see its variables.
+        .env_remove("SLURM_ARRAY_TASK_ID")
+        .env_remove("SLURM_ARRAY_TASK_MIN")
+        .env_remove("SLURM_ARRAY_TASK_COUNT")
+        .env_remove("JOB_COMPLETION_INDEX");
+    cmd
+}
+
+/// Runs `cmd`, expecting failure; returns its stderr.
+fn fails(mut cmd: Command) -> String {
+    let output = cmd.output().unwrap();
+    assert!(!output.status.success(), "{cmd:?} succeeded");
+    String::from_utf8_lossy(&output.stderr).to_string()
+}
+
+/// Every file under `dir`, relative to it, except job results and checkpoints.
+fn outputs(dir: &Path) -> Vec<PathBuf> {
+    fn walk(root: &Path, dir: &Path, files: &mut Vec<PathBuf>) {
+        let Ok(entries) = std::fs::read_dir(dir) else {
+            return;
+        };
+        for e in entries {
+            let path = e.unwrap().path();
+            let rel = path.strip_prefix(root).unwrap().to_path_buf();
+            if rel.starts_with("jobs") {
+                continue;
+            }
+            if path.is_dir() {
+                walk(root, &path, files);
+            } else {
+                files.push(rel);
+            }
+        }
+    }
+    let mut files = Vec::new();
+    walk(dir, dir, &mut files);
+    files.sort();
+    files
+}
+
+/// The unsharded run of both validations.
+struct Reference {
+    defs: tempfile::TempDir,
+    out: tempfile::TempDir,
+}
+
+fn reference() -> &'static Reference {
+    static REFERENCE: OnceLock<Reference> = OnceLock::new();
+    REFERENCE.get_or_init(|| {
+        let defs = definitions_with_reentry(SCENE, &["contact_area"]);
+        let out = tempfile::tempdir().unwrap();
+        finish(validate(defs.path(), out.path(), &NAMES, &[]));
+        Reference { defs, out }
+    })
+}
+
+/// The merged outcomes, tables and figures equal the unsharded run's, apart from wall
+/// times and provenance.
+fn assert_same_as_unsharded(out: &Path, names: &[&str]) {
+    let r = reference().out.path();
+    for name in names {
+        assert_eq!(
+            outcome_numbers(out, name),
+            outcome_numbers(r, name),
+            "{name}: the merged outcome differs from the unsharded run"
+        );
+        assert_eq!(
+            table_without_wall(out, name),
+            table_without_wall(r, name),
+            "{name}.csv"
+        );
+    }
+    for f in ["reentry_map.png", "flux_map.png"] {
+        let (a, b) = (
+            std::fs::read(out.join("c_reentry").join(f)).unwrap(),
+            std::fs::read(r.join("c_reentry").join(f)).unwrap(),
+        );
+        assert!(a == b, "{f} differs");
+    }
+}
+
+/// The merge's provenance of `name`: one record per share.
+fn merge_shards(out: &Path, name: &str) -> Vec<serde_json::Value> {
+    let bytes = std::fs::read(out.join(format!("{name}.json"))).unwrap();
+    let v: serde_json::Value = serde_json::from_slice(&bytes).unwrap();
+    v["merge"]["shards"]
+        .as_array()
+        .expect("merge provenance")
+        .clone()
+}
+
+#[test]
+fn three_shares_at_once_merge_to_the_unsharded_outcomes() {
+    let defs = reference().defs.path();
+    let out = tempfile::tempdir().unwrap();
+    let out = out.path();
+    let children: Vec<_> = (1..=3)
+        .map(|k| {
+            validate(defs, out, &NAMES, &["--shard", &format!("{k}/3")])
+                .stdout(Stdio::null())
+                .stderr(Stdio::piped())
+                .spawn()
+                .unwrap()
+        })
+        .collect();
+    for child in children {
+        let output = child.wait_with_output().unwrap();
+        assert!(
+            output.status.success(),
+            "a share failed: {}",
+            String::from_utf8_lossy(&output.stderr)
+        );
+    }
+    assert!(outputs(out).is_empty(), "shares wrote {:?}", outputs(out));
+    finish(validate(defs, out, &NAMES, &["--merge"]));
+    assert_same_as_unsharded(out, &NAMES);
+    let mut shares: Vec<String> = NAMES
+        .iter()
+        .flat_map(|n| merge_shards(out, n))
+        .map(|s| {
+            for key in ["host", "start", "end", "jobs", "commit"] {
+                assert!(!s[key].is_null(), "share record without {key}: {s}");
+            }
+            s["shard"].as_str().unwrap().to_string()
+        })
+        .collect();
+    shares.sort();
+    shares.dedup();
+    assert_eq!(shares, ["1/3", "2/3", "3/3"]);
+}
+
+#[test]
+fn a_merge_with_a_job_missing_names_it_and_writes_nothing() {
+    let defs = reference().defs.path();
+    let out = tempfile::tempdir().unwrap();
+    let out = out.path();
+    let names = ["c_reentry"];
+    // Three histories over three shares: one each. Share 3 never runs.
+    for k in 1..=2 {
+        finish(validate(defs, out, &names, &["--shard", &format!("{k}/3")]));
+    }
+    let plan = Command::new(env!("CARGO_BIN_EXE_persson-check"))
+        .args(["validate", "c_reentry", "--solver", "cg", "--dir"])
+        .arg(defs)
+        .args(["--plan", "--shards", "3"])
+        .output()
+        .unwrap();
+    let plan: serde_json::Value = serde_json::from_slice(&plan.stdout).unwrap();
+    let missing = plan["jobs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|j| j["shard"] == 3)
+        .expect("share 3 owns a job");
+    let key = missing["key"].as_str().unwrap();
+    let err = fails(validate(defs, out, &names, &["--merge"]));
+    assert!(err.contains(key), "the missing job is not named: {err}");
+    assert!(err.contains("shard 3/3"), "its share is not named: {err}");
+    assert!(outputs(out).is_empty(), "wrote {:?}", outputs(out));
+
+    // The last share runs; a definition changed since (its text, not its scene) is refused
+    // by name, and the original merges.
+    finish(validate(defs, out, &names, &["--shard", "3/3"]));
+    let changed = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(defs.join("c_reentry.toml")).unwrap();
+    std::fs::write(
+        changed.path().join("c_reentry.toml"),
+        format!("# changed after the shares ran\n{text}"),
+    )
+    .unwrap();
+    let err = fails(validate(changed.path(), out, &names, &["--merge"]));
+    assert!(
+        err.contains("another definition of c_reentry"),
+        "not refused by name: {err}"
+    );
+    assert!(outputs(out).is_empty(), "wrote {:?}", outputs(out));
+    finish(validate(defs, out, &names, &["--merge"]));
+    assert_same_as_unsharded(out, &names);
+}
+
+#[test]
+fn a_share_killed_mid_job_continues_and_merges_the_same() {
+    let defs = reference().defs.path();
+    let out = tempfile::tempdir().unwrap();
+    let out = out.path();
+    let names = ["c_reentry"];
+    let jobs = out.join("jobs/reentry/reduced");
+    let checkpointed = || {
+        std::fs::read_dir(&jobs).is_ok_and(|mut d| {
+            d.any(|e| {
+                let p = e.unwrap().path();
+                p.extension().is_some_and(|x| x == "checkpoint")
+                    && std::fs::read_dir(&p).is_ok_and(|mut c| c.next().is_some())
+            })
+        })
+    };
+    kill_when(
+        validate(defs, out, &names, &["--shard", "1/2"]),
+        "a checkpoint",
+        checkpointed,
+    );
+    finish(validate(defs, out, &names, &["--shard", "2/2"]));
+    finish(validate(defs, out, &names, &["--shard", "1/2"]));
+    finish(validate(defs, out, &names, &["--merge"]));
+    assert_same_as_unsharded(out, &names);
+}
+
+#[test]
+fn bad_share_specs_are_refused_and_write_nothing() {
+    let defs = reference().defs.path();
+    let parent = tempfile::tempdir().unwrap();
+    let out = parent.path().join("out");
+    for spec in ["0/3", "4/3", "3/0", "a/b", "auto"] {
+        let err = fails(validate(defs, &out, &["c_reentry"], &["--shard", spec]));
+        assert!(err.contains("--shard"), "{spec}: {err}");
+        assert!(!out.exists(), "{spec} wrote {}", out.display());
+    }
+    let err = fails(validate(defs, &out, &["c_reentry"], &["--shard", "auto"]));
+    for var in ["SLURM_ARRAY_TASK_ID", "JOB_COMPLETION_INDEX"] {
+        assert!(err.contains(var), "auto does not name {var}: {err}");
+    }
+}
