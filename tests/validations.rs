@@ -116,6 +116,24 @@ fn c_points_re_enter_contact() {
 }
 
 #[test]
+fn one_step_moves_points_into_contact() {
+    let o = run_reduced("c_flux", HEADLINE);
+    // Persson's absorbing boundary lets no point enter contact; in the paper's step about
+    // as many enter as leave, and the net flux is about 12% of either.
+    assert_eq!(o.verdict, Verdict::Violated);
+    assert_eq!(o.reproduced, Some(true), "{:?}", o.checks);
+    assert!(o.value > 0.5 && o.value < 2.0, "in / out = {}", o.value);
+    let net = o
+        .details
+        .iter()
+        .find(|d| d.key == "net_over_gross")
+        .expect("the net flux")
+        .value
+        .value;
+    assert!(net > 0.02 && net < 0.4, "net over gross {net}");
+}
+
+#[test]
 fn mode_onset_populates_modes_before_resolution() {
     let o = run_reduced("d_onset", BOTH);
     assert_solvers_agree(&o);

@@ -25,6 +25,7 @@
 pub mod climb;
 pub mod contact_area;
 pub mod ensemble;
+pub mod flux;
 pub mod modes;
 pub mod reentry;
 pub mod scene;

@@ -13,7 +13,9 @@ use super::plan::PlannedUnit;
 use super::runner::{check_experiment, planned_units, run_experiment, RunOptions};
 use super::source::Source;
 use crate::error::{Error, Result};
-use crate::experiments::{contact_area, modes, reentry, total_energy, transitions, Experiment};
+use crate::experiments::{
+    contact_area, flux, modes, reentry, total_energy, transitions, Experiment,
+};
 
 /// What the runner needs of an experiment, without its types.
 pub trait Entry: Send + Sync {
@@ -53,6 +55,7 @@ pub const BUILTIN: &[(&str, &dyn Entry)] = &[
     ("contact_area", &Of::<contact_area::ContactArea>::NEW),
     ("diffusion", &Of::<transitions::Diffusion>::NEW),
     ("drift", &Of::<transitions::Drift>::NEW),
+    ("flux", &Of::<flux::Flux>::NEW),
     ("mode_frozen", &Of::<modes::ModeFrozen>::NEW),
     ("mode_onset", &Of::<modes::ModeOnset>::NEW),
     ("reentry", &Of::<reentry::Reentry>::NEW),
