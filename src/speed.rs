@@ -1,7 +1,7 @@
 //! Speed against error: how long each solver takes to reach a given accuracy.
 //!
-//! One scene (SPEC section 3; H = 0.8, `lambda_l = N/2`, `lambda_s = 8`, `p0 = 0.1`,
-//! seed 1), solved by both solvers ([`SolverKind::Cg`], [`SolverKind::Gfmd`]):
+//! One scene ([`crate::conventions`], section 3; H = 0.8, `lambda_l = N/2`, `lambda_s = 8`,
+//! `p0 = 0.1`, seed 1), solved by both solvers ([`SolverKind::Cg`], [`SolverKind::Gfmd`]):
 //!
 //! * **tolerance**: a tightly converged reference (CG, `tol = 1e-12`), then cold solves at
 //!   each tolerance; wall time, iterations, the residual reached, and the errors of the

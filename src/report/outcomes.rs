@@ -80,6 +80,8 @@ enum Slot {
     DetailValue(usize),
     DetailError(usize),
     Golden(String),
+    CrossValue,
+    CrossError,
 }
 
 /// The typed outcome, with `null` read as NaN in the float fields.
@@ -106,6 +108,14 @@ fn outcome_from_value(mut v: Value) -> std::result::Result<Outcome, String> {
             }
         }
     }
+    if let Some(cross) = v.get_mut("cross_check").filter(|c| c.is_object()) {
+        for (key, slot) in [("value", Slot::CrossValue), ("std_error", Slot::CrossError)] {
+            if let Some(x) = cross.get_mut(key).filter(|x| x.is_null()) {
+                *x = zero();
+                slots.push(slot);
+            }
+        }
+    }
     if let Some(golden) = v.get_mut("golden").and_then(Value::as_object_mut) {
         for (key, x) in golden.iter_mut().filter(|(_, x)| x.is_null()) {
             *x = zero();
@@ -124,6 +134,16 @@ fn outcome_from_value(mut v: Value) -> std::result::Result<Outcome, String> {
             Slot::DetailError(k) => o.details[k].value.std_error = f64::NAN,
             Slot::Golden(key) => {
                 o.golden.insert(key, f64::NAN);
+            }
+            Slot::CrossValue => {
+                if let Some(c) = o.cross_check.as_mut() {
+                    c.value = f64::NAN;
+                }
+            }
+            Slot::CrossError => {
+                if let Some(c) = o.cross_check.as_mut() {
+                    c.std_error = f64::NAN;
+                }
             }
         }
     }

@@ -61,7 +61,7 @@ pub enum Mode {
         jobs: Arc<HashSet<PathBuf>>,
     },
     /// Run nothing: conclude from the stored results of every job (all present, checked
-    /// by [`super::plan::check_merge`] first), recording the shares that computed them.
+    /// by [`super::plan::Plan::check_merge`] first), recording the shares that computed them.
     Merge {
         /// Whether results of another commit were accepted.
         other_commits_accepted: bool,

@@ -1,8 +1,9 @@
 //! Shares of the work for runs over many machines ([`crate::conventions`], section 8).
 //!
 //! A run of several validations is a list of jobs, each with an estimated cost
-//! ([`crate::experiments::Experiment::cost`]). [`assign`] splits the list into `N`
-//! disjoint shares by the longest-processing-time rule: jobs in decreasing cost, each to
+//! ([`crate::experiments::Experiment::work`], [`super::plan::estimate_seconds`]).
+//! [`assign`] splits the list into `N` disjoint shares by the longest-processing-time
+//! rule: jobs in decreasing cost, each to
 //! the share with the least estimated cost so far (ties to the lower index, equal costs in
 //! job order), which keeps the largest share within 4/3 of the best possible split and is
 //! deterministic, so every process of an array computes the same split on its own.

@@ -1,0 +1,76 @@
+//! The summary's "needs attention" list: inconclusive verdicts, findings not reproduced,
+//! solvers that disagree, golden values that differ.
+
+use super::format::{num, pm, sig};
+use super::golden::GoldenMatch;
+use super::outcomes::Loaded;
+use crate::validation::Verdict;
+
+/// Plain statements of what needs a reviewer's eye.
+pub(super) fn attention(loaded: &[Loaded], golden: &[GoldenMatch]) -> Vec<String> {
+    let mut lines = Vec::new();
+    for (l, g) in loaded.iter().zip(golden) {
+        let o = &l.outcome;
+        if o.verdict == Verdict::Inconclusive {
+            lines.push(format!(
+                "{}: the verdict is INCONCLUSIVE: {} = {} does not separate \"holds\" from \
+                 \"violated\" at z = {} with resolution {}; the paper's finding is therefore \
+                 neither reproduced nor refuted.",
+                o.name,
+                o.statistic,
+                pm(o.value, o.std_error),
+                sig(o.rule.significance, 3),
+                sig(o.rule.resolution, 3)
+            ));
+        }
+        if o.reproduced == Some(false) {
+            let failed: Vec<String> = o
+                .checks
+                .iter()
+                .filter(|c| !c.passed)
+                .map(|c| format!("{} ({})", c.name, c.detail))
+                .collect();
+            let why = if o.verdict != o.paper_verdict {
+                format!(
+                    "this run finds the assumption {} where the paper finds it {}",
+                    o.verdict, o.paper_verdict
+                )
+            } else if !failed.is_empty() {
+                format!("failed checks: {}", failed.join("; "))
+            } else {
+                format!(
+                    "the measurement lies outside the range that reproduces the paper (paper: {})",
+                    o.paper_value.map_or_else(|| "no value stated".into(), num)
+                )
+            };
+            lines.push(format!(
+                "{}: the paper's finding is NOT reproduced: {why}.",
+                o.name
+            ));
+        }
+        if let Some(c) = o.cross_check.as_ref().filter(|c| !c.agrees) {
+            lines.push(format!(
+                "{}: the two solvers DISAGREE: {} {} against {} {}, more than {} combined \
+                 standard errors apart (or, without error bars, more than the resolution {}); \
+                 the headline is not confirmed.",
+                o.name,
+                o.solver,
+                pm(o.value, o.std_error),
+                c.solver,
+                pm(c.value, c.std_error),
+                sig(o.rule.significance, 3),
+                sig(o.rule.resolution, 3)
+            ));
+        }
+        if let GoldenMatch::Differ(d, path) = g {
+            lines.push(format!(
+                "{}: {} golden value(s) differ from {}: {}.",
+                o.name,
+                d.len(),
+                path.display(),
+                d.join("; ")
+            ));
+        }
+    }
+    lines
+}

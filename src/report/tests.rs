@@ -1,0 +1,441 @@
+//! Tests of the scorecard.
+
+use super::resolution::resolution_studies;
+use super::*;
+use crate::stats::Estimate;
+use crate::validation::outcome::CrossCheck;
+use crate::validation::{Check, Detail, Scale, VerdictRule};
+use serde_json::json;
+use std::collections::BTreeMap;
+
+fn detail(key: &str, name: &str, value: f64, err: f64, grid: Option<usize>) -> Detail {
+    Detail {
+        key: key.into(),
+        name: name.into(),
+        value: Estimate::new(value, err),
+        persson: Some(1.0),
+        paper: Some(2.0),
+        grid,
+    }
+}
+
+fn outcome(name: &str, verdict: Verdict, reproduced: Option<bool>, scale: Scale) -> Outcome {
+    Outcome {
+        name: name.into(),
+        title: format!("Title of {name}"),
+        assumption: format!("assumption of {name}"),
+        statistic: "slope kappa = a_r / p~0".into(),
+        value: 2.5,
+        std_error: if verdict == Verdict::Inconclusive {
+            f64::NAN
+        } else {
+            0.05
+        },
+        persson: 1.0,
+        persson_text: "kappa = 1".into(),
+        paper: "kappa ~ 2".into(),
+        paper_value: Some(2.0),
+        paper_verdict: Verdict::Violated,
+        verdict,
+        reproduced,
+        rule: VerdictRule {
+            significance: 3.0,
+            resolution: 0.1,
+        },
+        scale,
+        scene: json!({"n": 64, "refinements": [1, 2], "seeds": [1, 2, 3], "tol": 1e-8}),
+        definition_sha256: format!("{:0>64}", name.len()),
+        wall_s: 12.5,
+        max_residual: 3e-9,
+        details: vec![
+            detail(
+                "kappa_on_grid",
+                "kappa on the 64x64 grid",
+                2.9,
+                0.1,
+                Some(64),
+            ),
+            detail(
+                "kappa_on_grid",
+                "kappa on the 128x128 grid",
+                2.7,
+                0.1,
+                Some(128),
+            ),
+            detail("deviation", "largest deviation", 0.08, f64::NAN, None),
+        ],
+        checks: vec![Check {
+            key: "check".into(),
+            name: format!("check of {name}"),
+            passed: reproduced != Some(false),
+            detail: "numbers behind it".into(),
+        }],
+        account: format!("Account of {name}: kappa = 2.5 +- 0.05."),
+        golden: BTreeMap::from([("kappa".to_string(), 2.5)]),
+        files: vec![
+            format!("{name}.csv"),
+            format!("{name}/fig.svg"),
+            format!("{name}/fig.png"),
+        ],
+        threads: 2,
+        solver: "gfmd".into(),
+        cross_check: None,
+        merge: None,
+    }
+}
+
+/// Outcomes of every kind in `root/out`, their files, and snapshots in `root/golden`.
+fn fixture(root: &Path) -> (PathBuf, PathBuf) {
+    let from = root.join("out");
+    let golden = root.join("golden");
+    std::fs::create_dir_all(&golden).unwrap();
+    let outcomes = [
+        outcome("a_holds", Verdict::Holds, Some(true), Scale::Reduced),
+        outcome("b_violated", Verdict::Violated, Some(false), Scale::Reduced),
+        outcome(
+            "c_inconclusive",
+            Verdict::Inconclusive,
+            None,
+            Scale::Reduced,
+        ),
+        outcome("d_full", Verdict::Violated, Some(true), Scale::Full),
+    ];
+    for o in &outcomes {
+        for f in &o.files {
+            crate::io::write_atomic(&from.join(f), b"content").unwrap();
+        }
+        let json = serde_json::to_vec_pretty(o).unwrap();
+        crate::io::write_atomic(&from.join(format!("{}.json", o.name)), &json).unwrap();
+    }
+    // One listed file is missing; a JSON file that is not an outcome is skipped.
+    std::fs::remove_file(from.join("d_full.csv")).unwrap();
+    std::fs::write(from.join("summary.json"), b"{\"n\": 3}").unwrap();
+    let snap = |body: &str| {
+        format!("---\nsource: tests/validations.rs\nexpression: outcome.golden\n---\n{body}\n")
+    };
+    std::fs::write(golden.join("a_holds.snap"), snap("{\n  \"kappa\": 2.5\n}")).unwrap();
+    std::fs::write(
+        golden.join("b_violated.snap"),
+        snap("{\n  \"kappa\": 2.6\n}"),
+    )
+    .unwrap();
+    std::fs::write(golden.join("d_full.snap"), snap("{\n  \"kappa\": 9.9\n}")).unwrap();
+    (from, golden)
+}
+
+/// The table row of validation `name`, split into cells.
+fn row<'a>(text: &'a str, name: &str) -> Vec<&'a str> {
+    let escaped = md(name);
+    let line = text
+        .lines()
+        .find(|l| l.starts_with(&format!("| [{escaped}]")))
+        .unwrap_or_else(|| panic!("no row for {name}"));
+    line.trim_matches('|').split(" | ").map(str::trim).collect()
+}
+
+/// Relative link targets in the Markdown (images and files, not anchors).
+fn links(text: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut rest = text;
+    while let Some(k) = rest.find("](") {
+        rest = &rest[k + 2..];
+        let end = rest.find(')').unwrap();
+        let target = &rest[..end];
+        if !target.starts_with('#') {
+            out.push(target.replace("%20", " "));
+        }
+    }
+    out
+}
+
+fn tiny_speed() -> SpeedOptions {
+    SpeedOptions {
+        tols: vec![1e-4, 1e-8],
+        reference_tol: 1e-11,
+        threads: vec![1, 2],
+        floor_sizes: vec![32],
+        repeats: 1,
+        ..SpeedOptions::with_n(32)
+    }
+}
+
+#[test]
+fn scorecard_states_every_verdict_and_links_existing_files() {
+    let root = tempfile::tempdir().unwrap();
+    let (from, golden) = fixture(root.path());
+    // The scorecard lives in another folder: links must climb out of it.
+    let out = root.path().join("review").join("scorecard.md");
+    let opts = ReportOptions {
+        from: from.clone(),
+        out: out.clone(),
+        golden: Some(golden),
+        speed: SpeedChoice::Run(tiny_speed()),
+    };
+    let summary = write(&opts, &mut |_| {}).unwrap();
+    assert_eq!(
+        summary.validations,
+        ["a_holds", "b_violated", "c_inconclusive", "d_full"]
+    );
+    assert_eq!(summary.speed_error, None);
+    let text = std::fs::read_to_string(&out).unwrap();
+
+    // Columns: validation, assumption, statistic, Persson, measured (solver), cross-check,
+    // paper, verdict, reproduced, golden match, grid, seeds, wall time, solver residual.
+    let a = row(&text, "a_holds");
+    assert_eq!(a.len(), 14, "{a:?}");
+    assert_eq!(
+        &a[3..],
+        [
+            "1",
+            "2.500 ± 0.050 (GFMD)",
+            "not run",
+            "2 (violated)",
+            "holds",
+            "yes",
+            "yes",
+            "64, 128",
+            "3 (1-3)",
+            "12.5 s",
+            "3e-9"
+        ]
+    );
+    let b = row(&text, "b_violated");
+    assert_eq!(b[7], "violated");
+    assert_eq!(b[8], "**NO**");
+    assert_eq!(b[9], "no (1 differ: kappa = 2.5, snapshot 2.6)");
+    let c = row(&text, "c_inconclusive");
+    assert_eq!(
+        c[4], "2.5 (one realization: no error bar) (GFMD)",
+        "NaN read back from null"
+    );
+    assert_eq!(c[7], "**inconclusive**");
+    assert_eq!(c[8], "**undecided** (verdict inconclusive)");
+    assert_eq!(c[9], "not checked");
+    let d = row(&text, "d_full");
+    assert!(d[0].ends_with("(full)"), "{d:?}");
+    assert_eq!(d[9], "n/a (full scene)", "full scenes are not compared");
+
+    // The summary says plainly what is inconclusive or not reproduced.
+    assert!(
+        text.contains("1 holds, 2 violated, 1 inconclusive"),
+        "{}",
+        &text[..600]
+    );
+    assert!(text.contains("NOT reproduced in 1 (`b_violated`)"));
+    assert!(text.contains("c\\_inconclusive: the verdict is INCONCLUSIVE"));
+    assert!(text.contains("b\\_violated: the paper's finding is NOT reproduced: failed checks: check of b\\_violated (numbers behind it)"));
+    assert_eq!(summary.attention.len(), 3, "{:?}", summary.attention);
+    assert!(text.contains("| check of b\\_violated | **FAILED** | numbers behind it |"));
+
+    // Sections: account, details, resolution study.
+    assert!(text.contains("## a\\_holds: Title of a\\_holds"));
+    assert!(text.contains("Account of a\\_holds: kappa = 2.5 +- 0.05."));
+    assert!(text.contains("| largest deviation | 0.08 (no error estimate) | 1 | 2 | — |"));
+    assert!(text.contains("## Statistic against grid resolution"));
+    assert!(
+        text.contains(
+            "| a\\_holds | kappa on the 128x128 grid | 128 | 2.70 ± 0.10 | -0.2 | 1 | 2 |"
+        ),
+        "resolution row"
+    );
+    assert!(from.join("resolution/resolution_a_holds.png").exists());
+    assert!(text.contains("**Missing files**") && text.contains("d\\_full.csv"));
+
+    // Every relative link points at an existing file, images included.
+    let targets = links(&text);
+    let base = out.parent().unwrap();
+    assert!(
+        targets.iter().any(|t| t == "../out/a_holds/fig.png"),
+        "{targets:?}"
+    );
+    assert!(targets.iter().any(|t| t.ends_with("speed/speed_error.png")));
+    assert!(targets
+        .iter()
+        .any(|t| t.ends_with("resolution/resolution_b_violated.png")));
+    for t in &targets {
+        assert!(base.join(t).exists(), "link to missing file {t}");
+    }
+
+    // The speed section and the provenance block.
+    assert!(text.contains("## Speed against error"));
+    assert!(text.contains("**Times are from one run on a shared machine**"));
+    assert!(text.contains("exponent k (iterations ~ N^k)"));
+    assert!(text.contains("| cg | 1e-4 |") && text.contains("| gfmd | 1e-8 |"));
+    assert!(text.contains("**The floor**") && text.contains("| pairs / iteration |"));
+    assert!(text.contains("**Warm starts**") && text.contains("| load +1% |"));
+    assert!(from.join("speed.csv").exists() && from.join("speed.json").exists());
+    assert!(text.contains("## Provenance"));
+    assert!(text.contains(&format!("commit `{}", provenance::COMMIT)));
+    assert!(text.contains("- Machine: "));
+    assert!(
+        text.contains(&format!("`{:0>64}`", 7)),
+        "definition hash of a_holds"
+    );
+    assert!(text.contains(&format!(
+        "`persson-check validate d_full --full --out {}`",
+        from.display()
+    )));
+    assert!(text.contains("| a\\_holds | reduced |") && text.contains("| 1, 2, 3 | 2 | 12.5 s |"));
+    // Written atomically: nothing else in the scorecard's folder.
+    assert_eq!(std::fs::read_dir(base).unwrap().count(), 1);
+}
+
+#[test]
+fn skipped_speed_study_is_said_or_shown_as_earlier() {
+    let root = tempfile::tempdir().unwrap();
+    let (from, _) = fixture(root.path());
+    let out = from.join("scorecard.md");
+    let opts = ReportOptions {
+        from: from.clone(),
+        out: out.clone(),
+        golden: None,
+        speed: SpeedChoice::Skip,
+    };
+    write(&opts, &mut |_| {}).unwrap();
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert!(text.contains("Not run (`--no-speed`), and no earlier study found."));
+    assert_eq!(row(&text, "a_holds")[9], "not checked", "no golden folder");
+    // Links from a scorecard inside the outcomes' folder are plain relative paths.
+    assert!(text.contains("](a_holds/fig.png)"));
+
+    let study = crate::speed::run(&tiny_speed(), &mut |_| {}).unwrap();
+    study.write(&from).unwrap();
+    write(&opts, &mut |_| {}).unwrap();
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert!(
+        text.contains("**Not run for this scorecard** (`--no-speed`); shown from an earlier run")
+    );
+    assert!(text.contains(&study.started_at));
+}
+
+#[test]
+fn unreadable_outcomes_and_empty_folders_are_errors() {
+    let root = tempfile::tempdir().unwrap();
+    let opts = ReportOptions {
+        from: root.path().to_path_buf(),
+        out: root.path().join("s.md"),
+        golden: None,
+        speed: SpeedChoice::Skip,
+    };
+    let e = write(&opts, &mut |_| {}).unwrap_err().to_string();
+    assert!(e.contains("no outcomes"), "{e}");
+    std::fs::write(
+        root.path().join("broken.json"),
+        br#"{"name": "broken", "statistic": "s", "verdict": "maybe"}"#,
+    )
+    .unwrap();
+    let e = write(&opts, &mut |_| {}).unwrap_err().to_string();
+    assert!(e.contains("broken.json") && e.contains("maybe"), "{e}");
+    assert!(!root.path().join("s.md").exists());
+}
+
+#[test]
+fn attention_names_the_reason_a_finding_is_not_reproduced() {
+    let mut o = outcome("e_holds", Verdict::Holds, Some(false), Scale::Reduced);
+    o.checks.clear();
+    let loaded = |o: Outcome| Loaded {
+        outcome: o,
+        path: PathBuf::from("e_holds.json"),
+        modified: None,
+    };
+    let lines = attention::attention(&[loaded(o.clone())], &[GoldenMatch::FullScene]);
+    assert_eq!(lines.len(), 1);
+    assert!(
+        lines[0].contains("finds the assumption holds where the paper finds it violated"),
+        "{lines:?}"
+    );
+    o.verdict = Verdict::Violated;
+    let lines = attention::attention(&[loaded(o)], &[GoldenMatch::FullScene]);
+    assert!(lines[0].contains("outside the range"), "{lines:?}");
+}
+
+#[test]
+fn statistics_on_several_grids_are_grouped_by_key() {
+    let mut o = outcome("a", Verdict::Violated, Some(true), Scale::Reduced);
+    o.details.push(detail(
+        "other",
+        "kappa on the 64x64 grid, other",
+        1.0,
+        0.1,
+        Some(64),
+    ));
+    let loaded = Loaded {
+        outcome: o,
+        path: PathBuf::from("a.json"),
+        modified: None,
+    };
+    let studies = resolution_studies(&[loaded]);
+    let groups = &studies[0].groups;
+    assert_eq!(groups.len(), 2);
+    assert_eq!(groups[0].0, "kappa_on_grid");
+    assert_eq!(
+        groups[0].1.iter().map(|(n, _)| *n).collect::<Vec<_>>(),
+        vec![64, 128]
+    );
+    assert_eq!(groups[1].0, "other");
+}
+
+#[test]
+fn the_cross_check_is_shown_and_a_disagreement_needs_attention() {
+    let mut o = outcome("a", Verdict::Violated, Some(true), Scale::Reduced);
+    o.solver = "gfmd".into();
+    o.cross_check = Some(CrossCheck {
+        solver: "cg".into(),
+        value: 2.51,
+        std_error: 0.05,
+        agrees: true,
+    });
+    assert_eq!(table::cross_check_cell(&o), "CG 2.510 ± 0.050, agrees");
+    assert_eq!(table::measured_cell(&o), "2.500 ± 0.050 (GFMD)");
+    let loaded = |o: Outcome| Loaded {
+        outcome: o,
+        path: PathBuf::from("a.json"),
+        modified: None,
+    };
+    assert!(attention::attention(&[loaded(o.clone())], &[GoldenMatch::FullScene]).is_empty());
+    let c = o.cross_check.as_mut().unwrap();
+    c.value = 3.5;
+    c.agrees = false;
+    assert!(table::cross_check_cell(&o).contains("DISAGREES"));
+    let lines = attention::attention(&[loaded(o)], &[GoldenMatch::FullScene]);
+    assert_eq!(lines.len(), 1, "{lines:?}");
+    assert!(
+        lines[0].starts_with("a: the two solvers DISAGREE"),
+        "{lines:?}"
+    );
+    assert!(
+        lines[0].contains("gfmd 2.500 ± 0.050 against cg 3.500 ± 0.050"),
+        "{lines:?}"
+    );
+}
+
+#[test]
+fn one_realization_shows_no_error_bar_and_no_nan() {
+    assert_eq!(
+        table::headline(0.6411, f64::NAN),
+        "0.6411 (one realization: no error bar)"
+    );
+    let root = tempfile::tempdir().unwrap();
+    let mut o = outcome("one", Verdict::Inconclusive, None, Scale::Full);
+    o.cross_check = Some(CrossCheck {
+        solver: "cg".into(),
+        value: 2.5,
+        std_error: f64::NAN,
+        agrees: true,
+    });
+    std::fs::write(
+        root.path().join("one.json"),
+        serde_json::to_vec(&o).unwrap(),
+    )
+    .unwrap();
+    let opts = ReportOptions {
+        from: root.path().to_path_buf(),
+        out: root.path().join("s.md"),
+        golden: None,
+        speed: SpeedChoice::Skip,
+    };
+    write(&opts, &mut |_| {}).unwrap();
+    let text = std::fs::read_to_string(root.path().join("s.md")).unwrap();
+    assert!(!text.contains("NaN"), "NaN in the scorecard");
+    assert!(text.contains("one realization: no error bar"));
+}
