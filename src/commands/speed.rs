@@ -21,7 +21,7 @@ pub struct Args {
     /// Timed solves per row; the fastest counts.
     #[arg(long, default_value_t = 3)]
     repeats: usize,
-    /// Output folder: speed.json, speed.csv and speed/*.png, *.svg.
+    /// Output folder: speed.json, and under speed/ one CSV per study and the figures.
     #[arg(long)]
     out: PathBuf,
 }

@@ -209,9 +209,14 @@ impl Scorecard<'_> {
                 let _ = writeln!(s, "![{name}]({})\n", self.link_to(&png));
             }
         }
-        let csv = self.opts.from.join(SpeedStudy::CSV);
-        if csv.exists() {
-            let _ = writeln!(s, "All rows: [speed.csv]({}).\n", self.link_to(&csv));
+        let tables: Vec<String> = SpeedStudy::TABLES
+            .iter()
+            .map(|name| (name, SpeedStudy::table_path(&self.opts.from, name)))
+            .filter(|(_, path)| path.exists())
+            .map(|(name, path)| format!("[{name}]({})", self.link_to(&path)))
+            .collect();
+        if !tables.is_empty() {
+            let _ = writeln!(s, "All rows, one table per study: {}.\n", tables.join(", "));
         }
     }
 

@@ -263,7 +263,7 @@ fn scorecard_states_every_verdict_and_links_existing_files() {
     assert!(text.contains("| cg | 1e-4 |") && text.contains("| gfmd | 1e-8 |"));
     assert!(text.contains("**The floor**") && text.contains("| pairs / iteration |"));
     assert!(text.contains("**Warm starts**") && text.contains("| load +1% |"));
-    assert!(from.join("speed.csv").exists() && from.join("speed.json").exists());
+    assert!(from.join("speed/tolerance.csv").exists() && from.join("speed.json").exists());
     assert!(text.contains("## Provenance"));
     assert!(text.contains(&format!("commit `{}", provenance::COMMIT)));
     assert!(text.contains("- Machine: "));

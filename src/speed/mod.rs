@@ -1,0 +1,257 @@
+//! Speed against error: how long each solver takes to reach a given accuracy.
+//!
+//! One scene ([`crate::conventions`], section 3; H = 0.8, `lambda_l = N/2`, `lambda_s = 8`,
+//! `p0 = 0.1`, seed 1), solved by both solvers ([`SolverKind::Cg`], [`SolverKind::Gfmd`]):
+//!
+//! * **tolerance**: a tightly converged reference (CG, `tol = 1e-12`), then cold solves at
+//!   each tolerance; wall time, iterations, the residual reached, and the errors of the
+//!   contact area `|a_r - a_ref|` and of the elastic energy `|E - E_ref| / E_ref` against
+//!   the reference;
+//! * **size**: iterations against the grid size `N` at one tolerance, with the fitted
+//!   exponent of `iterations ~ N^k`. The paper's argument for GFMD in reciprocal space is
+//!   that mass weighting lowers critical slowing-down from `O(L^2)` (plain damped dynamics)
+//!   to `O(L^(1/2))`;
+//! * **threads**: the same solve in rayon pools of 1, 2 (and all available) threads;
+//! * **floor**: on each grid of `floor_sizes`, the time of one forward + inverse 2D FFT
+//!   pair (the floor of an iteration's cost) and each solver's cold solve in units of it:
+//!   the FFT pairs the solve used per iteration (counted by [`crate::engine::fft::Fft2`]), its cost
+//!   per iteration in pairs, and the cost of each pair it used (1 would be nothing but
+//!   FFTs);
+//! * **warm**: on the same grids, each solver re-solving from a converged solution after a
+//!   1% load change, and after adding one magnification shell (the last shell at or below
+//!   `shell_zeta`, warm-started from the solution one shell lower), against a cold solve of
+//!   the same problem.
+//!
+//! Times are wall-clock times of single runs (the fastest of `repeats`) on whatever machine
+//! runs the study, which may be shared with other work: ratios between rows mean more than
+//! absolute values. Each study records the [`Machine`] it ran on.
+//!
+//! [`run`] computes the study; [`SpeedStudy::write`] writes one CSV per study, `speed.json` and
+//! the figures; the scorecard ([`crate::report`]) formats it.
+
+mod options;
+mod rows;
+mod scene;
+mod study;
+#[cfg(test)]
+mod tests;
+
+pub use options::SpeedOptions;
+pub use rows::{
+    FloorRow, Reference, SizeFit, SizeRow, SpeedStudy, ThreadRow, ToleranceRow, WarmRow,
+};
+use scene::Scene;
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use serde::{Deserialize, Serialize};
+
+use crate::engine::contact::{ContactProblem, ContactSolution, Model};
+use crate::engine::solver::SolverKind;
+use crate::engine::solver::{SolveOptions, Start};
+use crate::engine::surface::{Surface, SurfaceParams};
+use crate::engine::sweep::shell_steps;
+use crate::error::{check_positive, Error, Result};
+use crate::plot::{Axis, Figure, Series, Style};
+use crate::provenance::Machine;
+use crate::stats::{round_sig, LineFit};
+
+/// The solvers compared, in table order.
+pub const SOLVERS: [SolverKind; 2] = [SolverKind::Cg, SolverKind::Gfmd];
+
+/// Runs the study; `progress` receives a line per step.
+pub fn run(opts: &SpeedOptions, progress: &mut dyn FnMut(&str)) -> Result<SpeedStudy> {
+    opts.validate()?;
+    let started_at = crate::provenance::now_utc();
+    let timer = Instant::now();
+    let scene = Scene::new(opts, opts.n)?;
+
+    progress(&format!(
+        "reference: cg, N = {}, tol = {:e}",
+        opts.n, opts.reference_tol
+    ));
+    let (ref_sol, ref_t) = scene.solve(SolverKind::Cg, opts.reference_tol)?;
+    let reference = Reference {
+        solver: SolverKind::Cg,
+        tol: opts.reference_tol,
+        residual: ref_sol.stats.residual.value(),
+        iterations: ref_sol.stats.iterations,
+        wall_s: ref_t,
+        contact_area: ref_sol.contact_area(),
+        elastic_energy: ref_sol.elastic_energy(),
+    };
+
+    let mut tolerance = Vec::new();
+    for kind in SOLVERS {
+        for &tol in &opts.tols {
+            progress(&format!(
+                "tolerance: {}, N = {}, tol = {tol:e}",
+                kind.name(),
+                opts.n
+            ));
+            tolerance.push(match scene.timed(kind, tol, opts.repeats) {
+                Ok((s, t)) => ToleranceRow {
+                    solver: kind,
+                    tol,
+                    wall_s: Some(t),
+                    iterations: Some(s.stats.iterations),
+                    residual: Some(s.stats.residual.value()),
+                    tamaas: Some(s.stats.residual.tamaas),
+                    area_error: Some((s.contact_area() - reference.contact_area).abs()),
+                    energy_error: Some(
+                        ((s.elastic_energy() - reference.elastic_energy)
+                            / reference.elastic_energy)
+                            .abs(),
+                    ),
+                    error: None,
+                },
+                Err(e) => ToleranceRow {
+                    solver: kind,
+                    tol,
+                    wall_s: None,
+                    iterations: None,
+                    residual: None,
+                    tamaas: None,
+                    area_error: None,
+                    energy_error: None,
+                    error: Some(e.to_string()),
+                },
+            });
+        }
+    }
+
+    let mut sizes = Vec::new();
+    let grids = opts.valid_sizes();
+    let scenes: Vec<(usize, Scene)> = grids
+        .iter()
+        .map(|&n| Ok((n, Scene::new(opts, n)?)))
+        .collect::<Result<_>>()?;
+    for kind in SOLVERS {
+        for (n, scene) in &scenes {
+            progress(&format!(
+                "size: {}, N = {n}, tol = {:e}",
+                kind.name(),
+                opts.size_tol
+            ));
+            sizes.push(match scene.timed(kind, opts.size_tol, opts.repeats) {
+                Ok((s, t)) => SizeRow {
+                    solver: kind,
+                    n: *n,
+                    iterations: Some(s.stats.iterations),
+                    wall_s: Some(t),
+                    residual: Some(s.stats.residual.value()),
+                    error: None,
+                },
+                Err(e) => SizeRow {
+                    solver: kind,
+                    n: *n,
+                    iterations: None,
+                    wall_s: None,
+                    residual: None,
+                    error: Some(e.to_string()),
+                },
+            });
+        }
+    }
+    let fits = SOLVERS
+        .iter()
+        .map(|&kind| fit_exponent(kind, &sizes))
+        .collect();
+
+    let mut threads_study = Vec::new();
+    for kind in SOLVERS {
+        let mut single = None;
+        for &k in &opts.threads {
+            progress(&format!(
+                "threads: {}, N = {}, {k} thread(s), tol = {:e}",
+                kind.name(),
+                opts.n,
+                opts.size_tol
+            ));
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(k)
+                .build()
+                .map_err(|e| {
+                    Error::invalid("speed threads", k, format!("a pool rayon can build ({e})"))
+                })?;
+            let result = pool.install(|| scene.timed(kind, opts.size_tol, opts.repeats));
+            let row = match result {
+                Ok((_, t)) => {
+                    if k == 1 {
+                        single = Some(t);
+                    }
+                    ThreadRow {
+                        solver: kind,
+                        threads: k,
+                        wall_s: Some(t),
+                        speedup: single.map(|t1| t1 / t),
+                        error: None,
+                    }
+                }
+                Err(e) => ThreadRow {
+                    solver: kind,
+                    threads: k,
+                    wall_s: None,
+                    speedup: None,
+                    error: Some(e.to_string()),
+                },
+            };
+            threads_study.push(row);
+        }
+    }
+
+    let mut floor = Vec::new();
+    let mut warm = Vec::new();
+    for &n in &opts.floor_sizes {
+        let scene = Scene::new(opts, n)?;
+        progress(&format!("floor: FFT pair, N = {n}"));
+        let pair = scene.fft_pair_s();
+        for kind in SOLVERS {
+            progress(&format!(
+                "floor: {}, N = {n}, tol = {:e}",
+                kind.name(),
+                opts.size_tol
+            ));
+            floor.push(scene.floor(kind, pair, opts.size_tol, opts.repeats));
+            progress(&format!(
+                "warm: {}, N = {n}, tol = {:e}",
+                kind.name(),
+                opts.size_tol
+            ));
+            warm.extend(scene.warm(kind, opts.shell_zeta, opts.size_tol, opts.repeats));
+        }
+    }
+
+    Ok(SpeedStudy {
+        options: opts.clone(),
+        machine: Machine::detect(),
+        threads: rayon::current_num_threads(),
+        commit: crate::provenance::commit_label(),
+        started_at,
+        wall_s: timer.elapsed().as_secs_f64(),
+        reference,
+        tolerance,
+        sizes,
+        fits,
+        threads_study,
+        floor,
+        warm,
+    })
+}
+
+/// Least-squares slope of `ln iterations` against `ln N` over the converged grids.
+fn fit_exponent(kind: SolverKind, sizes: &[SizeRow]) -> SizeFit {
+    let (x, y): (Vec<f64>, Vec<f64>) = sizes
+        .iter()
+        .filter(|r| r.solver == kind)
+        .filter_map(|r| Some(((r.n as f64).ln(), (r.iterations? as f64).max(1.0).ln())))
+        .unzip();
+    let fit = LineFit::fit(&x, &y);
+    SizeFit {
+        solver: kind,
+        exponent: fit.map(|f| f.slope.value),
+        std_error: fit.map(|f| f.slope.std_error).filter(|e| e.is_finite()),
+        points: x.len(),
+    }
+}

@@ -1,0 +1,165 @@
+//! Tests of the speed study.
+
+use super::*;
+
+/// The smallest study that exercises every part: N = 32, sizes 32 and 64.
+fn tiny() -> SpeedOptions {
+    SpeedOptions {
+        tols: vec![1e-4, 1e-8],
+        reference_tol: 1e-11,
+        threads: vec![1, 2],
+        floor_sizes: vec![32],
+        repeats: 1,
+        ..SpeedOptions::with_n(32)
+    }
+}
+
+#[test]
+fn tiny_study_produces_every_row_and_its_files() {
+    let opts = tiny();
+    let mut lines = Vec::new();
+    let study = run(&opts, &mut |l| lines.push(l.to_string())).unwrap();
+    // Sizes 8 and 16 cannot hold lambda_s = 8 < lambda_l = N/2: left out.
+    assert_eq!(opts.valid_sizes(), vec![32, 64]);
+    assert_eq!(study.tolerance.len(), 2 * opts.tols.len());
+    assert_eq!(study.sizes.len(), 2 * 2);
+    assert_eq!(study.threads_study.len(), 2 * 2);
+    assert!(
+        lines.iter().any(|l| l.starts_with("reference")),
+        "{lines:?}"
+    );
+    assert!(study.reference.residual <= opts.reference_tol);
+    for row in &study.tolerance {
+        assert!(row.error.is_none(), "{row:?}");
+        let res = row.residual.unwrap();
+        assert!(res <= row.tol, "{row:?}");
+        // A looser tolerance cannot be closer to the reference than the reference's
+        // own accuracy allows, and the energy error is a relative error.
+        assert!(row.energy_error.unwrap() < 1.0, "{row:?}");
+        assert!(row.wall_s.unwrap() > 0.0);
+    }
+    // Tighter tolerances are at least as accurate, solver by solver.
+    for kind in SOLVERS {
+        let e: Vec<f64> = study
+            .tolerance
+            .iter()
+            .filter(|r| r.solver == kind)
+            .map(|r| r.energy_error.unwrap())
+            .collect();
+        assert!(e[1] <= e[0] + 1e-12, "{kind:?}: {e:?}");
+        assert!(
+            e[1] < 1e-5,
+            "{kind:?}: tol 1e-8 gives energy error {}",
+            e[1]
+        );
+    }
+    for fit in &study.fits {
+        assert_eq!(fit.points, 2);
+        assert!(fit.exponent.unwrap().is_finite());
+        assert_eq!(fit.std_error, None, "two points give no error bar");
+    }
+    assert_eq!(study.threads_study[0].speedup, Some(1.0));
+    // Floor: CG uses two FFT pairs an iteration (the preconditioner's and the
+    // compliance's) and a third when the contact set changed (u = K^-1 p recomputed);
+    // GFMD two (the stress and the mass filter); both plus the set-up and the final
+    // residual.
+    assert_eq!(study.floor.len(), 2);
+    for row in &study.floor {
+        assert!(row.error.is_none(), "{row:?}");
+        let pairs = row.pairs_per_iteration.unwrap();
+        assert!((2.0..=3.2).contains(&pairs), "{row:?}");
+        assert!(
+            row.overhead.unwrap() > 0.0 && row.fft_pair_s > 0.0,
+            "{row:?}"
+        );
+    }
+    // Warm starts: a load change and one shell, each solver, never slower in
+    // iterations than a cold solve of the same problem.
+    assert_eq!(study.warm.len(), 4);
+    for row in &study.warm {
+        assert!(row.error.is_none(), "{row:?}");
+        assert!(
+            row.warm_iterations.unwrap() <= row.cold_iterations.unwrap(),
+            "{row:?}"
+        );
+    }
+    assert!(study
+        .warm
+        .iter()
+        .any(|r| r.change.starts_with("one shell at zeta = ")));
+
+    let dir = tempfile::tempdir().unwrap();
+    let written = study.write(dir.path()).unwrap();
+    assert!(dir.path().join("speed/speed_error.png").exists());
+    assert!(dir.path().join("speed/speed_iterations.svg").exists());
+    // One table per study, its header from the row type, one line per row.
+    let table = |name: &str| {
+        let path = SpeedStudy::table_path(dir.path(), name);
+        assert!(written.contains(&path), "{name} not written");
+        std::fs::read_to_string(path).unwrap()
+    };
+    for (name, header, rows) in [
+        ("reference", "solver,tol,residual,iterations,wall_s", 1),
+        (
+            "tolerance",
+            "solver,tol,wall_s,iterations,residual,tamaas",
+            4,
+        ),
+        ("size", "solver,n,iterations,wall_s,residual,error", 4),
+        ("threads", "solver,threads,wall_s,speedup,error", 4),
+        ("floor", "solver,n,fft_pair_s,iterations", 2),
+        ("warm", "solver,n,change,cold_iterations", 4),
+    ] {
+        let text = table(name);
+        let lines: Vec<&str> = text.lines().collect();
+        assert!(lines[0].starts_with(header), "{name}: {}", lines[0]);
+        assert_eq!(lines.len(), 1 + rows, "{name}:\n{text}");
+    }
+    assert!(table("warm").lines().any(|l| l.starts_with("cg,32,")));
+    assert!(table("size").lines().any(|l| l.starts_with("gfmd,64,")));
+    // serde_json reads floats back to within an ulp or so, not always bit for bit.
+    let back = SpeedStudy::read(&dir.path().join("speed.json")).unwrap();
+    assert_eq!(back.options, study.options);
+    assert_eq!(back.tolerance.len(), study.tolerance.len());
+    assert_eq!(back.fits.len(), study.fits.len());
+    let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
+    assert!(
+        rel(
+            back.reference.elastic_energy,
+            study.reference.elastic_energy
+        ) < 1e-14
+    );
+}
+
+#[test]
+fn bad_options_name_the_option() {
+    let e = SpeedOptions::with_n(16).validate().unwrap_err().to_string();
+    assert!(e.contains("speed n") && e.contains("16"), "{e}");
+    let e = SpeedOptions {
+        repeats: 0,
+        ..SpeedOptions::with_n(64)
+    }
+    .validate()
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("speed repeats"), "{e}");
+}
+
+#[test]
+fn exponent_is_the_log_log_slope() {
+    let rows: Vec<SizeRow> = [(64, 100), (128, 200), (256, 400)]
+        .iter()
+        .map(|&(n, it)| SizeRow {
+            solver: SolverKind::Cg,
+            n,
+            iterations: Some(it),
+            wall_s: Some(1.0),
+            residual: Some(1e-9),
+            error: None,
+        })
+        .collect();
+    let fit = fit_exponent(SolverKind::Cg, &rows);
+    assert!((fit.exponent.unwrap() - 1.0).abs() < 1e-12);
+    assert_eq!(fit.points, 3);
+    assert_eq!(fit_exponent(SolverKind::Gfmd, &rows).exponent, None);
+}
