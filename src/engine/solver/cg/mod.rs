@@ -23,8 +23,8 @@
 //! Hessian of the complementary energy is the compliance `K^-1`, whose condition number
 //! grows like `N`; the search direction is built from `z = K g` (the stiffness applied to
 //! the gap, restricted to the contact set and made mean-free) instead of `g`, and `beta`
-//! from `g.z`. One more FFT pair per iteration buys a 3-6x smaller iteration count
-//! (256^2: 104 -> 37; 1024^2: 488 -> 85, H = 0.8, p0 = 0.1).
+//! from `g.z`. One more FFT pair per iteration buys a several times smaller iteration
+//! count (the README's measured section gives the figures).
 //!
 //! The displacement is updated incrementally, `u <- u - tau r`, which is exact as long as
 //! step 3 clips nothing and step 4 adds nothing; otherwise `u = K^-1 p` is recomputed. `u`
@@ -61,9 +61,7 @@
 //! write them, so apart from the FFTs the iteration reads and writes each field about
 //! once per transform. Memory traffic is what the sweeps cost on large grids. Fusing the
 //! update into the recomputation of `u` saves about four passes over a field per
-//! iteration: a warm solve after one shell took 0.95 of the time without it (median of
-//! eight interleaved best-of-8 comparisons at 512^2 and 1024^2, range 0.86-1.04, on a
-//! shared machine), with the same iterations.
+//! iteration, with the same iterations.
 
 use std::time::Instant;
 
@@ -75,6 +73,10 @@ use crate::engine::field::{fold_chunks, CHUNK};
 use crate::engine::solver::{Progress, SolveOptions, Solver, Start};
 use crate::error::{Error, Result, Termination};
 use rayon::prelude::*;
+
+mod sums;
+
+use self::sums::{add_all, contact_sums, GapSums, Step, View};
 
 /// Constrained conjugate-gradient solver with its work buffers.
 #[derive(Debug, Clone)]
@@ -113,171 +115,9 @@ const STAGNATION: usize = 200;
 /// Polonsky & Keer reset conjugacy whenever a point enters contact. Late in a solve a few
 /// points enter or leave at every iteration, so that rule turns CG into steepest descent;
 /// resetting only when more than this fraction of the contact set enters keeps the
-/// conjugate directions through those small changes (1024^2, H = 0.8, p0 = 0.1: 83 -> 50
-/// iterations; 0 restores the original rule).
+/// conjugate directions through those small changes (fewer iterations: the README's
+/// measured section; 0 restores the original rule).
 const KEEP_CONJUGACY: f64 = 0.01;
-
-/// Sums over the gap: `sum_Ic g^2`, `sum_Ic p |g|`, `sum_Ic p`, and the largest
-/// penetration `max(-g)`.
-#[derive(Debug, Clone, Copy, Default)]
-struct GapSums {
-    gg: f64,
-    pg: f64,
-    sp: f64,
-    pen: f64,
-}
-
-impl GapSums {
-    /// The residual estimate the iteration watches: complementarity and penetration.
-    fn estimate(&self, ell: f64) -> f64 {
-        (self.pg / (ell * self.sp)).max(self.pen / ell)
-    }
-
-    fn add(self, o: Self) -> Self {
-        Self {
-            gg: self.gg + o.gg,
-            pg: self.pg + o.pg,
-            sp: self.sp + o.sp,
-            pen: self.pen.max(o.pen),
-        }
-    }
-}
-
-/// The update of one point (steps 3 and 4), read with the lazy load scale.
-#[derive(Clone, Copy)]
-struct Step {
-    scale: f64,
-    gbar: f64,
-    tau: f64,
-    /// Pressure per unit penetration given to points entering contact.
-    admit: f64,
-}
-
-impl Step {
-    /// The new pressure of a point with stored pressure `p` and displacement `u`, height
-    /// `h` and search direction `t`, and whether it was clipped and whether it entered
-    /// (as 0 or 1).
-    #[inline]
-    fn point(&self, p: f64, u: f64, h: f64, t: f64) -> (f64, f64, f64) {
-        let p_true = self.scale * p;
-        let g = self.scale * u - h - self.gbar;
-        let stepped = p_true - self.tau * t;
-        let was_in = p_true > 0.0;
-        let q = if was_in {
-            stepped.max(0.0)
-        } else if g < 0.0 {
-            -self.admit * g
-        } else {
-            0.0
-        };
-        (
-            q,
-            f64::from(u8::from(was_in && stepped <= 0.0)),
-            f64::from(u8::from(!was_in && g < 0.0)),
-        )
-    }
-}
-
-/// `sum_Ic u`, `sum_Ic h` and `|Ic|` over one row, `Ic = {p > 0}`: what the rigid shift
-/// `gbar = mean_Ic (u - h)` needs once `u = K^-1 p` has been recomputed.
-fn contact_sums(u: &[f64], p: &[f64], h: &[f64]) -> [f64; 3] {
-    let mut acc = [0.0; 3];
-    for ((&uk, &pk), &hk) in u.iter().zip(p).zip(h) {
-        let w = if pk > 0.0 { 1.0 } else { 0.0 };
-        acc[0] += w * uk;
-        acc[1] += w * hk;
-        acc[2] += w;
-    }
-    acc
-}
-
-/// Adds `K`-vectors of partial sums in order.
-fn add_all<const K: usize>(parts: impl IntoIterator<Item = [f64; K]>) -> [f64; K] {
-    let mut acc = [0.0; K];
-    for part in parts {
-        for (a, v) in acc.iter_mut().zip(part) {
-            *a += v;
-        }
-    }
-    acc
-}
-
-/// The fields of the iteration, read with the lazy load scale: true `p = scale p_s` and
-/// `u = scale u_s`.
-#[derive(Clone, Copy)]
-struct View<'a> {
-    p: &'a [f64],
-    u: &'a [f64],
-    h: &'a [f64],
-    scale: f64,
-    gbar: f64,
-}
-
-impl View<'_> {
-    /// Row `i` (of length `n`) of `p`, `u` and `h`.
-    #[inline]
-    fn row(&self, i: usize, n: usize) -> (&[f64], &[f64], &[f64]) {
-        let r = i * n..(i + 1) * n;
-        (&self.p[r.clone()], &self.u[r.clone()], &self.h[r])
-    }
-
-    /// Gap sums over a range; the masked gap (`g` in contact, 0 outside) goes to `out`
-    /// when given.
-    fn gap_sums_into(&self, range: std::ops::Range<usize>, out: Option<&mut [f64]>) -> GapSums {
-        let (s, gbar) = (self.scale, self.gbar);
-        let (p, u, h) = (
-            &self.p[range.clone()],
-            &self.u[range.clone()],
-            &self.h[range],
-        );
-        let mut acc = [0.0f64; 3];
-        let mut pen = f64::NEG_INFINITY;
-        let mut step = |pk: f64, uk: f64, hk: f64| -> f64 {
-            let g = s * uk - hk - gbar;
-            let pk = s * pk;
-            let contact = pk > 0.0;
-            let gm = if contact { g } else { 0.0 };
-            acc[0] += gm * gm;
-            // p = 0 outside contact: these need no mask.
-            acc[1] += pk * g.abs();
-            acc[2] += pk;
-            // Penetration anywhere, contact points included, as in the full residual:
-            // with a smaller estimate the full residual is evaluated too early, fails, and
-            // costs a refresh and an evaluation for nothing.
-            pen = pen.max(-g);
-            gm
-        };
-        match out {
-            Some(o) => {
-                for (((ok, &pk), &uk), &hk) in o.iter_mut().zip(p).zip(u).zip(h) {
-                    *ok = step(pk, uk, hk);
-                }
-            }
-            None => {
-                for ((&pk, &uk), &hk) in p.iter().zip(u).zip(h) {
-                    step(pk, uk, hk);
-                }
-            }
-        }
-        GapSums {
-            gg: acc[0],
-            pg: acc[1],
-            sp: acc[2],
-            pen: pen.max(0.0),
-        }
-    }
-
-    /// Gap sums over the whole grid.
-    fn gap_sums(&self) -> GapSums {
-        let n2 = self.p.len();
-        fold_chunks(
-            n2,
-            GapSums::default(),
-            |rg| self.gap_sums_into(rg, None),
-            GapSums::add,
-        )
-    }
-}
 
 impl ConstrainedCg {
     fn run(
