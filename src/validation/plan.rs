@@ -5,14 +5,16 @@
 //! A job's cost is estimated from its [`Work`] (grid points, load searches, warm-started
 //! solves) as
 //!
-//! `t = c_solver * P log2(P) * (w_search * searches + solves + w_shell * shells)`
+//! `t = c_solver * P log2(P) * (w_search (N / 256)^k * searches + solves + w_shell * shells)`
 //!
-//! seconds on one core, with `P` the grid points: an FFT-based iteration costs
+//! seconds on one core, with `P = N^2` the grid points: an FFT-based iteration costs
 //! `P log2 P`, and a solve a number of iterations that depends on the solver and on how
 //! close its start is (a load search from cold, a step of a fraction of an octave, or a
-//! single added shell). The four constants ([`CG_SECONDS`], [`GFMD_SECONDS`],
-//! [`SEARCH_SOLVES`], [`SHELL_SOLVES`]) are fitted to the measured job times of the
-//! reduced scenes: each stored result records its wall time, and `--plan --out DIR` sets
+//! single added shell). Warm starts take about as many iterations on every grid; a search
+//! from cold takes more on larger grids, as `N^k` ([`SEARCH_GROWTH`]). The constants
+//! ([`CG_SECONDS`], [`GFMD_SECONDS`], [`SEARCH_SOLVES`], [`SHELL_SOLVES`]) are fitted to
+//! the measured job times of the reduced scenes, and [`SEARCH_GROWTH`] to a 4096^2 search
+//! (the full `c_flux` scene): each stored result records its wall time, and `--plan --out DIR` sets
 //! the estimate beside the measurement of every finished job (`measured_s`, and the range
 //! of measured over estimated in `measured_over_estimated`). The README's measured section
 //! states the fit.
@@ -33,13 +35,15 @@ use crate::error::{Error, Result};
 use crate::experiments::Work;
 
 /// Seconds per `P log2 P` per warm-started solve of constrained conjugate gradients.
-pub const CG_SECONDS: f64 = 3.9e-8;
+pub const CG_SECONDS: f64 = 4.38e-8;
 /// Seconds per `P log2 P` per warm-started solve of GFMD.
-pub const GFMD_SECONDS: f64 = 1.14e-7;
+pub const GFMD_SECONDS: f64 = 1.26e-7;
 /// A load search, in warm-started solves.
-pub const SEARCH_SOLVES: f64 = 5.5;
+pub const SEARCH_SOLVES: f64 = 3.5;
 /// A single-shell step, in warm-started solves.
-pub const SHELL_SOLVES: f64 = 0.6;
+pub const SHELL_SOLVES: f64 = 0.55;
+/// Growth of a load search's cost with the grid side, beyond `P log2 P`: `(N / 256)^k`.
+pub const SEARCH_GROWTH: f64 = 0.6;
 
 /// The estimated wall time of `work` with `solver` on one core, seconds.
 pub fn estimate_seconds(work: Work, solver: SolverKind) -> f64 {
@@ -48,10 +52,8 @@ pub fn estimate_seconds(work: Work, solver: SolverKind) -> f64 {
         SolverKind::Cg => CG_SECONDS,
         SolverKind::Gfmd => GFMD_SECONDS,
     };
-    per_solve
-        * p
-        * p.log2()
-        * (SEARCH_SOLVES * work.searches + work.solves + SHELL_SOLVES * work.shells)
+    let search = SEARCH_SOLVES * (p.sqrt() / 256.0).powf(SEARCH_GROWTH);
+    per_solve * p * p.log2() * (search * work.searches + work.solves + SHELL_SOLVES * work.shells)
 }
 
 /// One job of a run, as planned.
