@@ -287,13 +287,18 @@ mod tests {
 
     #[test]
     fn cost_grows_like_p_log_p_times_solves() {
-        let small = Work::climb(128, 10, 0);
-        let large = Work::climb(256, 10, 0);
-        let ratio =
-            estimate_seconds(large, SolverKind::Cg) / estimate_seconds(small, SolverKind::Cg);
+        let warm = |n: usize| Work {
+            searches: 0.0,
+            ..Work::climb(n, 10, 0)
+        };
+        let cg = |w: Work| estimate_seconds(w, SolverKind::Cg);
+        let ratio = cg(warm(256)) / cg(warm(128));
         assert!((ratio - 4.0 * 16.0 / 14.0).abs() < 1e-12, "{ratio}");
-        let more = Work::climb(128, 10, 10);
-        assert!(estimate_seconds(more, SolverKind::Cg) > estimate_seconds(small, SolverKind::Cg));
+        // A search from cold grows faster than P log P.
+        let search = |n: usize| cg(Work::climb(n, 0, 0));
+        assert!(search(256) / search(128) > ratio);
+        assert!(cg(Work::climb(128, 10, 10)) > cg(Work::climb(128, 10, 0)));
+        assert!(estimate_seconds(warm(128), SolverKind::Gfmd) > cg(warm(128)));
     }
 
     #[test]
