@@ -205,9 +205,10 @@ impl Experiment for Flux {
         c.account = format!(
             "Over {} realizations (H = {}, {}x{} grid, lambda_l = {}, lambda_s = {}), at the \
              load that gives a_r = {:.3} at zeta = {}, the step to zeta = {} moves {:.3}% of \
-             the nominal area into contact and {:.3}% out of it: {:.2} +- {:.2} points enter \
-             per point that leaves, where Persson's absorbing boundary allows none. The net \
-             flux is {:.2} +- {:.2} of the mean one-way flux; a_r goes from {:.4} to {:.4}.",
+             the nominal area into contact and {:.3}% out of it: {:.3} +- {:.3} points \
+             enter per point that leaves, where Persson's absorbing boundary allows none. \
+             The net flux is {:.3} +- {:.3} of the mean one-way flux; a_r goes from {:.4} \
+             to {:.4}.",
             results.len(),
             scene.hurst,
             scene.n,
