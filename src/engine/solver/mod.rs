@@ -2,7 +2,8 @@
 //!
 //! * [`Gfmd`]: Green's function molecular dynamics as in the paper: damped dynamics of the
 //!   displacement modes in reciprocal space with the hard wall applied in real space,
-//!   mass-weighted so that every mode shares one frequency, relaxed with FIRE.
+//!   mass-weighted so that every mode shares one frequency, relaxed with a momentum
+//!   schedule that restarts when the force opposes the motion.
 //! * [`ConstrainedCg`]: constrained conjugate gradients on the pressure
 //!   (Polonsky & Keer 1999), the algorithm of tamaas and ContactMechanics.
 //!
@@ -15,7 +16,7 @@ mod cg;
 mod gfmd;
 
 pub use cg::ConstrainedCg;
-pub use gfmd::{FireParams, Gfmd};
+pub use gfmd::{Gfmd, GfmdParams};
 
 use serde::{Deserialize, Serialize};
 
@@ -26,7 +27,7 @@ use crate::error::{Error, Result};
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default, clap::ValueEnum)]
 #[serde(rename_all = "snake_case")]
 pub enum SolverKind {
-    /// Green's function molecular dynamics with FIRE.
+    /// Green's function molecular dynamics (mass-weighted, accelerated damped dynamics).
     Gfmd,
     /// Constrained conjugate gradients (Polonsky-Keer).
     #[default]
