@@ -61,10 +61,21 @@ impl<'a> Sweep<'a> {
         kind: SolverKind,
         opts: SolveOptions,
     ) -> Self {
+        Self::with_solver(surface, model, kind.build(), opts)
+    }
+
+    /// A sweep of `surface` on `model` with `solver` (for example one wrapped to report
+    /// progress or to be cancelled).
+    pub fn with_solver(
+        surface: &'a Surface,
+        model: &'a Model,
+        solver: Box<dyn Solver + Send>,
+        opts: SolveOptions,
+    ) -> Self {
         Self {
             surface,
             model,
-            solver: kind.build(),
+            solver,
             opts,
             spec: model.fft.new_spectrum(),
             work: model.fft.new_spectrum(),

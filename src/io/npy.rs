@@ -44,30 +44,7 @@ pub fn parse_field(
             dtype.descr()
         ));
     }
-    let shape = npy.shape().to_vec();
-    if shape.len() != 2 {
-        return Err(format!(
-            "array has {} dimensions (shape {:?}), expected 2 (N, N)",
-            shape.len(),
-            shape
-        ));
-    }
-    if shape[0] == 0 || shape[1] == 0 {
-        return Err(format!("array is empty (shape {shape:?})"));
-    }
-    if shape[0] != shape[1] {
-        return Err(format!(
-            "array is not square (shape {shape:?}), expected (N, N)"
-        ));
-    }
-    let n = shape[0] as usize;
-    if !sizes.contains(&n) {
-        return Err(format!(
-            "N = {n} is outside [{}, {}]",
-            sizes.start(),
-            sizes.end()
-        ));
-    }
+    let n = check_shape(npy.shape(), sizes)?;
     let fortran = npy.order() == npyz::Order::Fortran;
     let mut values: Vec<f64> = npy.into_vec().map_err(|e| {
         format!(
@@ -98,6 +75,46 @@ pub fn parse_field(
         }
         values = t;
     }
+    check_finite(&values, n)?;
+    Ok(Field { n, values })
+}
+
+/// Checks the shape of a field: two dimensions, square, not empty, with `N` in `sizes`.
+/// Returns `N`, or says what is wrong in the reader's words (also used for arrays handed
+/// over in memory, so that both name a bad shape alike).
+pub fn check_shape(
+    shape: &[u64],
+    sizes: RangeInclusive<usize>,
+) -> std::result::Result<usize, String> {
+    if shape.len() != 2 {
+        return Err(format!(
+            "array has {} dimensions (shape {:?}), expected 2 (N, N)",
+            shape.len(),
+            shape
+        ));
+    }
+    if shape[0] == 0 || shape[1] == 0 {
+        return Err(format!("array is empty (shape {shape:?})"));
+    }
+    if shape[0] != shape[1] {
+        return Err(format!(
+            "array is not square (shape {shape:?}), expected (N, N)"
+        ));
+    }
+    let n = shape[0] as usize;
+    if !sizes.contains(&n) {
+        return Err(format!(
+            "N = {n} is outside [{}, {}]",
+            sizes.start(),
+            sizes.end()
+        ));
+    }
+    Ok(n)
+}
+
+/// Checks that every entry of a row-major `n x n` field is finite; names the first that is
+/// not, by row and column, in the reader's words.
+pub fn check_finite(values: &[f64], n: usize) -> std::result::Result<(), String> {
     if let Some(k) = values.iter().position(|v| !v.is_finite()) {
         return Err(format!(
             "entry at row {}, column {} is {} (fields must be finite)",
@@ -106,7 +123,7 @@ pub fn parse_field(
             values[k]
         ));
     }
-    Ok(Field { n, values })
+    Ok(())
 }
 
 /// The reader's complaint about a header, on one short line.
