@@ -30,7 +30,7 @@ use super::{max_residual, Check, Conclusion, Criteria, Detail, Experiment, JobCo
 use crate::engine::scene::check_zeta;
 use crate::error::{check_open, check_positive, Result};
 use crate::plot::Raster;
-use crate::stats::{round_sig, Estimate};
+use crate::stats::{realizations, round_sig, Estimate};
 
 /// The paper's flux into contact from zeta = 128 to 129.5, fraction of the nominal area.
 pub const PAPER_IN: f64 = 0.00675;
@@ -193,23 +193,24 @@ impl Experiment for Flux {
         ] {
             c.golden.insert(key.into(), round_sig(e.value, 2));
         }
-        c.checks.push(Check::new(
+        c.checks.push(Check::with_error_bar(
             "points_enter_contact",
             format!(
                 "points enter contact in the step (flux in more than {} standard errors above 0)",
                 criteria.significance
             ),
+            flux_in,
             flux_in.value > criteria.significance * flux_in.std_error,
-            format!("flux in = {:.5} +- {:.5}", flux_in.value, flux_in.std_error),
+            format!("flux in = {}", flux_in.text(1.0, 5, "")),
         ));
         c.account = format!(
-            "Over {} realizations (H = {}, {}x{} grid, lambda_l = {}, lambda_s = {}), at the \
+            "Over {} (H = {}, {}x{} grid, lambda_l = {}, lambda_s = {}), at the \
              load that gives a_r = {:.3} at zeta = {}, the step to zeta = {} moves {:.3}% of \
-             the nominal area into contact and {:.3}% out of it: {:.3} +- {:.3} points \
+             the nominal area into contact and {:.3}% out of it: {} points \
              enter per point that leaves, where Persson's absorbing boundary allows none. \
-             The net flux is {:.3} +- {:.3} of the mean one-way flux; a_r goes from {:.4} \
+             The net flux is {} of the mean one-way flux; a_r goes from {:.4} \
              to {:.4}.",
-            results.len(),
+            realizations(results.len()),
             scene.hurst,
             scene.n,
             scene.n,
@@ -220,10 +221,8 @@ impl Experiment for Flux {
             scene.zeta + scene.dzeta,
             100.0 * flux_in.value,
             100.0 * flux_out.value,
-            ratio.value,
-            ratio.std_error,
-            net.value,
-            net.std_error,
+            ratio.text(1.0, 3, ""),
+            net.text(1.0, 3, ""),
             a_old.value,
             a_new.value,
         );

@@ -117,10 +117,22 @@ pub struct Check {
     pub key: String,
     /// What is checked, in words.
     pub name: String,
-    /// Whether it passed.
+    /// Whether it passed (false when not decided).
     pub passed: bool,
     /// The numbers behind it.
     pub detail: String,
+    /// Whether the data decide it: false for a check that needs an error bar when there
+    /// is one realization. An undecided check leaves the reproduction undecided.
+    #[serde(default = "decided_default", skip_serializing_if = "is_decided")]
+    pub decided: bool,
+}
+
+fn decided_default() -> bool {
+    true
+}
+
+fn is_decided(decided: &bool) -> bool {
+    *decided
 }
 
 impl Check {
@@ -136,7 +148,29 @@ impl Check {
             name: name.into(),
             passed,
             detail: detail.into(),
+            decided: true,
         }
+    }
+
+    /// A check that needs an error bar, against `estimate`: decided by `passed` when the
+    /// estimate has one, otherwise not decided ("not decided with 1 realization").
+    pub fn with_error_bar(
+        key: impl Into<String>,
+        name: impl Into<String>,
+        estimate: Estimate,
+        passed: bool,
+        detail: impl Into<String>,
+    ) -> Self {
+        let mut c = Self::new(key, name, passed, detail);
+        if !estimate.has_error() {
+            c.passed = false;
+            c.decided = false;
+            c.detail = format!(
+                "not decided with 1 realization (no error bar): {}",
+                c.detail
+            );
+        }
+        c
     }
 }
 

@@ -172,7 +172,9 @@ impl Scorecard<'_> {
                 .map(|c| {
                     vec![
                         md(&c.name),
-                        if c.passed {
+                        if !c.decided {
+                            "not decided (1 realization)".into()
+                        } else if c.passed {
                             "passed".into()
                         } else {
                             "**FAILED**".into()

@@ -65,6 +65,7 @@ fn outcome(name: &str, verdict: Verdict, reproduced: Option<bool>, scale: Scale)
             detail("deviation", "largest deviation", 0.08, f64::NAN, None),
         ],
         checks: vec![Check {
+            decided: true,
             key: "check".into(),
             name: format!("check of {name}"),
             passed: reproduced != Some(false),

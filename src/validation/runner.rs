@@ -360,7 +360,16 @@ pub(crate) fn conclude<E: Experiment>(
     });
     let reproduced = match verdict {
         Verdict::Inconclusive => None,
-        v => Some(v == def.paper.verdict && in_range && conclusion.checks.iter().all(|c| c.passed)),
+        v => {
+            let checks = &conclusion.checks;
+            let agrees = v == def.paper.verdict
+                && in_range
+                && checks.iter().filter(|c| c.decided).all(|c| c.passed);
+            // A check the data cannot decide (one realization) leaves a reproduction that
+            // would otherwise stand undecided.
+            let undecided = checks.iter().any(|c| !c.decided);
+            (!agrees || !undecided).then_some(agrees)
+        }
     };
 
     let dir = opts.out.join(&def.name);
