@@ -241,6 +241,12 @@ pub struct Conclusion {
     pub rasters: Vec<Raster>,
     /// Largest solver residual over all solves.
     pub max_residual: f64,
+    /// Rows of a sensitivity study (the one-step flux against its settings).
+    pub sensitivity: Vec<flux::sensitivity::SensitivityRow>,
+    /// Statements drawn from a study, shown after the account.
+    pub notes: Vec<String>,
+    /// Waterfalls of cross sections.
+    pub waterfalls: Vec<crate::plot::Waterfall>,
 }
 
 impl Conclusion {
@@ -313,6 +319,12 @@ pub trait Experiment {
 
     /// The jobs of a scene.
     fn jobs(scene: &Self::Scene) -> Vec<Self::Job>;
+
+    /// Whether a job runs with the headline solver only (a study whose solver is part of
+    /// the job, or a figure): the runner does not repeat it for the cross-check.
+    fn headline_only(_job: &Self::Job) -> bool {
+        false
+    }
 
     /// What one job costs (its grid and its solves), for splitting a run into shares
     /// before anything runs.

@@ -140,8 +140,11 @@ pub(crate) fn prepare<E: Experiment>(source: &Source, opts: &RunOptions) -> Resu
     let scene_json = serde_json::to_value(scene).expect("scenes serialise");
     let state = jobs_dir(&opts.out, E::FAMILY, opts.scale);
     let mut units = Vec::new();
-    for &solver in &opts.solvers {
+    for (k, &solver) in opts.solvers.iter().enumerate() {
         for job in &jobs {
+            if k > 0 && E::headline_only(job) {
+                continue;
+            }
             let job_json = serde_json::to_string(job).expect("jobs serialise");
             let key = job_key(opts.scale, &scene_json, solver, &job_json);
             units.push(Unit {
@@ -388,6 +391,11 @@ pub(crate) fn conclude<E: Experiment>(
             files.push(relative(&opts.out, &path));
         }
     }
+    for waterfall in &conclusion.waterfalls {
+        for path in crate::plot::render_waterfall(waterfall, &dir)? {
+            files.push(relative(&opts.out, &path));
+        }
+    }
     for raster in &conclusion.rasters {
         for path in crate::plot::render_raster(raster, &dir)? {
             files.push(relative(&opts.out, &path));
@@ -418,6 +426,8 @@ pub(crate) fn conclude<E: Experiment>(
         checks: conclusion.checks,
         account: conclusion.account,
         golden: conclusion.golden,
+        sensitivity: conclusion.sensitivity,
+        notes: conclusion.notes,
         files,
         threads: rayon::current_num_threads(),
         solver: solver.name().to_string(),
