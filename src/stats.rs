@@ -54,6 +54,28 @@ impl Estimate {
         Self::new(r, (var / n as f64).sqrt() / mb.abs())
     }
 
+    /// Whether the estimate has an error bar (a finite standard error): not from one
+    /// realization.
+    pub fn has_error(&self) -> bool {
+        self.std_error.is_finite()
+    }
+
+    /// The estimate in words, times `scale`, with `decimals` decimals and `unit` after
+    /// each number: `"v +- e unit"`, or `"v unit (1 realization: no error bar)"` when the
+    /// error is not known. Never prints NaN for a finite value.
+    pub fn text(&self, scale: f64, decimals: usize, unit: &str) -> String {
+        let v = self.value * scale;
+        if self.has_error() {
+            format!(
+                "{v:.d$}{unit} +- {:.d$}{unit}",
+                self.std_error * scale,
+                d = decimals
+            )
+        } else {
+            format!("{v:.d$}{unit} (1 realization: no error bar)", d = decimals)
+        }
+    }
+
     /// `z = (value - reference) / std_error`.
     pub fn z_score(&self, reference: f64) -> f64 {
         (self.value - reference) / self.std_error
@@ -109,6 +131,15 @@ impl LineFit {
     }
 }
 
+/// `"1 realization"` or `"n realizations"`.
+pub fn realizations(n: usize) -> String {
+    if n == 1 {
+        "1 realization".into()
+    } else {
+        format!("{n} realizations")
+    }
+}
+
 /// Rounds to `digits` significant digits (for golden values that must not depend on the
 /// last bits of a platform's `exp` or `ln`).
 pub fn round_sig(x: f64, digits: i32) -> f64 {
@@ -130,6 +161,14 @@ mod tests {
         assert_eq!(e.value, 2.5);
         assert!((e.std_error - (5.0f64 / 3.0 / 4.0).sqrt()).abs() < 1e-15);
         assert!(Estimate::mean_of(&[1.0]).std_error.is_nan());
+        assert!(!Estimate::mean_of(&[1.0]).has_error());
+        assert_eq!(
+            Estimate::mean_of(&[0.25]).text(100.0, 1, "%"),
+            "25.0% (1 realization: no error bar)"
+        );
+        assert_eq!(Estimate::new(0.5, 0.02).text(1.0, 2, ""), "0.50 +- 0.02");
+        assert_eq!(realizations(1), "1 realization");
+        assert_eq!(realizations(4), "4 realizations");
     }
 
     #[test]

@@ -6,6 +6,7 @@ mod bad_input;
 mod common;
 mod determinism;
 mod hard_scenes;
+mod one_realization;
 mod persson;
 mod readers_fuzz;
 mod registry;

@@ -397,6 +397,7 @@ impl Experiment for ContactArea {
                 .map(|&p| (p, ContactAreaLaw::PAPER.contact_area(p) / p)),
         ));
         c.checks.push(Check {
+            decided: true,
             key: "law_within_tolerance".into(),
             name: format!(
                 "eq. (contactArea) within {:.0}% for a_r in [{}, {}]",

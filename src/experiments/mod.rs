@@ -117,10 +117,22 @@ pub struct Check {
     pub key: String,
     /// What is checked, in words.
     pub name: String,
-    /// Whether it passed.
+    /// Whether it passed (false when not decided).
     pub passed: bool,
     /// The numbers behind it.
     pub detail: String,
+    /// Whether the data decide it: false for a check that needs an error bar when there
+    /// is one realization. An undecided check leaves the reproduction undecided.
+    #[serde(default = "decided_default", skip_serializing_if = "is_decided")]
+    pub decided: bool,
+}
+
+fn decided_default() -> bool {
+    true
+}
+
+fn is_decided(decided: &bool) -> bool {
+    *decided
 }
 
 impl Check {
@@ -136,7 +148,29 @@ impl Check {
             name: name.into(),
             passed,
             detail: detail.into(),
+            decided: true,
         }
+    }
+
+    /// A check that needs an error bar, against `estimate`: decided by `passed` when the
+    /// estimate has one, otherwise not decided ("not decided with 1 realization").
+    pub fn with_error_bar(
+        key: impl Into<String>,
+        name: impl Into<String>,
+        estimate: Estimate,
+        passed: bool,
+        detail: impl Into<String>,
+    ) -> Self {
+        let mut c = Self::new(key, name, passed, detail);
+        if !estimate.has_error() {
+            c.passed = false;
+            c.decided = false;
+            c.detail = format!(
+                "not decided with 1 realization (no error bar): {}",
+                c.detail
+            );
+        }
+        c
     }
 }
 
@@ -207,6 +241,12 @@ pub struct Conclusion {
     pub rasters: Vec<Raster>,
     /// Largest solver residual over all solves.
     pub max_residual: f64,
+    /// Rows of a sensitivity study (the one-step flux against its settings).
+    pub sensitivity: Vec<flux::sensitivity::SensitivityRow>,
+    /// Statements drawn from a study, shown after the account.
+    pub notes: Vec<String>,
+    /// Waterfalls of cross sections.
+    pub waterfalls: Vec<crate::plot::Waterfall>,
 }
 
 impl Conclusion {
@@ -279,6 +319,12 @@ pub trait Experiment {
 
     /// The jobs of a scene.
     fn jobs(scene: &Self::Scene) -> Vec<Self::Job>;
+
+    /// Whether a job runs with the headline solver only (a study whose solver is part of
+    /// the job, or a figure): the runner does not repeat it for the cross-check.
+    fn headline_only(_job: &Self::Job) -> bool {
+        false
+    }
 
     /// What one job costs (its grid and its solves), for splitting a run into shares
     /// before anything runs.

@@ -497,6 +497,7 @@ impl Experiment for Diffusion {
         let tolerance = criteria.resolution;
         let consistent = (high.value - 1.0).abs() <= z * high.std_error + tolerance;
         c.checks.push(Check {
+            decided: true,
             key: "high_pressure_ratio_near_one".into(),
             name: format!(
                 "D_n / D_P ~ 1 at p >= {} p0/a_r (within {z} standard errors plus {tolerance})",
@@ -506,6 +507,7 @@ impl Experiment for Diffusion {
             detail: format!("{:.3} +- {:.3}", high.value, high.std_error),
         });
         c.checks.push(Check {
+            decided: true,
             key: "high_pressure_closer_to_original".into(),
             name: "high-pressure diffusion closer to the original theory (1) than to S(a_r)".into(),
             passed: (high.value - 1.0).abs() < (high.value - s_corrected).abs(),
@@ -643,12 +645,14 @@ impl Experiment for Drift {
             c.details.push(Detail::new(key, name, e).persson(0.0));
         }
         c.checks.push(Check {
+            decided: true,
             key: "mu_c_negative".into(),
             name: format!("mu_c < 0 beyond {z} standard errors"),
             passed: mu_c.value + z * mu_c.std_error < 0.0,
             detail: format!("{:.4} +- {:.4}", mu_c.value, mu_c.std_error),
         });
         c.checks.push(Check {
+            decided: true,
             key: "high_pressure_drift_near_zero".into(),
             name: format!(
                 "drift ~ 0 at p >= {} p0/a_r (within {z} standard errors plus {})",

@@ -1,11 +1,13 @@
-//! Figures: what to draw ([`Figure`], [`Raster`]) apart from how it is drawn ([`render`]).
+//! Figures: what to draw ([`Figure`], [`Raster`], [`Waterfall`]) apart from how it is drawn ([`render`]).
 //!
 //! Experiments describe their figures as data; the runner renders each to SVG and PNG.
 //! Keeping the description plain data lets tests check a figure's content without pixels.
 
 mod render;
+mod waterfall;
 
-pub use render::{render, render_raster};
+pub use render::{render, render_raster, render_waterfall};
+pub use waterfall::{CutPanel, Waterfall};
 
 use serde::{Deserialize, Serialize};
 

@@ -27,7 +27,7 @@ pub(super) fn attention(loaded: &[Loaded], golden: &[GoldenMatch]) -> Vec<String
             let failed: Vec<String> = o
                 .checks
                 .iter()
-                .filter(|c| !c.passed)
+                .filter(|c| c.decided && !c.passed)
                 .map(|c| format!("{} ({})", c.name, c.detail))
                 .collect();
             let why = if o.verdict != o.paper_verdict {

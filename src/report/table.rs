@@ -143,6 +143,45 @@ impl Scorecard<'_> {
         if !o.account.trim().is_empty() {
             let _ = writeln!(s, "{}\n", md(o.account.trim()));
         }
+        for note in &o.notes {
+            let _ = writeln!(s, "{}\n", md(note));
+        }
+        if !o.sensitivity.is_empty() {
+            let _ = writeln!(
+                s,
+                "**Sensitivity of the one-step flux** (one setting moved at a time; % of the \
+                 nominal area A0 and of the true contact area Ac at zeta)\n"
+            );
+            let pct = |e: crate::stats::Estimate| pm(100.0 * e.value, 100.0 * e.std_error);
+            let rows: Vec<Vec<String>> = o
+                .sensitivity
+                .iter()
+                .map(|r| {
+                    vec![
+                        md(&r.parameter),
+                        md(&r.label),
+                        format!("{}x{}, {}", r.config.n, r.config.n, r.config.solver.name()),
+                        pct(r.flux_in),
+                        pct(r.flux_out),
+                        pct(r.flux_in_of_contact),
+                        pct(r.flux_out_of_contact),
+                    ]
+                })
+                .collect();
+            s.push_str(&table(
+                &[
+                    "setting",
+                    "value",
+                    "grid, solver",
+                    "in, % A0",
+                    "out, % A0",
+                    "in, % Ac",
+                    "out, % Ac",
+                ],
+                &rows,
+            ));
+            s.push('\n');
+        }
         if !o.details.is_empty() {
             let _ = writeln!(s, "**Secondary statistics**\n");
             let rows: Vec<Vec<String>> = o
@@ -172,7 +211,9 @@ impl Scorecard<'_> {
                 .map(|c| {
                     vec![
                         md(&c.name),
-                        if c.passed {
+                        if !c.decided {
+                            "not decided (1 realization)".into()
+                        } else if c.passed {
                             "passed".into()
                         } else {
                             "**FAILED**".into()

@@ -65,6 +65,7 @@ fn outcome(name: &str, verdict: Verdict, reproduced: Option<bool>, scale: Scale)
             detail("deviation", "largest deviation", 0.08, f64::NAN, None),
         ],
         checks: vec![Check {
+            decided: true,
             key: "check".into(),
             name: format!("check of {name}"),
             passed: reproduced != Some(false),
@@ -72,6 +73,8 @@ fn outcome(name: &str, verdict: Verdict, reproduced: Option<bool>, scale: Scale)
         }],
         account: format!("Account of {name}: kappa = 2.5 +- 0.05."),
         golden: BTreeMap::from([("kappa".to_string(), 2.5)]),
+        sensitivity: Vec::new(),
+        notes: Vec::new(),
         files: vec![
             format!("{name}.csv"),
             format!("{name}/fig.svg"),

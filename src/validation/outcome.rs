@@ -6,6 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use super::definition::{Scale, Verdict, VerdictRule};
 use super::store::JobRun;
+use crate::experiments::flux::sensitivity::SensitivityRow;
 use crate::experiments::{Check, Detail};
 
 /// The record of one validation run: `<name>.json` ([`crate::conventions`], section 7).
@@ -57,6 +58,12 @@ pub struct Outcome {
     pub account: String,
     /// Golden values.
     pub golden: BTreeMap<String, f64>,
+    /// Rows of a sensitivity study (`c_flux`: the one-step flux against its settings).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub sensitivity: Vec<SensitivityRow>,
+    /// Statements drawn from a study, shown after the account.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub notes: Vec<String>,
     /// Files written (tables, figures), relative to the output directory.
     pub files: Vec<String>,
     /// Worker threads used.

@@ -140,8 +140,11 @@ pub(crate) fn prepare<E: Experiment>(source: &Source, opts: &RunOptions) -> Resu
     let scene_json = serde_json::to_value(scene).expect("scenes serialise");
     let state = jobs_dir(&opts.out, E::FAMILY, opts.scale);
     let mut units = Vec::new();
-    for &solver in &opts.solvers {
+    for (k, &solver) in opts.solvers.iter().enumerate() {
         for job in &jobs {
+            if k > 0 && E::headline_only(job) {
+                continue;
+            }
             let job_json = serde_json::to_string(job).expect("jobs serialise");
             let key = job_key(opts.scale, &scene_json, solver, &job_json);
             units.push(Unit {
@@ -360,7 +363,16 @@ pub(crate) fn conclude<E: Experiment>(
     });
     let reproduced = match verdict {
         Verdict::Inconclusive => None,
-        v => Some(v == def.paper.verdict && in_range && conclusion.checks.iter().all(|c| c.passed)),
+        v => {
+            let checks = &conclusion.checks;
+            let agrees = v == def.paper.verdict
+                && in_range
+                && checks.iter().filter(|c| c.decided).all(|c| c.passed);
+            // A check the data cannot decide (one realization) leaves a reproduction that
+            // would otherwise stand undecided.
+            let undecided = checks.iter().any(|c| !c.decided);
+            (!agrees || !undecided).then_some(agrees)
+        }
     };
 
     let dir = opts.out.join(&def.name);
@@ -376,6 +388,11 @@ pub(crate) fn conclude<E: Experiment>(
     }
     for figure in &conclusion.figures {
         for path in crate::plot::render(figure, &dir)? {
+            files.push(relative(&opts.out, &path));
+        }
+    }
+    for waterfall in &conclusion.waterfalls {
+        for path in crate::plot::render_waterfall(waterfall, &dir)? {
             files.push(relative(&opts.out, &path));
         }
     }
@@ -409,6 +426,8 @@ pub(crate) fn conclude<E: Experiment>(
         checks: conclusion.checks,
         account: conclusion.account,
         golden: conclusion.golden,
+        sensitivity: conclusion.sensitivity,
+        notes: conclusion.notes,
         files,
         threads: rayon::current_num_threads(),
         solver: solver.name().to_string(),

@@ -248,6 +248,7 @@ impl Experiment for ModeFrozen {
                 }
             );
             c.checks.push(Check {
+                decided: true,
                 key: "k2_positive".into(),
                 name: "the asymptote falls as the contact area shrinks faster (K2 > 0)".into(),
                 passed: k2.value > 0.0,
@@ -259,6 +260,7 @@ impl Experiment for ModeFrozen {
         // frozen (Persson's assumption nearly holds).
         let low = pick(lowest, 0);
         c.checks.push(Check {
+            decided: true,
             key: "long_wavelengths_recede".into(),
             name: "long-wavelength energy recedes after resolution at the lowest load".into(),
             passed: low.value < 0.0 && -low.value > criteria.significance * low.std_error,
@@ -270,6 +272,7 @@ impl Experiment for ModeFrozen {
         if highest > lowest {
             let high = pick(highest, 0);
             c.checks.push(Check {
+                decided: true,
                 key: "smaller_near_full_contact".into(),
                 name: "the change is smaller near full contact than at the lowest load".into(),
                 passed: high.value.abs() < low.value.abs(),

@@ -117,6 +117,7 @@ impl Experiment for ModeOnset {
         }
         if highest > lowest {
             c.checks.push(Check {
+                decided: true,
                 key: "negligible_near_full_contact".into(),
                 name: format!(
                     "near full contact (a_r = {highest} at full resolution) the onset is \
@@ -127,6 +128,7 @@ impl Experiment for ModeOnset {
                 detail: high_text.join("; "),
             });
             c.checks.push(Check {
+                decided: true,
                 key: "onset_grows_as_contact_becomes_partial".into(),
                 name: format!(
                     "the onset grows as contact becomes partial: E_norm at a_r = {lowest} \

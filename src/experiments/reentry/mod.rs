@@ -41,7 +41,7 @@ use crate::engine::scene::check_zeta;
 use crate::engine::sweep::shell_steps;
 use crate::error::{check_positive, Error, Result};
 use crate::plot::Raster;
-use crate::stats::{round_sig, Estimate};
+use crate::stats::{realizations, round_sig, Estimate};
 
 /// The paper's flux into contact from zeta = 128 to 129.5 (fraction of the nominal area).
 pub const PAPER_FLUX_IN: f64 = 0.00675;
@@ -316,11 +316,12 @@ impl Experiment for Reentry {
         c.golden
             .insert("flux_out".into(), round_sig(flux_out.value, 3));
         let z = criteria.significance;
-        c.checks.push(Check::new(
+        c.checks.push(Check::with_error_bar(
             "flux_in_positive",
             format!("flux into contact above zero beyond {z} standard errors"),
+            flux_in,
             flux_in.value > z * flux_in.std_error && flux_in.value > 0.0,
-            format!("{:.5} +- {:.5} of A0", flux_in.value, flux_in.std_error),
+            format!("{} of A0", flux_in.text(1.0, 5, "")),
         ));
         // The paper's ordering: lower load, more re-entry.
         let mut order: Vec<(f64, Estimate)> = scene
@@ -358,13 +359,13 @@ fn account(
     let shells = results.first().map_or(0, |r| r.1.shells);
     let head = scene.contact_areas[0];
     format!(
-        "{} realizations ({}x{}, H = {}, lambda_l = {}, lambda_s = {}) were swept through all \
+        "{} ({}x{}, H = {}, lambda_l = {}, lambda_s = {}) were swept through all \
          {} shells one at a time at fixed load, from the flat interface to zeta_max = {}. \
          Of the points in contact at zeta_max, {} had been out of contact at a lower \
          magnification (paper: {}). Between zeta = {} and {}, {:.3}% of the nominal area \
          entered contact and {:.3}% left it, at a_r = {head}. A sweep took {} solver \
          iterations on average.",
-        scene.seeds.len(),
+        realizations(scene.seeds.len()),
         scene.n,
         scene.n,
         scene.hurst,
@@ -376,11 +377,7 @@ fn account(
             .contact_areas
             .iter()
             .zip(shares)
-            .map(|(a, s)| format!(
-                "{:.1}% +- {:.1}% at a_r = {a}",
-                100.0 * s.value,
-                100.0 * s.std_error
-            ))
+            .map(|(a, s)| format!("{} at a_r = {a}", s.text(100.0, 1, "%")))
             .collect::<Vec<_>>()
             .join(", "),
         scene

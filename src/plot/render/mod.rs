@@ -29,8 +29,10 @@ mod axes;
 mod draw;
 #[cfg(test)]
 mod tests;
+mod waterfall;
 
 use self::draw::{draw_figure, Layout};
+pub use self::waterfall::render_waterfall;
 use super::{Axis, Figure, Point, Raster, Side, Style};
 use crate::error::{Error, Result};
 

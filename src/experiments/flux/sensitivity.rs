@@ -1,0 +1,422 @@
+//! What sets the one-step flux: the flux into and out of contact of the paper's
+//! contact-change figure (paper, figure "reentry_visualization": 0.675% in, 0.597% out of
+//! the area, 4096^2, H = 0.8, a_r = 0.14, zeta 128 -> 129.5) measured again while one
+//! setting at a time moves away from a base configuration:
+//!
+//! * `tol`: the solver's residual tolerance;
+//! * `dzeta_over_zeta`: the relative step, in multiples of the paper's 1.5 / 128;
+//! * `lambda_s`: the discretisation, grid spacings per shortest wavelength, at the same
+//!   surface (the grid and `lambda_l` scale with it, so the modes and `zeta` stay);
+//! * `lambda_l_over_l`: the roll-off wavelength over the system size, the step kept at the
+//!   same place relative to `zeta_max`;
+//! * `control`: the step at fixed load (0) or at fixed contact area (1);
+//! * `solver`: GFMD (0) or CG (1).
+//!
+//! Each row is a mean over realizations with its standard error, as a fraction of the
+//! nominal area and of the true contact area at `zeta`. Configurations shared by several
+//! rows (the base is in every list) run once.
+
+use serde::{Deserialize, Serialize};
+
+use crate::engine::solver::SolverKind;
+use crate::error::{check_open, check_positive, Error, Result};
+use crate::experiments::scene::Base;
+use crate::stats::Estimate;
+
+/// The paper's relative step, `1.5 / 128`.
+pub const PAPER_RELATIVE_STEP: f64 = 1.5 / 128.0;
+
+/// The study, as a scene states it (`[reduced.sensitivity]`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SensitivityPlan {
+    /// Points per side of the base configuration.
+    pub n: usize,
+    /// Long-wavelength cutoff of the base (grid units).
+    pub lambda_l: f64,
+    /// Short-wavelength cutoff of the base (grid units).
+    pub lambda_s: f64,
+    /// Realizations of every configuration.
+    pub seeds: Vec<u64>,
+    /// Contact area at `zeta` (sets the load).
+    pub contact_area: f64,
+    /// Magnification before the step, base.
+    pub zeta: f64,
+    /// Tolerance of the base.
+    pub tol: f64,
+    /// Solver of the base.
+    pub solver: SolverKind,
+    /// Tolerances (the base's among them).
+    pub tols: Vec<f64>,
+    /// Steps `dzeta / zeta` in multiples of the paper's `1.5 / 128`.
+    pub step_factors: Vec<f64>,
+    /// Shortest wavelengths in grid spacings, the same surface on a finer or coarser grid.
+    pub lambda_s_values: Vec<f64>,
+    /// `lambda_l / L` values.
+    pub lambda_l_fractions: Vec<f64>,
+    /// Also the step at fixed contact area.
+    pub fixed_area: bool,
+    /// Solvers (the base's among them).
+    pub solvers: Vec<SolverKind>,
+}
+
+/// One configuration of the study: everything a step depends on besides the Hurst
+/// exponent and the seed.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StudyConfig {
+    /// Points per side.
+    pub n: usize,
+    /// Long-wavelength cutoff (grid units).
+    pub lambda_l: f64,
+    /// Short-wavelength cutoff (grid units).
+    pub lambda_s: f64,
+    /// Contact area at `zeta`.
+    pub contact_area: f64,
+    /// Magnification before the step.
+    pub zeta: f64,
+    /// The step.
+    pub dzeta: f64,
+    /// Tolerance.
+    pub tol: f64,
+    /// Solver.
+    pub solver: SolverKind,
+    /// Whether the step keeps the contact area (else the load).
+    pub fixed_area: bool,
+}
+
+/// One realization of one configuration.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StudyJob {
+    /// Seed.
+    pub seed: u64,
+    /// Configuration.
+    pub config: StudyConfig,
+}
+
+/// What one study job measured.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StudyResult {
+    /// Contact area at `zeta`.
+    pub a_r_old: f64,
+    /// Contact area at `zeta + dzeta`.
+    pub a_r_new: f64,
+    /// Fraction of the nominal area entering contact.
+    pub flux_in: f64,
+    /// Fraction of the nominal area leaving contact.
+    pub flux_out: f64,
+    /// Largest solver residual.
+    pub max_residual: f64,
+}
+
+/// One row of the study: one setting at one value, averaged over realizations.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SensitivityRow {
+    /// The setting varied (`tol`, `dzeta_over_zeta`, `lambda_s`, `lambda_l_over_l`,
+    /// `control`, `solver`).
+    pub parameter: String,
+    /// Its value (`control`: 0 fixed load, 1 fixed area; `solver`: 0 GFMD, 1 CG).
+    pub value: f64,
+    /// The value in words.
+    pub label: String,
+    /// The configuration.
+    pub config: StudyConfig,
+    /// Realizations.
+    pub realizations: usize,
+    /// Flux into contact, fraction of the nominal area.
+    pub flux_in: Estimate,
+    /// Flux out of contact, fraction of the nominal area.
+    pub flux_out: Estimate,
+    /// Flux into contact, fraction of the true contact area at `zeta`.
+    pub flux_in_of_contact: Estimate,
+    /// Flux out of contact, fraction of the true contact area at `zeta`.
+    pub flux_out_of_contact: Estimate,
+    /// Contact area at `zeta`.
+    pub contact_area: Estimate,
+}
+
+impl SensitivityPlan {
+    /// Checks the ranges; errors name the field.
+    pub fn validate(&self, hurst: f64) -> Result<()> {
+        check_open("sensitivity.contact_area", self.contact_area, 0.0, 1.0)?;
+        check_positive("sensitivity.zeta", self.zeta)?;
+        crate::error::check_seeds(&self.seeds)?;
+        let lists: [(&str, &[f64]); 4] = [
+            ("sensitivity.tols", &self.tols),
+            ("sensitivity.step_factors", &self.step_factors),
+            ("sensitivity.lambda_s_values", &self.lambda_s_values),
+            ("sensitivity.lambda_l_fractions", &self.lambda_l_fractions),
+        ];
+        for (field, values) in lists {
+            for &v in values {
+                check_positive(field, v)?;
+            }
+        }
+        if self.solvers.is_empty() {
+            return Err(Error::invalid("sensitivity.solvers", "[]", "at least one"));
+        }
+        for (parameter, _, _, config) in self.rows() {
+            let base = Base {
+                n: config.n,
+                hurst,
+                lambda_l: config.lambda_l,
+                lambda_s: config.lambda_s,
+                seeds: &self.seeds,
+                tol: config.tol,
+            };
+            base.validate()
+                .map_err(|e| e.with_field(&format!("sensitivity.{parameter}")))?;
+            crate::engine::scene::check_zeta(config.zeta + config.dzeta, base.zeta_max())
+                .map_err(|e| e.with_field(&format!("sensitivity.{parameter}")))?;
+        }
+        Ok(())
+    }
+
+    /// The base configuration.
+    pub fn base(&self) -> StudyConfig {
+        StudyConfig {
+            n: self.n,
+            lambda_l: self.lambda_l,
+            lambda_s: self.lambda_s,
+            contact_area: self.contact_area,
+            zeta: self.zeta,
+            dzeta: PAPER_RELATIVE_STEP * self.zeta,
+            tol: self.tol,
+            solver: self.solver,
+            fixed_area: false,
+        }
+    }
+
+    /// Every row as `(parameter, value, label, configuration)`.
+    pub fn rows(&self) -> Vec<(&'static str, f64, String, StudyConfig)> {
+        let base = self.base();
+        let mut rows = Vec::new();
+        for &tol in &self.tols {
+            let c = StudyConfig {
+                tol,
+                ..base.clone()
+            };
+            rows.push(("tol", tol, format!("{tol:e}"), c));
+        }
+        for &f in &self.step_factors {
+            let r = f * PAPER_RELATIVE_STEP;
+            let c = StudyConfig {
+                dzeta: r * base.zeta,
+                ..base.clone()
+            };
+            rows.push(("dzeta_over_zeta", r, format!("{f} x 1.5/128"), c));
+        }
+        for &ls in &self.lambda_s_values {
+            let scale = ls / base.lambda_s;
+            let c = StudyConfig {
+                n: (base.n as f64 * scale).round() as usize,
+                lambda_l: base.lambda_l * scale,
+                lambda_s: ls,
+                ..base.clone()
+            };
+            rows.push(("lambda_s", ls, format!("{ls} (n = {})", c.n), c));
+        }
+        for &fr in &self.lambda_l_fractions {
+            let lambda_l = fr * base.n as f64;
+            let zeta = base.zeta * lambda_l / base.lambda_l;
+            let c = StudyConfig {
+                lambda_l,
+                zeta,
+                dzeta: PAPER_RELATIVE_STEP * zeta,
+                ..base.clone()
+            };
+            rows.push(("lambda_l_over_l", fr, format!("{fr} (zeta = {zeta})"), c));
+        }
+        if self.fixed_area {
+            for (v, fixed_area, label) in [(0.0, false, "fixed load"), (1.0, true, "fixed area")] {
+                let c = StudyConfig {
+                    fixed_area,
+                    ..base.clone()
+                };
+                rows.push(("control", v, label.to_string(), c));
+            }
+        }
+        for &solver in &self.solvers {
+            let v = match solver {
+                SolverKind::Gfmd => 0.0,
+                SolverKind::Cg => 1.0,
+            };
+            let c = StudyConfig {
+                solver,
+                ..base.clone()
+            };
+            rows.push(("solver", v, solver.name().to_string(), c));
+        }
+        rows
+    }
+
+    /// The jobs: every distinct configuration once, for every seed.
+    pub fn jobs(&self) -> Vec<StudyJob> {
+        let mut configs: Vec<StudyConfig> = Vec::new();
+        for (_, _, _, c) in self.rows() {
+            if !configs.contains(&c) {
+                configs.push(c);
+            }
+        }
+        configs
+            .into_iter()
+            .flat_map(|config| {
+                self.seeds.iter().map(move |&seed| StudyJob {
+                    seed,
+                    config: config.clone(),
+                })
+            })
+            .collect()
+    }
+
+    /// The rows from the jobs' results.
+    pub fn conclude(&self, results: &[(&StudyJob, &StudyResult)]) -> Vec<SensitivityRow> {
+        self.rows()
+            .into_iter()
+            .filter_map(|(parameter, value, label, config)| {
+                let runs: Vec<&StudyResult> = results
+                    .iter()
+                    .filter(|(j, _)| j.config == config)
+                    .map(|(_, r)| *r)
+                    .collect();
+                if runs.is_empty() {
+                    return None;
+                }
+                let mean = |f: &dyn Fn(&StudyResult) -> f64| {
+                    Estimate::mean_of(&runs.iter().map(|r| f(r)).collect::<Vec<_>>())
+                };
+                let of_contact = |x: f64, r: &StudyResult| x / r.a_r_old.max(f64::MIN_POSITIVE);
+                Some(SensitivityRow {
+                    parameter: parameter.to_string(),
+                    value,
+                    label,
+                    config,
+                    realizations: runs.len(),
+                    flux_in: mean(&|r| r.flux_in),
+                    flux_out: mean(&|r| r.flux_out),
+                    flux_in_of_contact: mean(&|r| of_contact(r.flux_in, r)),
+                    flux_out_of_contact: mean(&|r| of_contact(r.flux_out, r)),
+                    contact_area: mean(&|r| r.a_r_old),
+                })
+            })
+            .collect()
+    }
+}
+
+/// Runs one study job: the load that gives the contact area at `zeta`, then the step at
+/// that load (or at that contact area).
+pub fn run(hurst: f64, job: &StudyJob) -> Result<StudyResult> {
+    let c = &job.config;
+    let seeds = [job.seed];
+    let base = Base {
+        n: c.n,
+        hurst,
+        lambda_l: c.lambda_l,
+        lambda_s: c.lambda_s,
+        seeds: &seeds,
+        tol: c.tol,
+    };
+    let r = base.realization(job.seed)?;
+    let mut sweep = base.sweep(&r, c.solver);
+    let p0 = sweep.find_load(c.zeta, c.contact_area)?;
+    let old = sweep
+        .solution()
+        .expect("find_load keeps its solution")
+        .clone();
+    let new = if c.fixed_area {
+        sweep.find_load(c.zeta + c.dzeta, c.contact_area)?;
+        sweep.solution().expect("find_load keeps its solution")
+    } else {
+        sweep.solve_at(c.zeta + c.dzeta, p0)?
+    };
+    let categories: Vec<u8> = old
+        .pressure
+        .iter()
+        .zip(&new.pressure)
+        .map(|(&a, &b)| super::category(a, b))
+        .collect();
+    let (flux_in, flux_out) = super::fluxes(&categories);
+    Ok(StudyResult {
+        a_r_old: old.contact_area(),
+        a_r_new: new.contact_area(),
+        flux_in,
+        flux_out,
+        max_residual: old.stats.residual.value().max(new.stats.residual.value()),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn plan() -> SensitivityPlan {
+        SensitivityPlan {
+            n: 64,
+            lambda_l: 32.0,
+            lambda_s: 4.0,
+            seeds: vec![1, 2],
+            contact_area: 0.14,
+            zeta: 4.0,
+            tol: 1e-8,
+            solver: SolverKind::Cg,
+            tols: vec![1e-6, 1e-8],
+            step_factors: vec![0.25, 1.0, 4.0],
+            lambda_s_values: vec![2.0, 4.0],
+            lambda_l_fractions: vec![0.25, 0.5],
+            fixed_area: true,
+            solvers: vec![SolverKind::Gfmd, SolverKind::Cg],
+        }
+    }
+
+    #[test]
+    fn rows_vary_one_setting_and_share_the_base() {
+        let p = plan();
+        p.validate(0.8).unwrap();
+        let rows = p.rows();
+        assert_eq!(rows.len(), 2 + 3 + 2 + 2 + 2 + 2);
+        // The base appears once per list; the jobs run it once.
+        let base = p.base();
+        assert_eq!(rows.iter().filter(|r| r.3 == base).count(), 6);
+        let distinct = rows.len() - 6 + 1;
+        assert_eq!(p.jobs().len(), distinct * p.seeds.len());
+        // lambda_s = 2: the same surface on a grid half as fine.
+        let coarse = &rows
+            .iter()
+            .find(|r| r.0 == "lambda_s" && r.1 == 2.0)
+            .unwrap()
+            .3;
+        assert_eq!((coarse.n, coarse.lambda_l, coarse.zeta), (32, 16.0, 4.0));
+        // lambda_l / L = 1/4: the step at the same place relative to zeta_max.
+        let short = &rows
+            .iter()
+            .find(|r| r.0 == "lambda_l_over_l" && r.1 == 0.25)
+            .unwrap()
+            .3;
+        assert_eq!((short.lambda_l, short.zeta), (16.0, 2.0));
+    }
+
+    #[test]
+    fn rows_average_over_realizations_in_both_measures() {
+        let p = plan();
+        let jobs = p.jobs();
+        let results: Vec<StudyResult> = jobs
+            .iter()
+            .map(|j| StudyResult {
+                a_r_old: 0.1,
+                a_r_new: 0.1,
+                flux_in: 0.001 * j.seed as f64,
+                flux_out: 0.002,
+                max_residual: 0.0,
+            })
+            .collect();
+        let pairs: Vec<(&StudyJob, &StudyResult)> = jobs.iter().zip(&results).collect();
+        let rows = p.conclude(&pairs);
+        assert_eq!(rows.len(), p.rows().len());
+        let r = &rows[0];
+        assert!((r.flux_in.value - 0.0015).abs() < 1e-15);
+        assert!((r.flux_in_of_contact.value - 0.015).abs() < 1e-14);
+        assert!((r.flux_out.std_error).abs() < 1e-15);
+    }
+}

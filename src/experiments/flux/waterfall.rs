@@ -1,0 +1,216 @@
+//! The cross-section waterfall of the paper's figure "reentry_waterfall" (section 3.3,
+//! "No re-entry"): one cut through the same contact at several magnifications, at the
+//! fixed load that gives the stated contact area at the largest of them.
+//!
+//! The realization is solved at every magnification of the list (warm-started); the cut
+//! is the grid row with the most re-entered points, a point counting as re-entered in a
+//! panel when it is in contact there and was out of contact in a panel above (only the
+//! listed magnifications are looked at, not every shell between them). The paper did not
+//! choose its cut; this one is chosen to show the effect, and the title says so.
+
+use serde::{Deserialize, Serialize};
+
+use super::FluxScene;
+use crate::engine::solver::SolverKind;
+use crate::error::{check_open, Error, Result};
+use crate::plot::{CutPanel, Waterfall};
+
+/// The waterfall, as a scene states it (`[reduced.waterfall]`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WaterfallPlan {
+    /// The realization.
+    pub seed: u64,
+    /// Magnifications of the panels, increasing.
+    pub zetas: Vec<f64>,
+    /// Contact area at the largest magnification (sets the load).
+    pub contact_area: f64,
+    /// The solver (a figure needs no cross-check; CG is the cheaper one here).
+    pub solver: SolverKind,
+}
+
+/// One panel's cut.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Cut {
+    /// Magnification.
+    pub zeta: f64,
+    /// Contact area of the whole interface.
+    pub a_r: f64,
+    /// Heights of the rough body along the cut.
+    pub heights: Vec<f64>,
+    /// Displacement of the elastic body along the cut.
+    pub displacement: Vec<f64>,
+    /// Re-entered points along the cut.
+    pub reentered: Vec<bool>,
+}
+
+/// What the waterfall job measured.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WaterfallResult {
+    /// The grid row of the cut.
+    pub row: usize,
+    /// Load.
+    pub p0: f64,
+    /// The panels.
+    pub cuts: Vec<Cut>,
+}
+
+impl WaterfallPlan {
+    /// Checks the ranges against the scene's `zeta_max`; errors name the field.
+    pub fn validate(&self, zeta_max: f64) -> Result<()> {
+        check_open("waterfall.contact_area", self.contact_area, 0.0, 1.0)?;
+        if self.zetas.is_empty() || self.zetas.windows(2).any(|w| w[0] >= w[1]) {
+            return Err(Error::invalid(
+                "waterfall.zetas",
+                format!("{:?}", self.zetas),
+                "at least one magnification, increasing",
+            ));
+        }
+        for &z in &self.zetas {
+            crate::engine::scene::check_zeta(z, zeta_max)
+                .map_err(|e| e.with_field("waterfall.zetas"))?;
+        }
+        Ok(())
+    }
+}
+
+/// Re-entered points of every panel: in contact there, out of contact in a panel above.
+pub fn reentered(contact: &[Vec<bool>]) -> Vec<Vec<bool>> {
+    let points = contact.first().map_or(0, Vec::len);
+    let mut was_out = vec![false; points];
+    contact
+        .iter()
+        .map(|c| {
+            let marks: Vec<bool> = c
+                .iter()
+                .zip(&was_out)
+                .map(|(&now, &out)| now && out)
+                .collect();
+            for (o, &now) in was_out.iter_mut().zip(c) {
+                *o |= !now;
+            }
+            marks
+        })
+        .collect()
+}
+
+/// The row of an `n x n` grid with the most marked points over all panels (the first of
+/// equals).
+pub fn busiest_row(marks: &[Vec<bool>], n: usize) -> usize {
+    (0..n)
+        .map(|row| {
+            let count: usize = marks
+                .iter()
+                .map(|m| m[row * n..(row + 1) * n].iter().filter(|&&x| x).count())
+                .sum();
+            (row, count)
+        })
+        .fold(
+            (0, 0),
+            |best, (row, c)| if c > best.1 { (row, c) } else { best },
+        )
+        .0
+}
+
+/// Solves the panels and cuts the busiest row.
+pub fn run(scene: &FluxScene, plan: &WaterfallPlan) -> Result<WaterfallResult> {
+    let base = scene.base();
+    let r = base.realization(plan.seed)?;
+    let mut sweep = base.sweep(&r, plan.solver);
+    let last = *plan.zetas.last().expect("validated: not empty");
+    let p0 = sweep.find_load(last, plan.contact_area)?;
+    // The load search's own solution is the last panel's; the others climb from the first.
+    let at_last = sweep.take_solution().expect("find_load keeps its solution");
+    let heights_last = sweep.heights().to_vec();
+    let mut fields = Vec::new();
+    for &zeta in &plan.zetas[..plan.zetas.len() - 1] {
+        let s = sweep.solve_at(zeta, p0)?.clone();
+        let heights = sweep.heights().to_vec();
+        fields.push((zeta, s, heights));
+    }
+    fields.push((last, at_last, heights_last));
+    let fields: Vec<_> = fields
+        .into_iter()
+        .map(|(zeta, s, h)| {
+            let contact: Vec<bool> = s.pressure.iter().map(|&p| p > 0.0).collect();
+            (zeta, s.contact_area(), h, s.displacement, contact)
+        })
+        .collect();
+    let contact: Vec<Vec<bool>> = fields.iter().map(|f| f.4.clone()).collect();
+    let marks = reentered(&contact);
+    let n = scene.n;
+    let row = busiest_row(&marks, n);
+    let cut = |v: &[f64]| v[row * n..(row + 1) * n].to_vec();
+    let cuts = fields
+        .iter()
+        .zip(&marks)
+        .map(|((zeta, a_r, h, u, _), m)| Cut {
+            zeta: *zeta,
+            a_r: *a_r,
+            heights: cut(h),
+            displacement: cut(u),
+            reentered: m[row * n..(row + 1) * n].to_vec(),
+        })
+        .collect();
+    Ok(WaterfallResult { row, p0, cuts })
+}
+
+/// The figure of a result.
+pub fn figure(scene: &FluxScene, plan: &WaterfallPlan, r: &WaterfallResult) -> Waterfall {
+    let last = plan.zetas.last().copied().unwrap_or(0.0);
+    Waterfall {
+        name: "reentry_waterfall".into(),
+        title: format!(
+            "Cut through one contact as the magnification grows (top to bottom): row {} of \
+             seed {}, {}x{}, H = {}, a_r = {} at zeta = {last} ({}); the row with the most \
+             re-entered points",
+            r.row,
+            plan.seed,
+            scene.n,
+            scene.n,
+            scene.hurst,
+            plan.contact_area,
+            plan.solver.name()
+        ),
+        x_label: "position along the cut (grid spacings)".into(),
+        y_label: "height".into(),
+        mark_label: "re-entered (out in a panel above)".into(),
+        panels: r
+            .cuts
+            .iter()
+            .map(|c| CutPanel {
+                label: format!(
+                    "zeta = {} (a_r = {:.3}, {} re-entered)",
+                    c.zeta,
+                    c.a_r,
+                    c.reentered.iter().filter(|&&m| m).count()
+                ),
+                upper: c.displacement.clone(),
+                lower: c.heights.clone(),
+                marked: c.reentered.clone(),
+            })
+            .collect(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reentry_needs_an_earlier_panel_out_of_contact() {
+        let contact = vec![
+            vec![true, false, true, true],
+            vec![true, true, false, true],
+            vec![false, true, true, true],
+        ];
+        let m = reentered(&contact);
+        assert_eq!(m[0], vec![false; 4]);
+        assert_eq!(m[1], vec![false, true, false, false]);
+        assert_eq!(m[2], vec![false, true, true, false]);
+        // 2 x 2 grid: row 0 holds points 0 and 1, row 1 points 2 and 3.
+        assert_eq!(busiest_row(&m, 2), 0);
+    }
+}
