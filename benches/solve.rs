@@ -5,13 +5,13 @@
 //!
 //! * `cold/<solver>/<N>`, `N = 256, 512, 1024`: one solve from scratch at full resolution,
 //!   the cost of a single contact solution;
-//! * `warm_shell/<solver>/<N>`, `N = 256, 512`: the step of a magnification sweep that
+//! * `warm_shell/<solver>/<N>`, `N = 256, 512, 1024`: the step of a magnification sweep that
 //!   validations repeat hundreds of times. The surface is solved at the shell just below
 //!   `zeta = 32` (outside the timing), then the next distinct `|q|^2` shell is added and
 //!   the warm-started solve is timed. The scene's roughness stops at
 //!   `zeta = lambda_l / lambda_s = N/16`, so the shell added is the surface's last one:
 //!   `zeta = 32` at `N = 512`, and `zeta = 16` at `N = 256`, where no shell reaches 32;
-//! * `warm_load/<solver>/<N>`, `N = 256, 512`: a warm re-solve after raising the load by 1%,
+//! * `warm_load/<solver>/<N>`, `N = 256, 512, 1024`: a warm re-solve after raising the load by 1%,
 //!   the step of a load search (`persson_check::engine::load`).
 //!
 //! Surfaces, models, solvers and warm starts are built once, outside the timed code, and
@@ -162,7 +162,7 @@ fn warm_group(
         .warm_up_time(Duration::from_secs(1))
         .measurement_time(Duration::from_secs(5));
     let opts = options();
-    for n in [256, 512] {
+    for n in [256, 512, 1024] {
         let scene: OnceCell<Scene> = OnceCell::new();
         for kind in SOLVERS {
             let mut solver = kind.build();
