@@ -84,8 +84,11 @@ use crate::error::{Error, Result, Termination};
 /// step control (see the module docs).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct GfmdParams {
-    /// First step `tau` of a solve.
+    /// First step `tau` of a cold solve.
     pub tau: f64,
+    /// First step of a warm solve (the contact set of a warm start has more isolated
+    /// points, and stiffer modes, than a cold start meets early on).
+    pub tau_warm: f64,
     /// Steps without a new lowest residual before the step shrinks.
     pub stall_window: usize,
     /// Steps in a row in which the residual alternately rises and falls before the step
@@ -109,6 +112,7 @@ impl Default for GfmdParams {
     fn default() -> Self {
         Self {
             tau: 0.3,
+            tau_warm: 0.2,
             stall_window: 8,
             zigzag_window: 4,
             rise_window: 3,
@@ -326,11 +330,7 @@ impl Dynamics<'_> {
                 {
                     let s = k + p0;
                     let y = look_ahead(ui, vi, beta, hi);
-                    let p = if y <= hi {
-                        s.max(0.0)
-                    } else {
-                        0.0
-                    };
+                    let p = if y <= hi { s.max(0.0) } else { 0.0 };
                     acc.unbalanced += (s - p) * (s - p);
                     acc.sum_p += p;
                     acc.sum_p2 += p * p;
@@ -522,9 +522,10 @@ impl Gfmd {
         }
         self.v.fill(0.0);
         let params = self.params;
+        let first = if warm { params.tau_warm } else { params.tau };
         let tau = self
             .last_tau
-            .map_or(params.tau, |t| (t / params.shrink).min(params.tau));
+            .map_or(first, |t| (t / params.shrink).min(first));
         self.inverse_mass(problem);
         let inverse_mass = &self.inverse_mass.as_ref().expect("made above").2;
         let mut dynamics = Dynamics {
