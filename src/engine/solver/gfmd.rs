@@ -116,7 +116,7 @@ impl Default for GfmdParams {
             stall_window: 8,
             zigzag_window: 4,
             rise_window: 3,
-            beta_max: 0.8,
+            beta_max: 0.95,
             regrow: 1.02,
             shrink: 0.7,
             tau_floor: 1e-3,
