@@ -448,9 +448,10 @@ impl<'a> Solve<'a> {
         Check::Iterate
     }
 
-    /// Step 2: the search direction `t = z - zbar + delta (G / G_old) t` on `Ic`, 0
-    /// elsewhere (`zbar = mean_Ic z` with preconditioning, `z - zbar = g` without; kept in
-    /// `t`), and its convolution `r = K^-1 t` with the sums the step length needs.
+    /// Step 2: the search direction `t = (z - zbar) + delta (G / G_old) t` on `Ic`, 0
+    /// elsewhere (`zbar = mean_Ic z`; without preconditioning `z - zbar` is the gap `g`
+    /// itself), and its convolution `r = K^-1 t` with the sums the step length needs
+    /// (`sum_Ic r`, `sum_Ic t`, `sum_Ic g t`, `sum_Ic r t`).
     fn direction(&mut self, gap: &Gap) -> Direction {
         let problem = self.problem;
         let model = problem.model;
@@ -518,8 +519,10 @@ impl<'a> Solve<'a> {
     }
 
     /// Step 3: the step length `tau = sum_Ic g t / sum_Ic (r - rbar) t`, and the pressure
-    /// per unit penetration given to points entering contact in step 4. `None` when the
-    /// step is not a descent (conjugacy is then reset and the iteration restarts).
+    /// per unit penetration given to points entering contact in step 4 (`tau k`). When
+    /// the gap vanishes on `Ic`, `t = 0`: then `tau = 0` and the entering points get
+    /// `1 / G(0)`. `None` when a conjugate direction is not a descent (conjugacy is then
+    /// reset and the next iteration starts along the gap); an error when the gap is not.
     fn step_length(&mut self, it: usize, gap: &Gap, dir: &Direction) -> Result<Option<Step>> {
         let (tau, admit) = if gap.sums.gg == 0.0 {
             // The gap vanishes on the contact set (always so for a lone contact
