@@ -3,6 +3,7 @@
 
 mod architecture;
 mod bad_input;
+mod cg_bits;
 mod common;
 mod determinism;
 mod hard_scenes;

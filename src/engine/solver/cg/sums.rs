@@ -1,5 +1,6 @@
 //! The sums one CG iteration takes over its fields, row by row as the transforms read and
-//! write them: the gap's sums, the step's sums, and a view of the fields.
+//! write them: the gap's sums, the direction's, the update's, the update of one point, and
+//! a view of the fields.
 
 use super::*;
 
@@ -29,7 +30,48 @@ impl GapSums {
     }
 }
 
-/// The update of one point (steps 3 and 4), read with the lazy load scale.
+/// What step 1 ([`super::Solve::gap`]) found.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Gap {
+    /// The gap's sums.
+    pub(super) sums: GapSums,
+    /// `sum_Ic z` (0 without preconditioning).
+    pub(super) sz: f64,
+    /// `G = sum_Ic g z` (`sum_Ic g^2` without preconditioning).
+    pub(super) rho: f64,
+    /// The residual estimate, [`GapSums::estimate`].
+    pub(super) estimate: f64,
+}
+
+/// The sums of step 2 ([`super::Solve::direction`]) that the step length needs.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Direction {
+    /// `sum_Ic r`.
+    pub(super) sum_r: f64,
+    /// `sum_Ic t`.
+    pub(super) sum_t: f64,
+    /// `sum_Ic g t`.
+    pub(super) gt: f64,
+    /// `sum_Ic r t`.
+    pub(super) rt: f64,
+}
+
+/// The sums of step 4 ([`super::Solve::update`]), over the new pressure.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Update {
+    /// `sum p` of the stored pressure.
+    pub(super) sum_p: f64,
+    /// Points clipped to `p = 0`, and points that entered contact.
+    pub(super) clipped: f64,
+    pub(super) entered: f64,
+    /// `sum_Ic u`, `sum_Ic h` and `|Ic|` of the new contact set (`u` of the stored
+    /// pressure).
+    pub(super) su: f64,
+    pub(super) sh: f64,
+    pub(super) cnt: f64,
+}
+
+/// The update of one point (step 4), read with the lazy load scale.
 #[derive(Clone, Copy)]
 pub(super) struct Step {
     pub(super) scale: f64,
@@ -99,7 +141,17 @@ pub(super) struct View<'a> {
     pub(super) gbar: f64,
 }
 
-impl View<'_> {
+impl<'a> View<'a> {
+    pub(super) fn new(p: &'a [f64], u: &'a [f64], h: &'a [f64], scale: f64, gbar: f64) -> Self {
+        Self {
+            p,
+            u,
+            h,
+            scale,
+            gbar,
+        }
+    }
+
     /// Row `i` (of length `n`) of `p`, `u` and `h`.
     #[inline]
     pub(super) fn row(&self, i: usize, n: usize) -> (&[f64], &[f64], &[f64]) {
