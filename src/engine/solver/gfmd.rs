@@ -460,9 +460,9 @@ impl Dynamics<'_> {
 }
 
 impl Gfmd {
-    /// The inverse masses `1/m(q)` as a kernel: `2/(q E*)`, and the softest mode's for
-    /// `q = 0` (kept between solves on the same grid).
-    fn inverse_mass(&mut self, problem: &ContactProblem) -> &Kernel {
+    /// Makes the inverse masses `1/m(q)` as a kernel, `2/(q E*)` and the softest mode's for
+    /// `q = 0`, unless the last solve's are for the same grid and modulus.
+    fn prepare_inverse_mass(&mut self, problem: &ContactProblem) {
         let model = problem.model;
         let key = (model.grid.n(), model.halfspace.e_star());
         let stale = !matches!(&self.inverse_mass, Some((n, e, _)) if (*n, *e) == key);
@@ -479,7 +479,6 @@ impl Gfmd {
                 .collect();
             self.inverse_mass = Some((key.0, key.1, model.fft.kernel(&table)));
         }
-        &self.inverse_mass.as_ref().expect("just set").2
     }
 
     /// Solves `problem` from `start`.
@@ -526,7 +525,7 @@ impl Gfmd {
         let tau = self
             .last_tau
             .map_or(first, |t| (t / params.shrink).min(first));
-        self.inverse_mass(problem);
+        self.prepare_inverse_mass(problem);
         let inverse_mass = &self.inverse_mass.as_ref().expect("made above").2;
         let mut dynamics = Dynamics {
             problem,
