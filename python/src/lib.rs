@@ -34,7 +34,7 @@ use persson_check::io::npy;
 use persson_check::persson::{Broadening, Correction, Prediction};
 use persson_check::report::{ReportOptions, SpeedChoice};
 use persson_check::speed::SpeedOptions;
-use persson_check::validation::plan::{definition_hashes, Plan};
+use persson_check::validation::plan::Plan;
 use persson_check::validation::source::{builtin_sources, select, sources_in, Source};
 use persson_check::validation::{Mode, Registry, RunOptions, Scale};
 
@@ -1403,7 +1403,7 @@ fn merge<'py>(
                 units.extend(registry.jobs(source, &opts)?);
             }
             let plan = Plan::new(units, None);
-            plan.check_merge(&definition_hashes(&sources)?, accept_other_commit)?;
+            plan.check_merge(accept_other_commit)?;
             opts.mode = Mode::Merge {
                 other_commits_accepted: accept_other_commit,
             };

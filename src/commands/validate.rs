@@ -6,7 +6,7 @@ use std::sync::Arc;
 use clap::Args as ClapArgs;
 use persson_check::engine::solver::SolverKind;
 use persson_check::error::{Error, Result};
-use persson_check::validation::plan::{definition_hashes, Plan};
+use persson_check::validation::plan::Plan;
 use persson_check::validation::shard::Shard;
 use persson_check::validation::source::{builtin_sources, select, sources_in, Source};
 use persson_check::validation::{Mode, Outcome, Registry, RunOptions, Scale};
@@ -121,7 +121,7 @@ pub fn run(args: Args) -> Result<()> {
         } else {
             // Merge: every job's result must be there (and usable) before anything is
             // written.
-            plan.check_merge(&definition_hashes(&sources)?, args.accept_other_commit)?;
+            plan.check_merge(args.accept_other_commit)?;
             opts.mode = Mode::Merge {
                 other_commits_accepted: args.accept_other_commit,
             };

@@ -221,8 +221,19 @@ impl Experiment for Flux {
             c.sensitivity = plan.conclude(&study);
             if !c.sensitivity.is_empty() {
                 let value = |k: &str| c.detail(k).map(|d| d.value);
-                let headline = match (value("flux_in"), value("flux_out")) {
-                    (Some(i), Some(o)) => Some((scene.dzeta / scene.zeta, i, o)),
+                // The study's row of the headline's own step, where there is one.
+                let same_step = c.sensitivity.iter().position(|r| {
+                    let k = &r.config;
+                    r.parameter == "dzeta_over_zeta"
+                        && (k.n, k.lambda_l, k.lambda_s)
+                            == (scene.n, scene.lambda_l, scene.lambda_s)
+                        && (k.zeta, k.dzeta, k.contact_area)
+                            == (scene.zeta, scene.dzeta, scene.contact_area)
+                        && k.hurst.is_none()
+                        && !k.fixed_area
+                });
+                let headline = match (same_step, value("flux_in"), value("flux_out")) {
+                    (Some(row), Some(i), Some(o)) => Some((row, i, o)),
                     _ => None,
                 };
                 let before = value("contact_area_before").map_or(f64::NAN, |e| e.value);
