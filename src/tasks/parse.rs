@@ -1,8 +1,7 @@
 //! The parsers of what a user gives: solver and theory names, the load (a mean pressure
 //! `p0` or a target contact area), and the ranges checked before any work (a
 //! magnification's lower bound before the surface gives its upper one, tolerances,
-//! integer counts). Errors name the parameter through the front end's
-//! [`Spelling`](super::Spelling).
+//! integer counts). Errors name the parameter through the front end's [`Spelling`].
 
 use crate::engine::solver::{SolveOptions, SolverKind};
 use crate::error::{check_open, check_positive, Error, Result};
