@@ -7,7 +7,9 @@ use clap::Args as ClapArgs;
 use persson_check::error::{Error, Result};
 use persson_check::speed::{run as run_study, SpeedOptions};
 
-use super::check_out_dir;
+use persson_check::tasks::check_out_dir;
+
+use super::FLAGS;
 
 /// Arguments of `speed`.
 #[derive(ClapArgs, Debug)]
@@ -45,7 +47,7 @@ pub fn run(args: Args) -> Result<()> {
         }
         _ => e,
     })?;
-    check_out_dir(&args.out)?;
+    check_out_dir(&args.out, &FLAGS)?;
     let study = run_study(&opts, &mut |line| eprintln!("speed: {line}"))?;
     std::fs::create_dir_all(&args.out).map_err(|e| Error::io(&args.out, e))?;
     for path in study.write(&args.out)? {
