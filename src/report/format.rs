@@ -19,6 +19,41 @@ pub fn md(text: &str) -> String {
     out
 }
 
+/// Text an outcome carries (its account, notes, checks, the names of its statistics),
+/// escaped as [`md`], with any NaN in it said in words ([`no_nan`]).
+pub fn prose(text: &str) -> String {
+    md(&no_nan(text))
+}
+
+/// `text` with every NaN said in words: `x +- NaN` (or `x ± NaN`) as `x (no error bar)`,
+/// any other `NaN` as `n/a`. Outcome text formatted by earlier versions prints a missing
+/// error bar (one realization) as NaN.
+pub fn no_nan(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(k) = rest.find("NaN") {
+        let (before, after) = (&rest[..k], &rest[k + 3..]);
+        rest = after;
+        let word =
+            !before.ends_with(char::is_alphanumeric) && !after.starts_with(char::is_alphanumeric);
+        if !word {
+            out.push_str(before);
+            out.push_str("NaN");
+        } else if let Some(value) = before
+            .strip_suffix("+- ")
+            .or_else(|| before.strip_suffix("± "))
+        {
+            out.push_str(value.trim_end());
+            out.push_str(" (no error bar)");
+        } else {
+            out.push_str(before);
+            out.push_str("n/a");
+        }
+    }
+    out.push_str(rest);
+    out
+}
+
 /// A Markdown table from a header and rows (cells already escaped).
 pub fn table(header: &[&str], rows: &[Vec<String>]) -> String {
     let mut s = format!("| {} |\n", header.join(" | "));
@@ -183,6 +218,20 @@ mod tests {
         assert_eq!(duration(185.0), "3 min 05 s");
         assert_eq!(duration(7390.0), "2 h 03 min");
         assert_eq!(ranges(&[4, 1, 2, 3, 7, 9, 10]), "1-4, 7, 9-10");
+    }
+
+    #[test]
+    fn nan_in_outcome_text_is_said_in_words() {
+        assert_eq!(
+            no_nan("D = 1.63 +- NaN times Persson's (z = NaN); 0.5 ± NaN."),
+            "D = 1.63 (no error bar) times Persson's (z = n/a); 0.5 (no error bar)."
+        );
+        assert_eq!(no_nan("NaN"), "n/a");
+        assert_eq!(
+            no_nan("NaNs and aNaN stay; 1 +- 0.1"),
+            "NaNs and aNaN stay; 1 +- 0.1"
+        );
+        assert_eq!(prose("a_r = NaN"), "a\\_r = n/a");
     }
 
     #[test]

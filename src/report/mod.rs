@@ -15,6 +15,7 @@
 mod attention;
 mod format;
 mod golden;
+mod lenient;
 mod outcomes;
 mod provenance_section;
 mod resolution;

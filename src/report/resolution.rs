@@ -4,7 +4,7 @@
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
-use super::format::{md, num, pm, table};
+use super::format::{md, num, pm, prose, table};
 use super::outcomes::Loaded;
 use super::Scorecard;
 use crate::plot::{Axis, Figure, Series, Style};
@@ -116,7 +116,7 @@ impl Scorecard<'_> {
                 for (n, d) in group {
                     rows.push(vec![
                         md(&r.validation),
-                        md(&d.name),
+                        prose(&d.name),
                         n.to_string(),
                         pm(d.value.value, d.value.std_error),
                         prev.map_or_else(|| "—".into(), |p| num(d.value.value - p)),

@@ -2,7 +2,7 @@
 
 use std::fmt::Write as _;
 
-use super::format::{duration, md, num, pm, sig, table};
+use super::format::{duration, md, num, pm, prose, sig, table};
 use super::golden::GoldenMatch;
 use super::outcomes::{grid_cell, seeds_cell, Loaded};
 use super::{anchor, reproduced_cell, verdict_cell, Scorecard};
@@ -141,10 +141,10 @@ impl Scorecard<'_> {
         s.push_str(&table(&["", ""], &rows));
         s.push('\n');
         if !o.account.trim().is_empty() {
-            let _ = writeln!(s, "{}\n", md(o.account.trim()));
+            let _ = writeln!(s, "{}\n", prose(o.account.trim()));
         }
         for note in &o.notes {
-            let _ = writeln!(s, "{}\n", md(note));
+            let _ = writeln!(s, "{}\n", prose(note));
         }
         if !o.sensitivity.is_empty() {
             let _ = writeln!(
@@ -189,7 +189,7 @@ impl Scorecard<'_> {
                 .iter()
                 .map(|d| {
                     vec![
-                        md(&d.name),
+                        prose(&d.name),
                         pm(d.value.value, d.value.std_error),
                         d.persson.map_or_else(|| "—".into(), num),
                         d.paper.map_or_else(|| "—".into(), num),
@@ -210,7 +210,7 @@ impl Scorecard<'_> {
                 .iter()
                 .map(|c| {
                     vec![
-                        md(&c.name),
+                        prose(&c.name),
                         if !c.decided {
                             "not decided (1 realization)".into()
                         } else if c.passed {
@@ -218,7 +218,7 @@ impl Scorecard<'_> {
                         } else {
                             "**FAILED**".into()
                         },
-                        md(&c.detail),
+                        prose(&c.detail),
                     ]
                 })
                 .collect();

@@ -442,3 +442,95 @@ fn one_realization_shows_no_error_bar_and_no_nan() {
     assert!(!text.contains("NaN"), "NaN in the scorecard");
     assert!(text.contains("one realization: no error bar"));
 }
+
+/// An outcome of one realization as written by hand: the error bars `null` (serde_json's
+/// NaN) in the headline, a detail, the sensitivity rows and the cross-check, one detail's
+/// error bar left out, and NaN in the outcome's own text.
+const NULL_ERROR_BARS: &str = r#"{
+  "name": "one_seed", "title": "One realization", "assumption": "(c) p = 0 absorbs",
+  "statistic": "flux_in / flux_out", "value": 0.8585, "std_error": null,
+  "persson": 0.0, "persson_text": "ratio 0", "paper": "ratio 1.13", "paper_value": 1.13,
+  "paper_verdict": "violated", "verdict": "inconclusive", "reproduced": null,
+  "rule": {"significance": 3.0, "resolution": 0.05}, "scale": "reduced",
+  "scene": {"n": 512, "seeds": [1]}, "definition_sha256": "00",
+  "wall_s": 5.1, "max_residual": 9e-9,
+  "details": [
+    {"key": "flux_in", "name": "flux in", "value": {"value": 0.0025, "std_error": null},
+     "persson": null, "paper": 0.00675, "grid": null},
+    {"key": "flux_out", "name": "flux out", "value": {"value": 0.0029}, "paper": 0.00597},
+    {"key": "x", "name": "x = 0.35 +- NaN", "value": {"value": null, "std_error": null},
+     "persson": 0.42, "paper": null}
+  ],
+  "checks": [{"key": "enter", "name": "points enter contact", "passed": false,
+              "detail": "flux in = 0.0025 +- NaN", "decided": false}],
+  "account": "One realization: the ratio is 0.86 +- NaN (z = NaN).",
+  "golden": {"ratio": 0.86, "z": null},
+  "sensitivity": [{"parameter": "tol", "value": 0.0001, "label": "1e-4",
+    "config": {"n": 128, "lambda_l": 64.0, "lambda_s": 4.0, "contact_area": 0.14, "zeta": 8.0,
+               "dzeta": 0.09375, "tol": 0.0001, "solver": "cg", "fixed_area": false},
+    "realizations": 1,
+    "flux_in": {"value": 0.00525, "std_error": null}, "flux_out": {"value": 0.005},
+    "flux_in_of_contact": {"value": 0.0375, "std_error": null},
+    "flux_out_of_contact": {"value": 0.0358, "std_error": null},
+    "contact_area": {"value": 0.1398, "std_error": null}}],
+  "files": [], "threads": 1, "solver": "gfmd",
+  "cross_check": {"solver": "cg", "value": 0.8585, "std_error": null, "agrees": true}
+}"#;
+
+#[test]
+fn outcomes_with_null_or_absent_error_bars_are_read_and_say_so() {
+    let root = tempfile::tempdir().unwrap();
+    std::fs::write(root.path().join("one_seed.json"), NULL_ERROR_BARS).unwrap();
+    // The same outcome with every error bar left out and no cross-check.
+    let mut absent: serde_json::Value = serde_json::from_str(NULL_ERROR_BARS).unwrap();
+    fn drop_error_bars(v: &mut serde_json::Value) {
+        match v {
+            serde_json::Value::Object(map) => {
+                map.remove("std_error");
+                map.values_mut().for_each(drop_error_bars);
+            }
+            serde_json::Value::Array(items) => items.iter_mut().for_each(drop_error_bars),
+            _ => {}
+        }
+    }
+    drop_error_bars(&mut absent);
+    absent["name"] = json!("one_seed_absent");
+    absent["cross_check"] = serde_json::Value::Null;
+    std::fs::write(
+        root.path().join("one_seed_absent.json"),
+        serde_json::to_vec(&absent).unwrap(),
+    )
+    .unwrap();
+    let out = root.path().join("s.md");
+    let opts = ReportOptions {
+        from: root.path().to_path_buf(),
+        out: out.clone(),
+        golden: None,
+        speed: SpeedChoice::Skip,
+    };
+    let summary = write(&opts, &mut |_| {}).unwrap();
+    assert_eq!(summary.validations, ["one_seed", "one_seed_absent"]);
+    let text = std::fs::read_to_string(&out).unwrap();
+    let nan = text
+        .split(|c: char| !c.is_ascii_alphanumeric())
+        .any(|word| word.eq_ignore_ascii_case("nan"));
+    assert!(!nan, "NaN in the scorecard:\n{text}");
+
+    let null = row(&text, "one_seed");
+    assert_eq!(null[4], "0.8585 (one realization: no error bar) (GFMD)");
+    assert_eq!(null[5], "CG 0.8585 (one realization: no error bar), agrees");
+    assert_eq!(null[8], "**undecided** (verdict inconclusive)");
+    let absent = row(&text, "one_seed_absent");
+    assert_eq!(absent[4], null[4], "absent reads as null");
+    assert_eq!(absent[5], "not run");
+    for line in [
+        "| flux in | 0.0025 (no error estimate) | — | 0.00675 | — |",
+        "| flux out | 0.0029 (no error estimate) | — | 0.00597 | — |",
+        "| x = 0.35 (no error bar) | n/a | 0.42 | — | — |",
+        "| tol | 1e-4 | 128x128, cg | 0.525 (no error estimate) | 0.5 (no error estimate) |",
+        "| points enter contact | not decided (1 realization) | flux in = 0.0025 (no error bar) |",
+        "One realization: the ratio is 0.86 (no error bar) (z = n/a).",
+    ] {
+        assert!(text.contains(line), "no line {line:?} in\n{text}");
+    }
+}
