@@ -1,5 +1,6 @@
 //! Markdown and number formatting for the scorecard.
 
+use std::borrow::Borrow;
 use std::path::{Component, Path, PathBuf};
 
 /// Escapes text for Markdown (table cells and paragraphs): characters that start emphasis,
@@ -55,13 +56,29 @@ pub fn no_nan(text: &str) -> String {
 }
 
 /// A Markdown table from a header and rows (cells already escaped).
-pub fn table(header: &[&str], rows: &[Vec<String>]) -> String {
+pub fn table<S: Borrow<str>>(header: &[S], rows: &[Vec<String>]) -> String {
     let mut s = format!("| {} |\n", header.join(" | "));
     s.push_str(&format!("|{}\n", "---|".repeat(header.len())));
     for row in rows {
         s.push_str(&format!("| {} |\n", row.join(" | ")));
     }
     s
+}
+
+/// A Markdown table and the blank line after it, appended to `s`.
+pub fn push_table<S: Borrow<str>>(s: &mut String, header: &[S], rows: &[Vec<String>]) {
+    s.push_str(&table(header, rows));
+    s.push('\n');
+}
+
+/// A cell of a value that may be absent: `shown(value)`, or an em dash.
+pub fn or_dash<T>(value: Option<T>, shown: impl FnOnce(T) -> String) -> String {
+    value.map_or_else(|| "—".into(), shown)
+}
+
+/// The cell of a run that failed: `**failed**: why`.
+pub fn failed(why: &str) -> String {
+    format!("**failed**: {}", md(why))
 }
 
 /// A number to four significant digits (exponent form below 1e-3 and from 1e5), "n/a"

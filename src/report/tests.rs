@@ -151,17 +151,6 @@ fn links(text: &str) -> Vec<String> {
     out
 }
 
-fn tiny_speed() -> SpeedOptions {
-    SpeedOptions {
-        tols: vec![1e-4, 1e-8],
-        reference_tol: 1e-11,
-        threads: vec![1, 2],
-        floor_sizes: vec![32],
-        repeats: 1,
-        ..SpeedOptions::with_n(32)
-    }
-}
-
 #[test]
 fn scorecard_states_every_verdict_and_links_existing_files() {
     let root = tempfile::tempdir().unwrap();
@@ -172,7 +161,7 @@ fn scorecard_states_every_verdict_and_links_existing_files() {
         from: from.clone(),
         out: out.clone(),
         golden: Some(golden),
-        speed: SpeedChoice::Run(tiny_speed()),
+        speed: SpeedChoice::Run(SpeedOptions::tiny()),
     };
     let summary = write(&opts, &mut |_| {}).unwrap();
     assert_eq!(
@@ -181,10 +170,19 @@ fn scorecard_states_every_verdict_and_links_existing_files() {
     );
     assert_eq!(summary.speed_error, None);
     let text = std::fs::read_to_string(&out).unwrap();
+    table_rows_state_verdicts(&text);
+    summary_names_what_needs_attention(&text, &summary);
+    sections_show_account_details_and_resolution(&text, &from);
+    links_point_at_existing_files(&text, &out);
+    speed_and_provenance_are_shown(&text, &from);
+    // Written atomically: nothing else in the scorecard's folder.
+    assert_eq!(std::fs::read_dir(out.parent().unwrap()).unwrap().count(), 1);
+}
 
-    // Columns: validation, assumption, statistic, Persson, measured (solver), cross-check,
-    // paper, verdict, reproduced, golden match, grid, seeds, wall time, solver residual.
-    let a = row(&text, "a_holds");
+/// Columns: validation, assumption, statistic, Persson, measured (solver), cross-check,
+/// paper, verdict, reproduced, golden match, grid, seeds, wall time, solver residual.
+fn table_rows_state_verdicts(text: &str) {
+    let a = row(text, "a_holds");
     assert_eq!(a.len(), 14, "{a:?}");
     assert_eq!(
         &a[3..],
@@ -202,11 +200,11 @@ fn scorecard_states_every_verdict_and_links_existing_files() {
             "3e-9"
         ]
     );
-    let b = row(&text, "b_violated");
+    let b = row(text, "b_violated");
     assert_eq!(b[7], "violated");
     assert_eq!(b[8], "**NO**");
     assert_eq!(b[9], "no (1 differ: kappa = 2.5, snapshot 2.6)");
-    let c = row(&text, "c_inconclusive");
+    let c = row(text, "c_inconclusive");
     assert_eq!(
         c[4], "2.5 (one realization: no error bar) (GFMD)",
         "NaN read back from null"
@@ -214,11 +212,13 @@ fn scorecard_states_every_verdict_and_links_existing_files() {
     assert_eq!(c[7], "**inconclusive**");
     assert_eq!(c[8], "**undecided** (verdict inconclusive)");
     assert_eq!(c[9], "not checked");
-    let d = row(&text, "d_full");
+    let d = row(text, "d_full");
     assert!(d[0].ends_with("(full)"), "{d:?}");
     assert_eq!(d[9], "n/a (full scene)", "full scenes are not compared");
+}
 
-    // The summary says plainly what is inconclusive or not reproduced.
+/// The summary says plainly what is inconclusive or not reproduced.
+fn summary_names_what_needs_attention(text: &str, summary: &ReportSummary) {
     assert!(
         text.contains("1 holds, 2 violated, 1 inconclusive"),
         "{}",
@@ -229,8 +229,10 @@ fn scorecard_states_every_verdict_and_links_existing_files() {
     assert!(text.contains("b\\_violated: the paper's finding is NOT reproduced: failed checks: check of b\\_violated (numbers behind it)"));
     assert_eq!(summary.attention.len(), 3, "{:?}", summary.attention);
     assert!(text.contains("| check of b\\_violated | **FAILED** | numbers behind it |"));
+}
 
-    // Sections: account, details, resolution study.
+/// Sections: account, details, resolution study, missing files.
+fn sections_show_account_details_and_resolution(text: &str, from: &Path) {
     assert!(text.contains("## a\\_holds: Title of a\\_holds"));
     assert!(text.contains("Account of a\\_holds: kappa = 2.5 +- 0.05."));
     assert!(text.contains("| largest deviation | 0.08 (no error estimate) | 1 | 2 | — |"));
@@ -243,9 +245,11 @@ fn scorecard_states_every_verdict_and_links_existing_files() {
     );
     assert!(from.join("resolution/resolution_a_holds.png").exists());
     assert!(text.contains("**Missing files**") && text.contains("d\\_full.csv"));
+}
 
-    // Every relative link points at an existing file, images included.
-    let targets = links(&text);
+/// Every relative link points at an existing file, images included.
+fn links_point_at_existing_files(text: &str, out: &Path) {
+    let targets = links(text);
     let base = out.parent().unwrap();
     assert!(
         targets.iter().any(|t| t == "../out/a_holds/fig.png"),
@@ -258,8 +262,10 @@ fn scorecard_states_every_verdict_and_links_existing_files() {
     for t in &targets {
         assert!(base.join(t).exists(), "link to missing file {t}");
     }
+}
 
-    // The speed section and the provenance block.
+/// The speed section and the provenance block.
+fn speed_and_provenance_are_shown(text: &str, from: &Path) {
     assert!(text.contains("## Speed against error"));
     assert!(text.contains("**Times are from one run on a shared machine**"));
     assert!(text.contains("exponent k (iterations ~ N^k)"));
@@ -279,8 +285,6 @@ fn scorecard_states_every_verdict_and_links_existing_files() {
         from.display()
     )));
     assert!(text.contains("| a\\_holds | reduced |") && text.contains("| 1, 2, 3 | 2 | 12.5 s |"));
-    // Written atomically: nothing else in the scorecard's folder.
-    assert_eq!(std::fs::read_dir(base).unwrap().count(), 1);
 }
 
 #[test]
@@ -301,7 +305,7 @@ fn skipped_speed_study_is_said_or_shown_as_earlier() {
     // Links from a scorecard inside the outcomes' folder are plain relative paths.
     assert!(text.contains("](a_holds/fig.png)"));
 
-    let study = crate::speed::run(&tiny_speed(), &mut |_| {}).unwrap();
+    let study = crate::speed::run(&SpeedOptions::tiny(), &mut |_| {}).unwrap();
     study.write(&from).unwrap();
     write(&opts, &mut |_| {}).unwrap();
     let text = std::fs::read_to_string(&out).unwrap();
