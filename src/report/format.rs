@@ -87,34 +87,12 @@ pub fn num(x: f64) -> String {
     sig(x, 4)
 }
 
-/// A number to `digits` significant digits.
+/// A number to `digits` significant digits ([`crate::plot::significant`]), "n/a" for NaN.
 pub fn sig(x: f64, digits: usize) -> String {
     if x.is_nan() {
         return "n/a".into();
     }
-    if x.is_infinite() {
-        return if x > 0.0 { "inf".into() } else { "-inf".into() };
-    }
-    if x == 0.0 {
-        return "0".into();
-    }
-    let digits = digits.max(1);
-    let a = x.abs();
-    if !(1e-3..1e5).contains(&a) {
-        let s = format!("{x:.*e}", digits - 1);
-        let (mantissa, exp) = s.split_once('e').unwrap_or((&s, "0"));
-        return format!("{}e{exp}", trim_zeros(mantissa));
-    }
-    let decimals = (digits as i32 - 1 - a.log10().floor() as i32).max(0) as usize;
-    trim_zeros(&format!("{x:.decimals$}"))
-}
-
-fn trim_zeros(s: &str) -> String {
-    if s.contains('.') {
-        s.trim_end_matches('0').trim_end_matches('.').to_string()
-    } else {
-        s.to_string()
-    }
+    crate::plot::significant(x, digits)
 }
 
 /// `value ± error`, the error to two significant digits and the value to the same decimal
