@@ -174,9 +174,14 @@ fn sensitivity(s: &mut String, o: &Outcome) {
     let _ = writeln!(
         s,
         "**Sensitivity of the one-step flux** (one setting moved at a time; % of the \
-         nominal area A0 and of the true contact area Ac at zeta)\n"
+         nominal area A0 and of the true contact area Ac at zeta; the step taken as the \
+         height variance its modes add, % of the variance at zeta, and their count; \
+         net/gross = |out - in| / mean one-way; zero bin: % of the non-contact that enters)\n"
     );
     let pct = |e: Estimate| pm(100.0 * e.value, 100.0 * e.std_error);
+    let opt = |e: Option<Estimate>, scale: f64| {
+        e.map_or_else(|| "—".into(), |e| pm(scale * e.value, scale * e.std_error))
+    };
     let rows: Vec<Vec<String>> = o
         .sensitivity
         .iter()
@@ -189,6 +194,14 @@ fn sensitivity(s: &mut String, o: &Outcome) {
                 pct(r.flux_out),
                 pct(r.flux_in_of_contact),
                 pct(r.flux_out_of_contact),
+                opt(r.net_over_gross, 1.0),
+                opt(r.zero_bin, 100.0),
+                match (r.variance_added, r.modes_added) {
+                    (Some(v), Some(m)) => {
+                        format!("{}, {m:.0}", pm(100.0 * v.value, 100.0 * v.std_error))
+                    }
+                    _ => "—".into(),
+                },
             ]
         })
         .collect();
@@ -200,6 +213,9 @@ fn sensitivity(s: &mut String, o: &Outcome) {
         "out, % A0",
         "in, % Ac",
         "out, % Ac",
+        "net/gross",
+        "zero bin, %",
+        "step: variance %, modes",
     ];
     push_table(s, &header, &rows);
 }
