@@ -52,9 +52,10 @@ fn to_py(e: Error) -> PyErr {
     match e {
         Error::InvalidInput { .. } | Error::BadFile { .. } => PyValueError::new_err(text),
         Error::Io { .. } => PyOSError::new_err(text),
-        Error::NotConverged { .. } | Error::NonFinite { .. } | Error::LoadSearch(_) => {
-            SolveError::new_err(text)
-        }
+        Error::NotConverged { .. }
+        | Error::NonFinite { .. }
+        | Error::LostContact { .. }
+        | Error::LoadSearch(_) => SolveError::new_err(text),
     }
 }
 
