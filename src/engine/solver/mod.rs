@@ -43,14 +43,6 @@ use serde::{Deserialize, Serialize};
 use crate::engine::contact::{ContactProblem, ContactSolution};
 use crate::error::{Error, Result};
 
-/// Resizes `v` to `len` (contents unspecified).
-pub(crate) fn ensure_len<T: Clone + Default>(v: &mut Vec<T>, len: usize) {
-    if v.len() != len {
-        v.clear();
-        v.resize(len, T::default());
-    }
-}
-
 /// The solvers by name, for scenes and the command line.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default, clap::ValueEnum)]
 #[serde(rename_all = "snake_case")]
