@@ -3,7 +3,7 @@
 //! displacement for a set of solves (cold and warm, both preconditioning modes, and two
 //! failing solves). Run before and after a change and compare the output:
 //!
-//! `cargo test cg_bits -- --ignored --nocapture`
+//! `cargo test --test suite cg_bits -- --ignored --nocapture`
 
 use persson_check::engine::contact::{ContactProblem, ContactSolution, Model};
 use persson_check::engine::solver::{ConstrainedCg, SolveOptions, Solver, Start};

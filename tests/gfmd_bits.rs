@@ -4,7 +4,7 @@
 //! a load search and a sweep of a few magnification shells with the solver kept, and two
 //! failing solves). Run before and after a change and compare the output:
 //!
-//! `cargo test gfmd_bits -- --ignored --nocapture`
+//! `cargo test --test suite gfmd_bits -- --ignored --nocapture`
 
 use persson_check::engine::contact::{ContactProblem, Model};
 use persson_check::engine::solver::{Gfmd, SolveOptions, Solver, Start};
