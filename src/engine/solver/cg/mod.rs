@@ -104,8 +104,7 @@ pub const REFRESH_EVERY: usize = 50;
 /// continues unpreconditioned, and after which an unpreconditioned solve whose estimate
 /// is already below the tolerance gives up (see "Stopping" in the module docs): iterating
 /// on at rounding level only lets the conjugate directions drift away from the solution.
-/// A safeguard, not a tuned value: long enough that no solve of the test suite's hard
-/// scenes that can converge is stopped.
+/// A safeguard, not a tuned value.
 pub const STAGNATION: usize = 200;
 /// Polonsky & Keer reset conjugacy whenever a point enters contact. Late in a solve a few
 /// points enter or leave at every iteration, so that rule turns CG into steepest descent;
