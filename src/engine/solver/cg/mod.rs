@@ -41,14 +41,15 @@
 //!
 //! The displacement is updated incrementally, `u <- u - tau r`, which is exact as long as
 //! step 4 clips nothing and adds nothing; otherwise `u = K^-1 p` is recomputed. `u`
-//! is also recomputed every [`ConstrainedCg::refresh_every`] ([`REFRESH_EVERY`]) iterations and before the
-//! final residual, so rounding in the incremental update never reaches a result. In a
-//! warm solve points enter or leave at nearly every iteration, so after an update that
-//! changed the contact set the next one recomputes `u` whatever happens: its update of `p`
-//! is the input pass of the convolution `K^-1 p` (no incremental update, and no separate
-//! sweep over `p`; the guess costs a transform when it is wrong, once per solve or so). The
-//! load rescaling of step 5 is applied lazily (a scale factor read with `p` and `u`), and
-//! the rigid shift of the next iteration is summed in the same sweep that updates `p`.
+//! is also recomputed every [`ConstrainedCg::refresh_every`] ([`REFRESH_EVERY`])
+//! iterations and before the final residual, so rounding in the incremental update never
+//! reaches a result. In a warm solve points enter or leave at nearly every iteration, so
+//! after an update that changed the contact set the next one recomputes `u` whatever
+//! happens: its update of `p` is the input pass of the convolution `K^-1 p` (no
+//! incremental update, and no separate sweep over `p`; the guess costs a transform when it
+//! is wrong, once per solve or so). The load rescaling of step 5 is applied lazily (a
+//! scale factor read with `p` and `u`), and the rigid shift of the next iteration is
+//! summed in the same sweep that updates `p`.
 //!
 //! A cold start (`p = p0` everywhere) needs no transform: a uniform pressure displaces
 //! nothing, `u = 0`. The number of points in contact comes from the sweep that updates `p`.

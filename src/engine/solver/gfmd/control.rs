@@ -2,91 +2,95 @@
 //! `beta`, and the step `tau`, which shrinks when the residual shows a mode that the step
 //! makes unstable and grows back at every new low.
 //!
-//! The constants are the values of the measurements in the README's measured section
-//! ("GFMD's dynamics": what each change bought), each named where it is defined.
+//! The defaults are the values of the measurements in the README's measured section
+//! ("GFMD's dynamics": what each change bought), each a named constant of [`GfmdParams`]
+//! that says where its value comes from.
 
 use serde::{Deserialize, Serialize};
 
-/// First step of a cold solve, in units of the squared mode period: the best fixed step
-/// on the speed study's scenes (README, measured: "the momentum schedule with a fixed step
-/// 0.3", cold 142 -> 36 iterations at 128^2).
-pub const TAU_COLD: f64 = 0.3;
-/// First step of a warm solve (README, measured: "a warm step of 0.2", a 512^2 sweep
-/// segment from zeta = 20, 29.6 -> 18.7 iterations per shell).
-pub const TAU_WARM: f64 = 0.2;
-/// Steps without a new lowest residual before the step shrinks (README, measured:
-/// "shrinking the step when the residual stalls", 256^2 cold 142 -> 67 iterations and no
-/// limit cycle left).
-pub const STALL_WINDOW: usize = 8;
-/// Steps in a row in which the residual alternately rises and falls before the step
-/// shrinks (README, measured: "shrinking on a zigzag or a steady rise of the residual",
-/// 1024^2 cold 111 -> 77 iterations).
-pub const ZIGZAG_WINDOW: usize = 4;
-/// Steps in a row in which the residual rises, to above twice its low, before the step
-/// shrinks (the same measurement as [`ZIGZAG_WINDOW`]).
-pub const RISE_WINDOW: usize = 3;
-/// Largest `beta` (README, measured: the cap of 0.8 left a low load crawling; 0.95 took a
-/// solve at `a_r = 2e-4`, where the rigid mode is soft, from over 1500 to 363 iterations
-/// at tol 1e-8).
-pub const BETA_MAX: f64 = 0.95;
-/// Growth of the step at every new lowest residual, up to the first (README, measured:
-/// "regrowing the step at every new low", no stalled solve left on the hard scenes).
-pub const REGROW: f64 = 1.02;
-/// Factor of a shrink: the value of the measurements of [`STALL_WINDOW`] and
-/// [`ZIGZAG_WINDOW`], not tuned alone.
-pub const SHRINK: f64 = 0.7;
-/// Smallest step, as a fraction of the first: a step shrunk a thousandfold means the
-/// residual cannot improve (a tolerance below its rounding floor). A stopping rule, not a
-/// tuned value.
-pub const TAU_FLOOR: f64 = 1e-3;
-
 /// GFMD's constants: the step in units of the squared mode period (`1/omega^2`), and the
-/// step control (see the module docs; the defaults are the named constants of this
-/// module, which say where each value comes from).
+/// step control (see the module docs). The defaults are its associated constants, which
+/// say where each value comes from.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct GfmdParams {
-    /// First step `tau` of a cold solve ([`TAU_COLD`]).
+    /// First step `tau` of a cold solve ([`Self::TAU_COLD`]).
     pub tau: f64,
     /// First step of a warm solve (the contact set of a warm start has more isolated
-    /// points, and stiffer modes, than a cold start meets early on; [`TAU_WARM`]).
+    /// points, and stiffer modes, than a cold start meets early on; [`Self::TAU_WARM`]).
     pub tau_warm: f64,
-    /// Steps without a new lowest residual before the step shrinks ([`STALL_WINDOW`]).
+    /// Steps without a new lowest residual before the step shrinks
+    /// ([`Self::STALL_WINDOW`]).
     pub stall_window: usize,
     /// Steps in a row in which the residual alternately rises and falls before the step
-    /// shrinks ([`ZIGZAG_WINDOW`]).
+    /// shrinks ([`Self::ZIGZAG_WINDOW`]).
     pub zigzag_window: usize,
     /// Steps in a row in which the residual rises (to above twice its low) before the
-    /// step shrinks ([`RISE_WINDOW`]).
+    /// step shrinks ([`Self::RISE_WINDOW`]).
     pub rise_window: usize,
     /// Largest damping factor `beta` (the schedule's limit, 1, is optimal only for
-    /// problems without a smallest curvature; [`BETA_MAX`]).
+    /// problems without a smallest curvature; [`Self::BETA_MAX`]).
     pub beta_max: f64,
-    /// Growth of the step, up to the first, at every new lowest residual ([`REGROW`]).
+    /// Growth of the step, up to the first, at every new lowest residual
+    /// ([`Self::REGROW`]).
     pub regrow: f64,
-    /// Factor of a shrink ([`SHRINK`]).
+    /// Factor of a shrink ([`Self::SHRINK`]).
     pub shrink: f64,
     /// Smallest step, as a fraction of the first: below it the solve has stalled
-    /// ([`TAU_FLOOR`]).
+    /// ([`Self::TAU_FLOOR`]).
     pub tau_floor: f64,
 }
 
 impl Default for GfmdParams {
     fn default() -> Self {
         Self {
-            tau: TAU_COLD,
-            tau_warm: TAU_WARM,
-            stall_window: STALL_WINDOW,
-            zigzag_window: ZIGZAG_WINDOW,
-            rise_window: RISE_WINDOW,
-            beta_max: BETA_MAX,
-            regrow: REGROW,
-            shrink: SHRINK,
-            tau_floor: TAU_FLOOR,
+            tau: Self::TAU_COLD,
+            tau_warm: Self::TAU_WARM,
+            stall_window: Self::STALL_WINDOW,
+            zigzag_window: Self::ZIGZAG_WINDOW,
+            rise_window: Self::RISE_WINDOW,
+            beta_max: Self::BETA_MAX,
+            regrow: Self::REGROW,
+            shrink: Self::SHRINK,
+            tau_floor: Self::TAU_FLOOR,
         }
     }
 }
 
 impl GfmdParams {
+    /// First step of a cold solve, in units of the squared mode period: the best fixed
+    /// step on the speed study's scenes (README, measured: "the momentum schedule with a
+    /// fixed step 0.3", cold 142 -> 36 iterations at 128^2).
+    pub const TAU_COLD: f64 = 0.3;
+    /// First step of a warm solve (README, measured: "a warm step of 0.2", a 512^2 sweep
+    /// segment from zeta = 20, 29.6 -> 18.7 iterations per shell).
+    pub const TAU_WARM: f64 = 0.2;
+    /// Steps without a new lowest residual before the step shrinks (README, measured:
+    /// "shrinking the step when the residual stalls", 256^2 cold 142 -> 67 iterations
+    /// and no limit cycle left).
+    pub const STALL_WINDOW: usize = 8;
+    /// Steps in a row in which the residual alternately rises and falls before the step
+    /// shrinks (README, measured: "shrinking on a zigzag or a steady rise of the
+    /// residual", 1024^2 cold 111 -> 77 iterations).
+    pub const ZIGZAG_WINDOW: usize = 4;
+    /// Steps in a row in which the residual rises, to above twice its low, before the
+    /// step shrinks (the same measurement as [`Self::ZIGZAG_WINDOW`]).
+    pub const RISE_WINDOW: usize = 3;
+    /// Largest `beta` (README, measured: the cap of 0.8 left a low load crawling; 0.95
+    /// took a solve at `a_r = 2e-4`, where the rigid mode is soft, from over 1500 to 363
+    /// iterations at tol 1e-8).
+    pub const BETA_MAX: f64 = 0.95;
+    /// Growth of the step at every new lowest residual, up to the first (README,
+    /// measured: "regrowing the step at every new low", no stalled solve left on the hard
+    /// scenes).
+    pub const REGROW: f64 = 1.02;
+    /// Factor of a shrink: the value of the measurements of [`Self::STALL_WINDOW`]
+    /// and [`Self::ZIGZAG_WINDOW`], not tuned alone.
+    pub const SHRINK: f64 = 0.7;
+    /// Smallest step, as a fraction of the first: a step shrunk a thousandfold means the
+    /// residual cannot improve (a tolerance below its rounding floor). A stopping rule,
+    /// not a tuned value.
+    pub const TAU_FLOOR: f64 = 1e-3;
+
     /// The first step of a solve: [`Self::tau`] cold, [`Self::tau_warm`] warm, or, for a
     /// solver that ended a solve with step `last` (a sweep), one shrink above `last` if
     /// that is smaller.

@@ -26,7 +26,8 @@
 //! 2. [`Dynamics::acceleration`]: the total force `F = -s`, except on the wall, where the
 //!    wall's reaction cancels a compressive stress (`F = max(-s, 0)`), and the
 //!    mass-weighted acceleration `a~(q) = F~(q) / m(q)` (one fused convolution; the
-//!    inverse masses are the model's, [`Model::inverse_mass`](crate::engine::contact::Model::inverse_mass));
+//!    inverse masses are the model's,
+//!    [`Model::inverse_mass`](crate::engine::contact::Model::inverse_mass));
 //! 3. [`Dynamics::advance`]: `u <- max(y + tau a, h)`, except at points held by the wall
 //!    (on it under a compressive stress, `s >= 0`), which stay put; `v` becomes the step
 //!    taken;
