@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use persson_check::error::Result;
 use persson_check::experiments::{
-    Check, Conclusion, Criteria, Detail, Experiment, JobContext, Work,
+    Check, Conclusion, Criteria, Detail, Experiment, JobContext, Jobs, Work,
 };
 use persson_check::stats::Estimate;
 use persson_check::validation::{Registry, RunOptions, Scale, Source, Verdict};
@@ -22,28 +22,31 @@ struct CoinScene {
 /// Measures `centre + (seed mod 3 - 1) / 100` for each seed.
 struct Coin;
 
-impl Experiment for Coin {
+impl Jobs for CoinScene {
     const FAMILY: &'static str = "coin";
-    type Scene = CoinScene;
     type Job = u64;
     type JobResult = f64;
 
-    fn validate(scene: &CoinScene) -> Result<()> {
-        persson_check::error::check_seeds(&scene.seeds)
+    fn validate(&self) -> Result<()> {
+        persson_check::error::check_seeds(&self.seeds)
     }
 
-    fn jobs(scene: &CoinScene) -> Vec<u64> {
-        scene.seeds.clone()
+    fn jobs(&self) -> Vec<u64> {
+        self.seeds.clone()
     }
 
-    fn work(_scene: &CoinScene, _seed: &u64) -> Work {
+    fn work(&self, _seed: &u64) -> Work {
         // No solves: a coin costs nothing.
         Work::default()
     }
 
-    fn run_job(scene: &CoinScene, seed: &u64, _ctx: &JobContext) -> Result<f64> {
-        Ok(scene.centre + ((seed % 3) as f64 - 1.0) / 100.0)
+    fn run_job(&self, seed: &u64, _ctx: &JobContext) -> Result<f64> {
+        Ok(self.centre + ((seed % 3) as f64 - 1.0) / 100.0)
     }
+}
+
+impl Experiment for Coin {
+    type Scene = CoinScene;
 
     fn conclude(
         criteria: &Criteria,

@@ -25,7 +25,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{Check, Conclusion, Criteria, Detail, Experiment, JobContext, Table, Work};
+use super::{Check, Conclusion, Criteria, Detail, Experiment, JobContext, Jobs, Table, Work};
 use crate::engine::contact::Model;
 use crate::engine::solver::SolveOptions;
 use crate::engine::surface::{Surface, SurfaceParams};
@@ -100,13 +100,13 @@ impl AreaScene {
     }
 }
 
-impl Experiment for ContactArea {
+impl Jobs for AreaScene {
     const FAMILY: &'static str = "contact_area";
-    type Scene = AreaScene;
     type Job = AreaJob;
     type JobResult = AreaResult;
 
-    fn validate(scene: &AreaScene) -> Result<()> {
+    fn validate(&self) -> Result<()> {
+        let scene = self;
         if scene.hursts.is_empty() {
             return Err(Error::invalid(
                 "hursts",
@@ -164,7 +164,8 @@ impl Experiment for ContactArea {
         SolveOptions::with_tol(scene.tol).validate()
     }
 
-    fn jobs(scene: &AreaScene) -> Vec<AreaJob> {
+    fn jobs(&self) -> Vec<AreaJob> {
+        let scene = self;
         let mut jobs = Vec::new();
         for &refine in &scene.refinements {
             for &hurst in &scene.hursts {
@@ -180,18 +181,19 @@ impl Experiment for ContactArea {
         jobs
     }
 
-    fn work(scene: &AreaScene, job: &AreaJob) -> Work {
+    fn work(&self, job: &AreaJob) -> Work {
         // One solve per load, each from the previous one (the first from cold).
-        let n = scene.n * job.refine;
+        let n = self.n * job.refine;
         Work {
             points: n * n,
             searches: 0.0,
-            solves: scene.reduced_pressures.len() as f64,
+            solves: self.reduced_pressures.len() as f64,
             shells: 0.0,
         }
     }
 
-    fn run_job(scene: &AreaScene, job: &AreaJob, ctx: &JobContext) -> Result<AreaResult> {
+    fn run_job(&self, job: &AreaJob, ctx: &JobContext) -> Result<AreaResult> {
+        let scene = self;
         let surface = Surface::generate(&scene.params(job))?;
         let model = Model::new(surface.grid().clone(), 1.0)?;
         let g_bar = surface.rms_gradient(f64::INFINITY);
@@ -214,6 +216,10 @@ impl Experiment for ContactArea {
             max_residual,
         })
     }
+}
+
+impl Experiment for ContactArea {
+    type Scene = AreaScene;
 
     fn conclude(
         criteria: &Criteria,
@@ -497,7 +503,7 @@ mod tests {
     #[test]
     fn shipped_scenes_are_valid() {
         let (reduced, full, _) = crate::experiments::shipped_scenes::<AreaScene>("contact_area");
-        ContactArea::validate(&reduced).unwrap();
-        ContactArea::validate(&full).unwrap();
+        reduced.validate().unwrap();
+        full.validate().unwrap();
     }
 }

@@ -4,9 +4,9 @@
 //! [`crate::plot`] (figure descriptions, rendered elsewhere) and [`crate::io`]; nothing
 //! above it (validations, report, commands).
 //!
-//! An [`Experiment`] splits its scene into independent jobs (one realization, or one
-//! realization at one load), runs one job at a time ([`Experiment::run_job`]), and reduces
-//! the jobs' results to a [`Conclusion`]: the headline statistic with its standard error,
+//! An [`Experiment`]'s scene splits into independent jobs (one realization, or one
+//! realization at one load, [`Jobs`]), run one at a time ([`Jobs::run_job`]); the
+//! experiment reduces the jobs' results to a [`Conclusion`]: the headline statistic with its standard error,
 //! Persson's value for it, secondary statistics ([`Detail`]), checks of the paper's
 //! finding ([`Check`]), tables and figures. Each module keeps its statistics in pure
 //! functions, unit-tested on their own, apart from the code that builds the conclusion.
@@ -41,7 +41,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::plot::{Figure, Raster};
-use crate::stats::Estimate;
+use crate::stats::{decide, Claim, Decision, Estimate};
 
 /// What a conclusion is judged by: the validation's name, its verdict rule's significance
 /// and resolution, and the paper's value of the headline statistic.
@@ -152,27 +152,38 @@ impl Check {
         }
     }
 
-    /// A check that needs an error bar, against `estimate`: decided by `passed` when the
-    /// estimate has one, otherwise not decided ("not decided with 1 realization").
-    pub fn with_error_bar(
+    /// A check decided by `decision` ([`crate::stats::decide`]): passed, failed, or not
+    /// decided, which says so before `detail`.
+    pub fn decided_by(
         key: impl Into<String>,
         name: impl Into<String>,
-        estimate: Estimate,
-        passed: bool,
+        decision: Decision,
         detail: impl Into<String>,
     ) -> Self {
-        let mut c = Self::new(key, name, passed, detail);
-        if !estimate.has_error() {
-            c.passed = false;
+        let mut c = Self::new(key, name, decision.passed(), detail);
+        if !decision.is_decided() {
             c.decided = false;
-            c.detail = format!(
-                "not decided with 1 realization (no error bar): {}",
-                c.detail
-            );
+            c.detail = format!("{UNDECIDED}: {}", c.detail);
         }
         c
     }
+
+    /// A check of `claim` about `estimate` at `significance` standard errors: the one rule
+    /// of [`crate::stats::decide`], not decided without an error bar.
+    pub fn claim(
+        key: impl Into<String>,
+        name: impl Into<String>,
+        estimate: Estimate,
+        claim: Claim,
+        significance: f64,
+        detail: impl Into<String>,
+    ) -> Self {
+        Self::decided_by(key, name, decide(estimate, claim, significance), detail)
+    }
 }
+
+/// What the detail of a check the data do not decide starts with.
+pub const UNDECIDED: &str = "not decided with 1 realization (no error bar)";
 
 /// A table of numbers, written as CSV.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -207,13 +218,23 @@ impl Table {
         let to_io = |e: csv::Error| Error::io(path, std::io::Error::other(e));
         w.write_record(&self.columns).map_err(to_io)?;
         for row in &self.rows {
-            w.write_record(row.iter().map(|v| format!("{v}")))
+            w.write_record(row.iter().map(|&v| cell(v)))
                 .map_err(to_io)?;
         }
         let bytes = w
             .into_inner()
             .map_err(|e| Error::io(path, std::io::Error::other(e.to_string())))?;
         crate::io::write_atomic(path, &bytes)
+    }
+}
+
+/// A CSV cell: the number, or nothing where there is none (NaN: no error bar from one
+/// realization, no walkers in a bin).
+fn cell(v: f64) -> String {
+    if v.is_nan() {
+        String::new()
+    } else {
+        format!("{v}")
     }
 }
 
@@ -301,24 +322,22 @@ impl Work {
     }
 }
 
-/// The code behind a family of validations.
-pub trait Experiment {
-    /// Name of the job family: experiments that share a family share job results (two
-    /// validations that draw different statistics from the same runs).
+/// A scene and its jobs: how a scene splits into independent jobs, what one costs, and how
+/// one runs. Validations that draw different statistics from the same runs share their
+/// scene type, and so their jobs and, through [`Jobs::FAMILY`], their stored results.
+pub trait Jobs: Serialize + DeserializeOwned + Sync + fmt::Debug {
+    /// Name of the job family (the folder of the stored results).
     const FAMILY: &'static str;
-
-    /// The scene (the `reduced` and `full` tables of a definition).
-    type Scene: Serialize + DeserializeOwned + Sync + fmt::Debug;
     /// One independent unit of work (usually one realization).
     type Job: Serialize + DeserializeOwned + Clone + Send + Sync + fmt::Debug;
     /// A job's result (kept on disk for resuming).
     type JobResult: Serialize + DeserializeOwned + Send;
 
     /// Checks the scene's ranges; errors name the field.
-    fn validate(scene: &Self::Scene) -> Result<()>;
+    fn validate(&self) -> Result<()>;
 
-    /// The jobs of a scene.
-    fn jobs(scene: &Self::Scene) -> Vec<Self::Job>;
+    /// The jobs of the scene.
+    fn jobs(&self) -> Vec<Self::Job>;
 
     /// Whether a job runs with the headline solver only (a study whose solver is part of
     /// the job, or a figure): the runner does not repeat it for the cross-check.
@@ -328,16 +347,34 @@ pub trait Experiment {
 
     /// What one job costs (its grid and its solves), for splitting a run into shares
     /// before anything runs.
-    fn work(scene: &Self::Scene, job: &Self::Job) -> Work;
+    fn work(&self, job: &Self::Job) -> Work;
 
     /// Runs one job.
-    fn run_job(scene: &Self::Scene, job: &Self::Job, ctx: &JobContext) -> Result<Self::JobResult>;
+    fn run_job(&self, job: &Self::Job, ctx: &JobContext) -> Result<Self::JobResult>;
+}
+
+/// A job of experiment `E`.
+pub type JobOf<E> = <<E as Experiment>::Scene as Jobs>::Job;
+/// A job's result of experiment `E`.
+pub type ResultOf<E> = <<E as Experiment>::Scene as Jobs>::JobResult;
+
+/// The code behind a validation: the scene it runs (and so its jobs) and what it concludes
+/// from the jobs' results.
+pub trait Experiment {
+    /// The scene (the `reduced` and `full` tables of a definition), which knows its jobs.
+    type Scene: Jobs;
+
+    /// Checks the scene's ranges for this experiment: the scene's own checks
+    /// ([`Jobs::validate`]), and any this experiment adds.
+    fn validate(scene: &Self::Scene) -> Result<()> {
+        scene.validate()
+    }
 
     /// Reduces all jobs' results (in job order) to a conclusion.
     fn conclude(
         criteria: &Criteria,
         scene: &Self::Scene,
-        results: &[(Self::Job, Self::JobResult)],
+        results: &[(JobOf<Self>, ResultOf<Self>)],
     ) -> Result<Conclusion>;
 }
 

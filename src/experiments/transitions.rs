@@ -34,7 +34,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::scene::scene;
-use super::{Check, Conclusion, Criteria, Detail, Experiment, JobContext, Table, Work};
+use super::{Check, Conclusion, Criteria, Detail, Experiment, JobContext, Jobs, Table, Work};
 use crate::engine::solver::SolverKind;
 use crate::error::{check_open, check_positive, Error, Result};
 use crate::persson::{moments, Broadening, Correction};
@@ -120,7 +120,11 @@ pub struct Diffusion;
 /// The drift validation, assumption (b).
 pub struct Drift;
 
-impl TransitionScene {
+impl Jobs for TransitionScene {
+    const FAMILY: &'static str = "transition";
+    type Job = u64;
+    type JobResult = TransitionResult;
+
     fn validate(&self) -> Result<()> {
         self.base().validate()?;
         check_open("contact_area", self.contact_area, 0.0, 1.0)?;
@@ -146,6 +150,21 @@ impl TransitionScene {
         Ok(())
     }
 
+    fn jobs(&self) -> Vec<u64> {
+        self.seeds.clone()
+    }
+
+    fn work(&self, _seed: &u64) -> Work {
+        // The load at zeta, then one step of dzeta.
+        Work::climb(self.n, 1, 0)
+    }
+
+    fn run_job(&self, seed: &u64, ctx: &JobContext) -> Result<TransitionResult> {
+        run_transition(self, *seed, ctx.solver)
+    }
+}
+
+impl TransitionScene {
     fn unit_bin(&self, p: f64, unit: f64) -> usize {
         ((p / (self.bin_width * unit)) as usize).min(self.bins - 1)
     }
@@ -426,27 +445,7 @@ fn common_account(scene: &TransitionScene, results: &[(u64, TransitionResult)]) 
 }
 
 impl Experiment for Diffusion {
-    const FAMILY: &'static str = "transition";
     type Scene = TransitionScene;
-    type Job = u64;
-    type JobResult = TransitionResult;
-
-    fn validate(scene: &TransitionScene) -> Result<()> {
-        scene.validate()
-    }
-
-    fn jobs(scene: &TransitionScene) -> Vec<u64> {
-        scene.seeds.clone()
-    }
-
-    fn work(scene: &TransitionScene, _seed: &u64) -> Work {
-        // The load at zeta, then one step of dzeta.
-        Work::climb(scene.n, 1, 0)
-    }
-
-    fn run_job(scene: &TransitionScene, seed: &u64, ctx: &JobContext) -> Result<TransitionResult> {
-        run_transition(scene, *seed, ctx.solver)
-    }
 
     fn conclude(
         criteria: &Criteria,
@@ -567,27 +566,7 @@ impl Experiment for Diffusion {
 }
 
 impl Experiment for Drift {
-    const FAMILY: &'static str = "transition";
     type Scene = TransitionScene;
-    type Job = u64;
-    type JobResult = TransitionResult;
-
-    fn validate(scene: &TransitionScene) -> Result<()> {
-        scene.validate()
-    }
-
-    fn jobs(scene: &TransitionScene) -> Vec<u64> {
-        scene.seeds.clone()
-    }
-
-    fn work(scene: &TransitionScene, _seed: &u64) -> Work {
-        // The load at zeta, then one step of dzeta.
-        Work::climb(scene.n, 1, 0)
-    }
-
-    fn run_job(scene: &TransitionScene, seed: &u64, ctx: &JobContext) -> Result<TransitionResult> {
-        run_transition(scene, *seed, ctx.solver)
-    }
 
     fn conclude(
         criteria: &Criteria,

@@ -19,7 +19,7 @@
 //! contact. Error bars are standard errors over realizations.
 //!
 //! Two studies ride along, each run once, with the headline solver's jobs
-//! ([`Experiment::headline_only`]): the [`sensitivity`] of the flux to the solver, the step,
+//! ([`Jobs::headline_only`]): the [`sensitivity`] of the flux to the solver, the step,
 //! the discretisation and the control (what sets its magnitude, [`reading`]), and the
 //! cross-section [`waterfall`] of the paper's figure "reentry_waterfall".
 //!
@@ -37,11 +37,13 @@ use self::waterfall::{WaterfallPlan, WaterfallResult};
 use super::reentry::history::{pack_categories, unpack_categories};
 use super::reentry::net_over_gross;
 use super::scene::scene;
-use super::{max_residual, Check, Conclusion, Criteria, Detail, Experiment, JobContext, Work};
+use super::{
+    max_residual, Check, Conclusion, Criteria, Detail, Experiment, JobContext, Jobs, Work,
+};
 use crate::engine::scene::check_zeta;
 use crate::error::{check_open, check_positive, Error, Result};
 use crate::plot::Raster;
-use crate::stats::{realizations, round_sig, Estimate};
+use crate::stats::{realizations, round_sig, Claim, Estimate};
 
 /// The paper's flux into contact from zeta = 128 to 129.5, fraction of the nominal area.
 pub const PAPER_IN: f64 = 0.00675;
@@ -137,13 +139,13 @@ pub fn fluxes(categories: &[u8]) -> (f64, f64) {
     (count(ENTERED), count(LEFT))
 }
 
-impl Experiment for Flux {
+impl Jobs for FluxScene {
     const FAMILY: &'static str = "flux";
-    type Scene = FluxScene;
     type Job = FluxJob;
     type JobResult = FluxOutput;
 
-    fn validate(scene: &FluxScene) -> Result<()> {
+    fn validate(&self) -> Result<()> {
+        let scene = self;
         scene.base().validate()?;
         check_open("contact_area", scene.contact_area, 0.0, 1.0)?;
         check_positive("dzeta", scene.dzeta)?;
@@ -157,7 +159,8 @@ impl Experiment for Flux {
         Ok(())
     }
 
-    fn jobs(scene: &FluxScene) -> Vec<FluxJob> {
+    fn jobs(&self) -> Vec<FluxJob> {
+        let scene = self;
         let mut jobs: Vec<FluxJob> = scene.seeds.iter().map(|&s| FluxJob::Step(s)).collect();
         if let Some(plan) = &scene.sensitivity {
             jobs.extend(plan.jobs().into_iter().map(FluxJob::Study));
@@ -172,7 +175,8 @@ impl Experiment for Flux {
         !matches!(job, FluxJob::Step(_))
     }
 
-    fn work(scene: &FluxScene, job: &FluxJob) -> Work {
+    fn work(&self, job: &FluxJob) -> Work {
+        let scene = self;
         match job {
             FluxJob::Step(_) => Work::climb(scene.n, 1, 0),
             FluxJob::Study(j) => Work::climb(j.config.n, 1, 0),
@@ -183,7 +187,8 @@ impl Experiment for Flux {
         }
     }
 
-    fn run_job(scene: &FluxScene, job: &FluxJob, ctx: &JobContext) -> Result<FluxOutput> {
+    fn run_job(&self, job: &FluxJob, ctx: &JobContext) -> Result<FluxOutput> {
+        let scene = self;
         match job {
             FluxJob::Step(seed) => step(scene, *seed, ctx).map(FluxOutput::Step),
             FluxJob::Study(j) => sensitivity::run(scene.hurst, j).map(FluxOutput::Study),
@@ -196,6 +201,10 @@ impl Experiment for Flux {
             }
         }
     }
+}
+
+impl Experiment for Flux {
+    type Scene = FluxScene;
 
     fn conclude(
         criteria: &Criteria,
@@ -327,14 +336,15 @@ fn conclude_steps(
     ] {
         c.golden.insert(key.into(), round_sig(e.value, 2));
     }
-    c.checks.push(Check::with_error_bar(
+    c.checks.push(Check::claim(
         "points_enter_contact",
         format!(
             "points enter contact in the step (flux in more than {} standard errors above 0)",
             criteria.significance
         ),
         flux_in,
-        flux_in.value > criteria.significance * flux_in.std_error,
+        Claim::Above(0.0),
+        criteria.significance,
         format!("flux in = {}", flux_in.text(1.0, 5, "")),
     ));
     c.account = format!(
@@ -402,8 +412,8 @@ mod tests {
     #[test]
     fn shipped_scenes_are_valid() {
         let (reduced, full, _) = crate::experiments::shipped_scenes::<FluxScene>("c_flux");
-        Flux::validate(&reduced).unwrap();
-        Flux::validate(&full).unwrap();
+        reduced.validate().unwrap();
+        full.validate().unwrap();
         assert_eq!(full.n, 4096);
     }
 }

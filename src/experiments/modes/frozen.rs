@@ -1,11 +1,11 @@
 //! Assumption (e): a resolved mode keeps its energy as finer roughness is added.
 
-use super::{curve_figures, curve_table, run_sweep, z_text, ModeEnsemble, ModeResult, ModeScene};
+use super::{curve_figures, curve_table, z_text, ModeEnsemble, ModeResult, ModeScene};
 use crate::error::{Error, Result};
 use crate::experiments::climb::step_of;
-use crate::experiments::ensemble::{by_load, group, load_range, seed_load_jobs, SeedLoad};
+use crate::experiments::ensemble::{by_load, group, load_range, SeedLoad};
 use crate::experiments::{
-    max_residual, Check, Conclusion, Criteria, Detail, Experiment, JobContext, Table, Work,
+    max_residual, Check, Conclusion, Criteria, Detail, Experiment, Jobs, Table,
 };
 use crate::plot::{Axis, Figure, Series, Style};
 use crate::stats::{round_sig, Estimate, LineFit};
@@ -33,10 +33,7 @@ pub fn asymptote(scene: &ModeScene, run: &ModeResult, t: usize) -> Option<(f64, 
 pub struct ModeFrozen;
 
 impl Experiment for ModeFrozen {
-    const FAMILY: &'static str = "modes";
     type Scene = ModeScene;
-    type Job = SeedLoad;
-    type JobResult = ModeResult;
 
     fn validate(scene: &ModeScene) -> Result<()> {
         scene.validate()?;
@@ -54,18 +51,6 @@ impl Experiment for ModeFrozen {
             }
         }
         Ok(())
-    }
-
-    fn jobs(scene: &ModeScene) -> Vec<SeedLoad> {
-        seed_load_jobs(&scene.contact_areas, &scene.seeds)
-    }
-
-    fn work(scene: &ModeScene, _job: &SeedLoad) -> Work {
-        Work::climb(scene.n, scene.steps().len(), 0)
-    }
-
-    fn run_job(scene: &ModeScene, job: &SeedLoad, ctx: &JobContext) -> Result<ModeResult> {
-        run_sweep(scene, job, ctx.solver)
     }
 
     fn conclude(

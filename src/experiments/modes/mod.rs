@@ -79,9 +79,9 @@ pub use onset::ModeOnset;
 use serde::{Deserialize, Serialize};
 
 use super::climb::{climb, ladder, step_of, Recorder};
-use super::ensemble::{check_contact_areas, check_headline, LoadGroup, SeedLoad};
+use super::ensemble::{check_contact_areas, check_headline, seed_load_jobs, LoadGroup, SeedLoad};
 use super::scene::scene;
-use super::Table;
+use super::{JobContext, Jobs, Table, Work};
 use crate::engine::contact::{ContactSolution, Model};
 use crate::engine::solver::SolverKind;
 use crate::error::{check_open, check_positive, Error, Result};
@@ -130,8 +130,14 @@ impl ModeScene {
             &extra,
         )
     }
+}
 
-    pub(super) fn validate(&self) -> Result<()> {
+impl Jobs for ModeScene {
+    const FAMILY: &'static str = "modes";
+    type Job = SeedLoad;
+    type JobResult = ModeResult;
+
+    fn validate(&self) -> Result<()> {
         let base = self.base();
         base.validate()?;
         check_contact_areas(&self.contact_areas)?;
@@ -187,6 +193,18 @@ impl ModeScene {
             }
         }
         self.correction.validate()
+    }
+
+    fn jobs(&self) -> Vec<SeedLoad> {
+        seed_load_jobs(&self.contact_areas, &self.seeds)
+    }
+
+    fn work(&self, _job: &SeedLoad) -> Work {
+        Work::climb(self.n, self.steps().len(), 0)
+    }
+
+    fn run_job(&self, job: &SeedLoad, ctx: &JobContext) -> Result<ModeResult> {
+        run_sweep(self, job, ctx.solver)
     }
 }
 

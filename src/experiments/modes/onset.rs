@@ -1,14 +1,10 @@
 //! Assumption (d): a mode holds energy only once its roughness is resolved.
 
-use super::{
-    curve_figures, curve_table, golden, run_sweep, z_text, ModeEnsemble, ModeResult, ModeScene,
-};
+use super::{curve_figures, curve_table, golden, z_text, ModeEnsemble, ModeResult, ModeScene};
 use crate::error::Result;
 use crate::experiments::climb::step_of;
-use crate::experiments::ensemble::{by_load, group, load_range, seed_load_jobs, SeedLoad};
-use crate::experiments::{
-    max_residual, Check, Conclusion, Criteria, Detail, Experiment, JobContext, Work,
-};
+use crate::experiments::ensemble::{by_load, group, load_range, SeedLoad};
+use crate::experiments::{max_residual, Check, Conclusion, Criteria, Detail, Experiment};
 use crate::stats::round_sig;
 
 /// One realization's onset: the mean over targets of `E_norm` at `onset_ratio zeta_t`.
@@ -27,26 +23,7 @@ pub fn mean_onset(scene: &ModeScene, run: &ModeResult) -> f64 {
 pub struct ModeOnset;
 
 impl Experiment for ModeOnset {
-    const FAMILY: &'static str = "modes";
     type Scene = ModeScene;
-    type Job = SeedLoad;
-    type JobResult = ModeResult;
-
-    fn validate(scene: &ModeScene) -> Result<()> {
-        scene.validate()
-    }
-
-    fn jobs(scene: &ModeScene) -> Vec<SeedLoad> {
-        seed_load_jobs(&scene.contact_areas, &scene.seeds)
-    }
-
-    fn work(scene: &ModeScene, _job: &SeedLoad) -> Work {
-        Work::climb(scene.n, scene.steps().len(), 0)
-    }
-
-    fn run_job(scene: &ModeScene, job: &SeedLoad, ctx: &JobContext) -> Result<ModeResult> {
-        run_sweep(scene, job, ctx.solver)
-    }
 
     fn conclude(
         criteria: &Criteria,

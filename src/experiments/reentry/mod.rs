@@ -35,13 +35,13 @@ use super::climb::{climb, Checkpointing};
 use super::ensemble::{by_load, check_contact_areas, seed_load_jobs, LoadGroup, SeedLoad};
 use super::scene::scene;
 use super::{
-    max_residual, Check, Conclusion, Criteria, Detail, Experiment, JobContext, Table, Work,
+    max_residual, Check, Conclusion, Criteria, Detail, Experiment, JobContext, Jobs, Table, Work,
 };
 use crate::engine::scene::check_zeta;
 use crate::engine::sweep::shell_steps;
 use crate::error::{check_positive, Error, Result};
 use crate::plot::Raster;
-use crate::stats::{realizations, round_sig, Estimate};
+use crate::stats::{realizations, round_sig, Claim, Estimate};
 
 /// The paper's flux into contact from zeta = 128 to 129.5 (fraction of the nominal area).
 pub const PAPER_FLUX_IN: f64 = 0.00675;
@@ -184,13 +184,13 @@ fn run_history(
     })
 }
 
-impl Experiment for Reentry {
+impl Jobs for ReentryScene {
     const FAMILY: &'static str = "reentry";
-    type Scene = ReentryScene;
     type Job = SeedLoad;
     type JobResult = ReentryResult;
 
-    fn validate(scene: &ReentryScene) -> Result<()> {
+    fn validate(&self) -> Result<()> {
+        let scene = self;
         scene.base().validate()?;
         check_contact_areas(&scene.contact_areas)?;
         if scene.paper_shares.len() != scene.contact_areas.len() {
@@ -213,20 +213,24 @@ impl Experiment for Reentry {
         check_positive("checkpoint_seconds", scene.checkpoint_seconds)
     }
 
-    fn jobs(scene: &ReentryScene) -> Vec<SeedLoad> {
-        seed_load_jobs(&scene.contact_areas, &scene.seeds)
+    fn jobs(&self) -> Vec<SeedLoad> {
+        seed_load_jobs(&self.contact_areas, &self.seeds)
     }
 
-    fn work(scene: &ReentryScene, _job: &SeedLoad) -> Work {
+    fn work(&self, _job: &SeedLoad) -> Work {
         // The load at full resolution, then every shell from the first.
-        let base = scene.base();
-        Work::climb(scene.n, 0, base.shells(0.0, base.zeta_max()))
+        let base = self.base();
+        Work::climb(self.n, 0, base.shells(0.0, base.zeta_max()))
     }
 
-    fn run_job(scene: &ReentryScene, job: &SeedLoad, ctx: &JobContext) -> Result<ReentryResult> {
-        let keep_maps = job.seed == scene.seeds[0];
-        run_history(scene, job, ctx, keep_maps)
+    fn run_job(&self, job: &SeedLoad, ctx: &JobContext) -> Result<ReentryResult> {
+        let keep_maps = job.seed == self.seeds[0];
+        run_history(self, job, ctx, keep_maps)
     }
+}
+
+impl Experiment for Reentry {
+    type Scene = ReentryScene;
 
     fn conclude(
         criteria: &Criteria,
@@ -316,11 +320,12 @@ impl Experiment for Reentry {
         c.golden
             .insert("flux_out".into(), round_sig(flux_out.value, 3));
         let z = criteria.significance;
-        c.checks.push(Check::with_error_bar(
+        c.checks.push(Check::claim(
             "flux_in_positive",
             format!("flux into contact above zero beyond {z} standard errors"),
             flux_in,
-            flux_in.value > z * flux_in.std_error && flux_in.value > 0.0,
+            Claim::Above(0.0),
+            z,
             format!("{} of A0", flux_in.text(1.0, 5, "")),
         ));
         // The paper's ordering: lower load, more re-entry.
@@ -489,11 +494,11 @@ mod tests {
     #[test]
     fn shipped_scenes_are_valid() {
         let (reduced, full, _) = crate::experiments::shipped_scenes::<ReentryScene>("c_reentry");
-        Reentry::validate(&reduced).unwrap();
-        Reentry::validate(&full).unwrap();
+        reduced.validate().unwrap();
+        full.validate().unwrap();
         let mut bad = reduced.clone();
         bad.flux_dzeta = 100.0;
-        let e = Reentry::validate(&bad).unwrap_err().to_string();
+        let e = bad.validate().unwrap_err().to_string();
         assert!(e.contains("flux_dzeta"), "{e}");
     }
 }

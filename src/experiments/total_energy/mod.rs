@@ -53,7 +53,9 @@ use super::ensemble::{
     by_load, check_contact_areas, check_headline, group, load_range, seed_load_jobs, SeedLoad,
 };
 use super::scene::scene;
-use super::{max_residual, Check, Conclusion, Criteria, Detail, Experiment, JobContext, Work};
+use super::{
+    max_residual, Check, Conclusion, Criteria, Detail, Experiment, JobContext, Jobs, Work,
+};
 use crate::engine::contact::{ContactSolution, Model};
 use crate::engine::solver::SolverKind;
 use crate::engine::surface::Surface;
@@ -213,13 +215,13 @@ fn run_sweep(scene: &EnergyScene, job: &SeedLoad, solver: SolverKind) -> Result<
 /// The integrated elastic energy against Persson's theory.
 pub struct TotalEnergy;
 
-impl Experiment for TotalEnergy {
+impl Jobs for EnergyScene {
     const FAMILY: &'static str = "total_energy";
-    type Scene = EnergyScene;
     type Job = SeedLoad;
     type JobResult = EnergyResult;
 
-    fn validate(scene: &EnergyScene) -> Result<()> {
+    fn validate(&self) -> Result<()> {
+        let scene = self;
         let base = scene.base();
         base.validate()?;
         let all: Vec<u64> = scene
@@ -269,29 +271,33 @@ impl Experiment for TotalEnergy {
         scene.correction.validate()
     }
 
-    fn jobs(scene: &EnergyScene) -> Vec<SeedLoad> {
-        let (lowest, _) = load_range(&scene.contact_areas);
+    fn jobs(&self) -> Vec<SeedLoad> {
+        let (lowest, _) = load_range(&self.contact_areas);
         let mut jobs = Vec::new();
-        for &a in &scene.contact_areas {
-            jobs.extend(seed_load_jobs(&[a], &scene.seeds));
+        for &a in &self.contact_areas {
+            jobs.extend(seed_load_jobs(&[a], &self.seeds));
             if a == lowest && a < PAPER_FAILURE_AREA {
-                jobs.extend(seed_load_jobs(&[a], &scene.low_load_seeds));
+                jobs.extend(seed_load_jobs(&[a], &self.low_load_seeds));
             }
         }
         jobs
     }
 
-    fn work(scene: &EnergyScene, _job: &SeedLoad) -> Work {
+    fn work(&self, _job: &SeedLoad) -> Work {
         // The ladder's steps plus the windows of single-shell increments.
-        let zeta_max = scene.base().zeta_max();
-        let ladder = (zeta_max / scene.zeta_start).log2() * scene.steps_per_octave as f64;
-        let windows = scene.increments_at.len() * (scene.increments + 1);
-        Work::climb(scene.n, ladder.ceil() as usize + 1, windows)
+        let zeta_max = self.base().zeta_max();
+        let ladder = (zeta_max / self.zeta_start).log2() * self.steps_per_octave as f64;
+        let windows = self.increments_at.len() * (self.increments + 1);
+        Work::climb(self.n, ladder.ceil() as usize + 1, windows)
     }
 
-    fn run_job(scene: &EnergyScene, job: &SeedLoad, ctx: &JobContext) -> Result<EnergyResult> {
-        run_sweep(scene, job, ctx.solver)
+    fn run_job(&self, job: &SeedLoad, ctx: &JobContext) -> Result<EnergyResult> {
+        run_sweep(self, job, ctx.solver)
     }
+}
+
+impl Experiment for TotalEnergy {
+    type Scene = EnergyScene;
 
     fn conclude(
         criteria: &Criteria,
@@ -592,15 +598,15 @@ mod tests {
     #[test]
     fn shipped_scenes_are_valid_and_ranges_are_named() {
         let (reduced, full, _) = crate::experiments::shipped_scenes::<EnergyScene>("total_energy");
-        TotalEnergy::validate(&reduced).unwrap();
-        TotalEnergy::validate(&full).unwrap();
+        reduced.validate().unwrap();
+        full.validate().unwrap();
         let mut scene = reduced.clone();
         scene.headline_contact_area = 0.25;
-        let e = TotalEnergy::validate(&scene).unwrap_err().to_string();
+        let e = scene.validate().unwrap_err().to_string();
         assert!(e.contains("headline_contact_area"), "{e}");
         scene = reduced.clone();
         scene.increments_at = vec![100.0];
-        let e = TotalEnergy::validate(&scene).unwrap_err().to_string();
+        let e = scene.validate().unwrap_err().to_string();
         assert!(e.contains("increments_at"), "{e}");
     }
 
