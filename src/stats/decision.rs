@@ -20,9 +20,9 @@ use super::Estimate;
 /// What a check asks of an estimate's interval `value +- z std_error`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Claim {
-    /// The interval lies above `threshold`: `value - threshold > z std_error`.
+    /// The interval lies above `threshold`: `value - z std_error > threshold`.
     Above(f64),
-    /// The interval lies below `threshold`: `threshold - value > z std_error`.
+    /// The interval lies below `threshold`: `value + z std_error < threshold`.
     Below(f64),
     /// The interval comes within `tolerance` of `target` (the value is consistent with
     /// it up to a deviation that does not matter): `|value - target| <= z std_error +
@@ -105,6 +105,18 @@ impl std::ops::Not for Decision {
     }
 }
 
+impl Claim {
+    /// The value is closer to `a` than to `b`: above or below their midpoint.
+    pub fn closer_to(a: f64, b: f64) -> Self {
+        let midpoint = 0.5 * (a + b);
+        if a > b {
+            Claim::Above(midpoint)
+        } else {
+            Claim::Below(midpoint)
+        }
+    }
+}
+
 /// Decides `claim` about `estimate` at `significance` standard errors: undecided when the
 /// estimate has no error bar or no finite value, else whether the interval
 /// `value +- significance std_error` satisfies the claim.
@@ -115,8 +127,8 @@ pub fn decide(estimate: Estimate, claim: Claim, significance: f64) -> Decision {
     let v = estimate.value;
     let half = significance * estimate.std_error;
     Decision::from_bool(match claim {
-        Claim::Above(threshold) => v - threshold > half,
-        Claim::Below(threshold) => threshold - v > half,
+        Claim::Above(threshold) => v - half > threshold,
+        Claim::Below(threshold) => v + half < threshold,
         Claim::Near { target, tolerance } => (v - target).abs() <= half + tolerance,
         Claim::Within { target, resolution } => (v - target).abs() + half <= resolution,
         Claim::Overlaps(lo, hi) => v + half >= lo && v - half <= hi,
@@ -147,6 +159,9 @@ mod tests {
         assert_eq!(decide(e, Claim::Overlaps(1.2, 2.0), Z), Decision::Passed);
         assert_eq!(decide(e, Claim::Overlaps(1.4, 2.0), Z), Decision::Failed);
         assert_eq!(decide(e, Claim::Overlaps(0.0, 0.6), Z), Decision::Failed);
+        // 1 is closer to 1.2 than to 0.6, and not closer to 0.6 than to 1.2.
+        assert_eq!(decide(e, Claim::closer_to(1.2, 0.6), 0.0), Decision::Passed);
+        assert_eq!(decide(e, Claim::closer_to(0.6, 1.2), 0.0), Decision::Failed);
     }
 
     #[test]
