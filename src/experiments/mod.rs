@@ -522,3 +522,23 @@ pub(crate) fn shipped_scenes<S: DeserializeOwned>(name: &str) -> (S, S, Criteria
     };
     (reduced, full, criteria)
 }
+
+/// The shipped scenes of `name`, both checked for experiment `E` (the test fails
+/// otherwise): the reduced and the full scene.
+#[cfg(test)]
+pub(crate) fn shipped_valid<E: Experiment>(name: &str) -> (E::Scene, E::Scene) {
+    let (reduced, full, _) = shipped_scenes::<E::Scene>(name);
+    for (scale, scene) in [("reduced", &reduced), ("full", &full)] {
+        E::validate(scene).unwrap_or_else(|e| panic!("{name} [{scale}]: {e}"));
+    }
+    (reduced, full)
+}
+
+/// Asserts that `scene` is refused for experiment `E` with an error that names `field`.
+#[cfg(test)]
+pub(crate) fn assert_refused<E: Experiment>(scene: &E::Scene, field: &str) {
+    let e = E::validate(scene)
+        .expect_err("an invalid scene")
+        .to_string();
+    assert!(e.contains(field), "{e}");
+}

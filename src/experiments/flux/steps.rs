@@ -99,10 +99,10 @@ pub fn golden(s: &StepStats) -> BTreeMap<String, f64> {
 /// The account, from the numbers.
 pub fn account(scene: &FluxScene, s: &StepStats) -> String {
     format!(
-        "{}, at the load that gives a_r = {:.3} at zeta = {}, the step to zeta = {} moves {:.3}% of the nominal area \
-         into contact and {:.3}% out of it: {} points enter per point that leaves, where \
-         Persson's absorbing boundary allows none. The net flux is {} of the mean one-way \
-         flux; a_r goes from {:.4} to {:.4}.",
+        "{}, at the load that gives a_r = {:.3} at zeta = {}, the step to zeta = {} moves \
+         {:.3}% of the nominal area into contact and {:.3}% out of it: {} points enter per \
+         point that leaves, where Persson's absorbing boundary allows none. The net flux is \
+         {} of the mean one-way flux; a_r goes from {:.4} to {:.4}.",
         scene.base().over(),
         s.a_before.value,
         scene.zeta,

@@ -198,8 +198,9 @@ impl Experiment for ModeFrozen {
             None => "too few partial-contact points to fit K1 exp(-K2 x)".to_string(),
         };
         format!(
-            "{}, after a band of modes around zeta_t = {} is resolved its normalised energy changes by {} between zeta = {} \
-             zeta_t and zeta = {} at the lowest load (a_r = {} at full resolution), {}. {}",
+            "{}, after a band of modes around zeta_t = {} is resolved its normalised energy \
+             changes by {} between zeta = {} zeta_t and zeta = {} at the lowest load (a_r = \
+             {} at full resolution), {}. {}",
             scene.base().over(),
             scene.targets[0],
             measured.text(1.0, 3, ""),
@@ -235,13 +236,9 @@ mod tests {
 
     #[test]
     fn shipped_scenes_are_valid_and_ranges_are_named() {
-        let (reduced, full, _) = shipped("e_frozen");
-        ModeFrozen::validate(&reduced).unwrap();
-        ModeFrozen::validate(&full).unwrap();
-        let mut scene = reduced;
+        let (mut scene, _) = crate::experiments::shipped_valid::<ModeFrozen>("e_frozen");
         scene.frozen_from = 1.05;
-        let e = ModeFrozen::validate(&scene).unwrap_err().to_string();
-        assert!(e.contains("frozen_from"), "{e}");
+        crate::experiments::assert_refused::<ModeFrozen>(&scene, "frozen_from");
         scene.frozen_from = 5.0;
         let e = ModeFrozen::validate(&scene).unwrap_err().to_string();
         assert!(e.contains("targets") && e.contains("zeta_end"), "{e}");

@@ -82,7 +82,7 @@ pub use onset::{ModeOnset, OnsetStats};
 use serde::{Deserialize, Serialize};
 
 use super::climb::{check_steps_per_octave, climb, ladder, step_of, Recorder};
-use super::ensemble::{check_contact_areas, check_headline, seed_load_jobs, LoadGroup, SeedLoad};
+use super::ensemble::{check_headline, seed_load_jobs, LoadGroup, SeedLoad};
 use super::scene::{check_increasing, scene};
 use super::{JobContext, Jobs, Work};
 use crate::engine::contact::{ContactSolution, Model};
@@ -142,7 +142,6 @@ impl Jobs for ModeScene {
     fn validate(&self) -> Result<()> {
         let base = self.base();
         base.validate()?;
-        check_contact_areas(&self.contact_areas)?;
         check_headline(self.headline_contact_area, &self.contact_areas)?;
         check_open("band", self.band, 0.0, 0.5)?;
         check_positive("zeta_start", self.zeta_start)?;

@@ -150,6 +150,7 @@ impl Experiment for ModeOnset {
             let growth = Estimate::difference(low.e_norm, high.e_norm);
             decide(growth, Claim::Above(0.0), z)
         }));
+        let (high_text, grow_text) = onset_texts(scene, s);
         vec![
             Check::new(
                 "negligible_near_full_contact",
@@ -159,7 +160,7 @@ impl Experiment for ModeOnset {
                     criteria.resolution
                 ),
                 negligible,
-                high_text(scene, s).join("; "),
+                high_text.join("; "),
             ),
             Check::new(
                 "onset_grows_as_contact_becomes_partial",
@@ -168,7 +169,7 @@ impl Experiment for ModeOnset {
                      exceeds that at a_r = {highest} by {z} combined standard errors"
                 ),
                 grows,
-                grow_text(scene, s).join("; "),
+                grow_text.join("; "),
             ),
         ]
     }
@@ -189,19 +190,20 @@ impl Experiment for ModeOnset {
     fn account(run: &Run, s: &OnsetStats) -> String {
         let scene = run.scene;
         let (lowest, highest) = (s.lowest, s.highest);
-        let low: Vec<String> = grow_text(scene, s)
+        let (high_text, grow_text) = onset_texts(scene, s);
+        let low: Vec<String> = grow_text
             .iter()
             .map(|t| t.split(" against ").next().unwrap_or_default().to_string())
             .collect();
         format!(
-            "{}, at the load that gives a_r = {} at full resolution, bands of modes within {:.0}% of q_t = zeta_t q_l \
-             (zeta_t = {:?}) hold, at zeta = {} zeta_t (before any mode of the band is resolved), \
-             on average E_norm = {} of the energy Persson's theory assigns them once resolved \
-             ({}). At the lowest load (a_r = {lowest}) the onset is {}; at the highest (a_r = \
-             {highest}) it is {}. A mode's energy is thus populated before its roughness is \
-             resolved once contact is partial, as the paper reports (the pressure of a partial \
-             contact has Fourier components at every wavevector), while near full contact \
-             Persson's step holds.",
+            "{}, at the load that gives a_r = {} at full resolution, bands of modes within \
+             {:.0}% of q_t = zeta_t q_l (zeta_t = {:?}) hold, at zeta = {} zeta_t (before any \
+             mode of the band is resolved), on average E_norm = {} of the energy Persson's \
+             theory assigns them once resolved ({}). At the lowest load (a_r = {lowest}) the \
+             onset is {}; at the highest (a_r = {highest}) it is {}. A mode's energy is thus \
+             populated before its roughness is resolved once contact is partial, as the paper \
+             reports (the pressure of a partial contact has Fourier components at every \
+             wavevector), while near full contact Persson's step holds.",
             scene.base().over(),
             scene.headline_contact_area,
             100.0 * scene.band,
@@ -210,7 +212,7 @@ impl Experiment for ModeOnset {
             s.headline.text(1.0, 3, ""),
             s.headline.z_text(0.0, "Persson's 0"),
             low.join(", "),
-            high_text(scene, s).join(", "),
+            high_text.join(", "),
         )
     }
 
@@ -225,32 +227,23 @@ impl Experiment for ModeOnset {
     }
 }
 
-/// Per target: the onset at the highest load, with the contact area there.
-fn high_text(scene: &ModeScene, s: &OnsetStats) -> Vec<String> {
-    s.extremes(scene.targets.len())
-        .map(|(high, _)| {
-            format!(
-                "zeta_t = {}: {} (a_r = {:.3} at the onset point)",
-                scene.targets[high.target],
-                high.e_norm.text(1.0, 4, ""),
-                high.contact_area.value
-            )
-        })
-        .collect()
-}
-
-/// Per target: the onset at the lowest load against that at the highest.
-fn grow_text(scene: &ModeScene, s: &OnsetStats) -> Vec<String> {
+/// Per target, in words: the onset at the highest load with the contact area there, and
+/// the onset at the lowest load against that at the highest.
+fn onset_texts(scene: &ModeScene, s: &OnsetStats) -> (Vec<String>, Vec<String>) {
     s.extremes(scene.targets.len())
         .map(|(high, low)| {
-            format!(
-                "zeta_t = {}: {} against {}",
-                scene.targets[low.target],
-                low.e_norm.text(1.0, 3, ""),
-                high.e_norm.text(1.0, 4, "")
+            let zt = scene.targets[high.target];
+            let at_high = high.e_norm.text(1.0, 4, "");
+            let a_high = high.contact_area.value;
+            (
+                format!("zeta_t = {zt}: {at_high} (a_r = {a_high:.3} at the onset point)"),
+                format!(
+                    "zeta_t = {zt}: {} against {at_high}",
+                    low.e_norm.text(1.0, 3, "")
+                ),
             )
         })
-        .collect()
+        .unzip()
 }
 
 #[cfg(test)]
@@ -260,9 +253,7 @@ mod tests {
 
     #[test]
     fn shipped_scenes_are_valid_at_both_scales() {
-        let (reduced, full, _) = shipped("d_onset");
-        ModeOnset::validate(&reduced).unwrap();
-        ModeOnset::validate(&full).unwrap();
+        crate::experiments::shipped_valid::<ModeOnset>("d_onset");
     }
 
     #[test]

@@ -105,14 +105,20 @@ fn exact_agreement(zetas: &[f64]) -> Series {
     Series::xy("exact agreement", Style::Line, [(lo, 1.0), (hi, 1.0)])
 }
 
+/// A figure of `y` against magnification (log axis).
+fn against_zeta(name: &str, title: String, y: &str) -> Figure {
+    figure(
+        name,
+        title,
+        Axis::log("magnification zeta"),
+        Axis::linear(y),
+    )
+}
+
 /// `E_exa / E` of both theories against magnification, every load.
 fn energy_vs_zeta(hurst: f64, loads: &[Load], zetas: &[f64]) -> Figure {
-    let mut fig = figure(
-        "energy_vs_zeta",
-        format!("Integrated normalised elastic energy against magnification, H = {hurst}"),
-        Axis::log("magnification zeta"),
-        Axis::linear("E_exa / E_P"),
-    );
+    let title = format!("Integrated normalised elastic energy against magnification, H = {hurst}");
+    let mut fig = against_zeta("energy_vs_zeta", title, "E_exa / E_P");
     for load in loads {
         for (theory, label, style) in [
             (
@@ -177,12 +183,8 @@ fn s_tilde_figure(
     windows: &[Vec<usize>],
     correction: Correction,
 ) -> Figure {
-    let mut fig = figure(
-        "s_tilde",
-        format!("Incremental correction factor S~ (eq. S_q_numerical), H = {hurst}"),
-        Axis::log("magnification zeta"),
-        Axis::linear("S~"),
-    );
+    let title = format!("Incremental correction factor S~ (eq. S_q_numerical), H = {hurst}");
+    let mut fig = against_zeta("s_tilde", title, "S~");
     for load in loads {
         let mut pts = Vec::new();
         let mut theory = Vec::new();

@@ -163,10 +163,11 @@ pub fn account(scene: &EnergyScene, zetas: &[f64], h: &Headline) -> String {
         String::new()
     };
     format!(
-        "{}, at the load that gives a_r = {:.3} at full resolution (zeta = {}), the measured total elastic energy is {} of \
-         the corrected theory's E_c (eq. gamma) and {} of the original theory's E_P: the \
-         corrected theory's energy exceeds the measurement by {:+.1}% ({}), the original \
-         theory's by {:+.0}%.{} Each theory uses its own a_r(p0, zeta).",
+        "{}, at the load that gives a_r = {:.3} at full resolution (zeta = {}), the \
+         measured total elastic energy is {} of the corrected theory's E_c (eq. gamma) and \
+         {} of the original theory's E_P: the corrected theory's energy exceeds the \
+         measurement by {:+.1}% ({}), the original theory's by {:+.0}%.{} Each theory uses \
+         its own a_r(p0, zeta).",
         scene.base().over(),
         head.area.value,
         round_sig(zetas[zetas.len() - 1], 4),

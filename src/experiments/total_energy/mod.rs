@@ -49,9 +49,7 @@ use serde::{Deserialize, Serialize};
 
 use self::stats::{Headline, Load};
 use super::climb::{check_steps_per_octave, climb, ladder, step_of, Recorder};
-use super::ensemble::{
-    by_load, check_contact_areas, check_headline, load_range, seed_load_jobs, SeedLoad,
-};
+use super::ensemble::{by_load, check_headline, load_range, seed_load_jobs, SeedLoad};
 use super::scene::scene;
 use super::{Check, Detail, Experiment, JobContext, Jobs, Table, Work};
 use crate::engine::contact::{ContactSolution, Model};
@@ -229,7 +227,6 @@ impl Jobs for EnergyScene {
             .copied()
             .collect();
         crate::error::check_seeds(&all).map_err(|e| e.with_field("low_load_seeds"))?;
-        check_contact_areas(&self.contact_areas)?;
         check_headline(self.headline_contact_area, &self.contact_areas)?;
         check_positive("zeta_start", self.zeta_start)?;
         if self.zeta_start >= base.zeta_max() {
@@ -457,17 +454,14 @@ mod tests {
 
     #[test]
     fn shipped_scenes_are_valid_and_ranges_are_named() {
-        let (reduced, full, _) = crate::experiments::shipped_scenes::<EnergyScene>("total_energy");
-        reduced.validate().unwrap();
-        full.validate().unwrap();
+        let (reduced, _) = crate::experiments::shipped_valid::<TotalEnergy>("total_energy");
+        use crate::experiments::assert_refused;
         let mut scene = reduced.clone();
         scene.headline_contact_area = 0.25;
-        let e = scene.validate().unwrap_err().to_string();
-        assert!(e.contains("headline_contact_area"), "{e}");
+        assert_refused::<TotalEnergy>(&scene, "headline_contact_area");
         scene = reduced.clone();
         scene.increments_at = vec![100.0];
-        let e = scene.validate().unwrap_err().to_string();
-        assert!(e.contains("increments_at"), "{e}");
+        assert_refused::<TotalEnergy>(&scene, "increments_at");
     }
 
     #[test]

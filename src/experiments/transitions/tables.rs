@@ -108,8 +108,8 @@ pub fn common_account(scene: &TransitionScene, results: &[(u64, TransitionResult
     let a_old = mean_of(results, |r| r.a_r_old);
     let a_new = mean_of(results, |r| r.a_r_new);
     format!(
-        "{} were solved at zeta = {} with a_r = {:.4} and again at zeta = {} (a_r = {:.4}); walkers binned by pressure in \
-         bins of {} p0/a_r.",
+        "{} were solved at zeta = {} with a_r = {:.4} and again at zeta = {} (a_r = {:.4}); \
+         walkers binned by pressure in bins of {} p0/a_r.",
         scene.base().runs(),
         scene.zeta,
         a_old.value,
