@@ -1,6 +1,8 @@
 //! Sharded runs: shares of the jobs run by separate processes at the same time over one
 //! output folder, then `--merge`, give the outcomes of one process running everything;
-//! a merge with a job missing or a result of another definition writes nothing; a share
+//! a merge with a job missing writes nothing and names it; a definition edited outside
+//! what a job computes keeps its result valid, an edited scene parameter makes it run
+//! again; a share
 //! killed mid-job and started again continues; bad share specs are refused.
 //!
 //! Scenes: the reduced re-entry history of the resume tests (64^2, three realizations,
@@ -205,24 +207,79 @@ fn a_merge_with_a_job_missing_names_it_and_writes_nothing() {
     assert!(err.contains("shard 3/3"), "its share is not named: {err}");
     assert!(outputs(out).is_empty(), "wrote {:?}", outputs(out));
 
-    // The last share runs; a definition changed since (its text, not its scene) is refused
-    // by name, and the original merges.
+    // The last share runs, and the original merges.
     finish(validate(defs, out, &names, &["--shard", "3/3"]));
-    let changed = tempfile::tempdir().unwrap();
-    let text = std::fs::read_to_string(defs.join("c_reentry.toml")).unwrap();
-    std::fs::write(
-        changed.path().join("c_reentry.toml"),
-        format!("# changed after the shares ran\n{text}"),
-    )
-    .unwrap();
-    let err = fails(validate(changed.path(), out, &names, &["--merge"]));
-    assert!(
-        err.contains("another definition of c_reentry"),
-        "not refused by name: {err}"
-    );
-    assert!(outputs(out).is_empty(), "wrote {:?}", outputs(out));
     finish(validate(defs, out, &names, &["--merge"]));
     assert_same_as_unsharded(out, &names);
+
+    // Edited after the shares ran outside what the jobs compute (a comment, the paper's
+    // finding, the other scale's scene): the job keys stand, and the results merge into
+    // the same outcome.
+    let text = std::fs::read_to_string(defs.join("c_reentry.toml")).unwrap();
+    let edited = text
+        .replacen(
+            "[paper]\n",
+            "[paper]\n# the finding as the paper words it\n",
+            1,
+        )
+        .replacen("finding = \"", "finding = \"(edited) ", 1)
+        .replacen("[full]\n", "[full]\n# a comment in the other scale\n", 1)
+        .replacen("checkpoint_seconds = 60", "checkpoint_seconds = 90", 1);
+    assert_ne!(edited, text);
+    let changed = tempfile::tempdir().unwrap();
+    std::fs::write(
+        changed.path().join("c_reentry.toml"),
+        format!("# edited after the shares ran\n{edited}"),
+    )
+    .unwrap();
+    let merged = tempfile::tempdir().unwrap();
+    copy_dir(&out.join("jobs"), &merged.path().join("jobs"));
+    finish(validate(
+        changed.path(),
+        merged.path(),
+        &names,
+        &["--merge"],
+    ));
+    // The finding's text and the definition's hash are the edit itself.
+    let numbers = |dir: &Path| {
+        let mut v = outcome_numbers(dir, "c_reentry");
+        let o = v.as_object_mut().unwrap();
+        o.remove("paper");
+        o.remove("definition_sha256");
+        v
+    };
+    assert_eq!(
+        numbers(merged.path()),
+        numbers(out),
+        "an edit outside the jobs changed the merged outcome"
+    );
+
+    // A parameter of the scene the jobs ran changes their keys: they have no result.
+    let retuned = tempfile::tempdir().unwrap();
+    let with_tol = edited.replacen("tol = 1e-8", "tol = 1e-9", 1);
+    assert_ne!(with_tol, edited);
+    std::fs::write(retuned.path().join("c_reentry.toml"), with_tol).unwrap();
+    let err = fails(validate(
+        retuned.path(),
+        merged.path(),
+        &names,
+        &["--merge"],
+    ));
+    assert!(err.contains("3 of 3 jobs have no result"), "{err}");
+}
+
+/// Copies a folder tree.
+fn copy_dir(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).unwrap();
+    for entry in std::fs::read_dir(from).unwrap() {
+        let entry = entry.unwrap();
+        let target = to.join(entry.file_name());
+        if entry.file_type().unwrap().is_dir() {
+            copy_dir(&entry.path(), &target);
+        } else {
+            std::fs::copy(entry.path(), target).unwrap();
+        }
+    }
 }
 
 #[test]

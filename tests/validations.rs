@@ -131,6 +131,28 @@ fn one_step_moves_points_into_contact() {
         .value
         .value;
     assert!(net > 0.02 && net < 0.4, "net over gross {net}");
+    // The study states the step each row took (the variance its modes add), which grows
+    // with the nominal step and is the same where two steps add the same shells.
+    let steps: Vec<_> = o
+        .sensitivity
+        .iter()
+        .filter(|r| r.parameter == "dzeta_over_zeta")
+        .collect();
+    let added: Vec<f64> = steps
+        .iter()
+        .map(|r| r.variance_added.expect("the variance added").value)
+        .collect();
+    assert!(added.windows(2).all(|w| w[0] <= w[1]), "{added:?}");
+    assert!(added[0] > 0.0, "{added:?}");
+    // The misprint hypotheses and the paper's transition scene are rows of their own.
+    for parameter in ["hurst", "contact_area", "transition"] {
+        let row = o.sensitivity.iter().find(|r| r.parameter == parameter);
+        let zero_bin = row.and_then(|r| r.zero_bin).map(|e| e.value);
+        assert!(
+            zero_bin.is_some_and(|z| z > 0.0 && z < 1.0),
+            "{parameter}: {zero_bin:?}"
+        );
+    }
 }
 
 #[test]

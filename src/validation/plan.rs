@@ -28,7 +28,6 @@ use std::path::{Path, PathBuf};
 use serde::Serialize;
 
 use super::shard::{assign, share_costs, Shard};
-use super::source::Source;
 use super::store::{load_run, StoredRun};
 use crate::engine::solver::SolverKind;
 use crate::error::{Error, Result};
@@ -186,14 +185,15 @@ impl Plan {
     }
 
     /// Checks that every job has a stored result `--merge` may use: present and readable,
-    /// computed for the same definition (hash) where it names one of `sources`, and by the
-    /// same commit unless `accept_other_commit`. The error names every missing job with the
-    /// share that owns it, or the refused result and why.
-    pub fn check_merge(
-        &self,
-        sources: &[(String, String)],
-        accept_other_commit: bool,
-    ) -> Result<()> {
+    /// and computed by the same commit unless `accept_other_commit`. The result's file name
+    /// is its job key, a hash of everything the job computes (the scale, the scene and the
+    /// job: [`crate::validation::store::job_key`]), so a result found under the key is a
+    /// result of this job: an edit of the definition outside what the job computes (a
+    /// comment, the other scale's scene, the paper's finding) keeps it valid, and an edit of
+    /// a parameter of its scene changes the key, so that the job runs again. The hash of the
+    /// definition file that computed a result stays in its provenance. The error names every
+    /// missing job with the share that owns it, or the refused result and why.
+    pub fn check_merge(&self, accept_other_commit: bool) -> Result<()> {
         let commit = crate::provenance::commit_label();
         let stored: Vec<Option<StoredRun>> = self.paths.iter().map(|p| load_run(p)).collect();
         // The share count of the run, from the shares' own records.
@@ -227,18 +227,6 @@ impl Plan {
                 continue;
             };
             let Some(run) = &s.run else { continue };
-            if let Some((_, sha)) = sources.iter().find(|(name, _)| *name == run.definition) {
-                if *sha != run.definition_sha256 {
-                    return Err(Error::bad_file(
-                        &self.paths[i],
-                        format!(
-                            "job result computed for another definition of {} (sha256 {}, \
-                             this one {}): run the job again with this definition",
-                            run.definition, run.definition_sha256, sha
-                        ),
-                    ));
-                }
-            }
             if run.commit != commit && !accept_other_commit {
                 return Err(Error::bad_file(
                     &self.paths[i],
@@ -273,14 +261,6 @@ fn key_of(path: &Path) -> String {
     path.file_stem()
         .map(|s| s.to_string_lossy().to_string())
         .unwrap_or_default()
-}
-
-/// The `(name, sha256)` of each definition, for [`Plan::check_merge`].
-pub fn definition_hashes(sources: &[Source]) -> Result<Vec<(String, String)>> {
-    sources
-        .iter()
-        .map(|s| Ok((s.header()?.0, s.sha256())))
-        .collect()
 }
 
 #[cfg(test)]

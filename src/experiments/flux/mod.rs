@@ -289,13 +289,14 @@ impl Experiment for Flux {
         reading::notes(&s.rows, before, after)
     }
 
-    /// The flux per step against the step, the study's rows beside the headline step.
+    /// The flux per step against the step, the study's rows beside the headline step
+    /// (placed at the study's row of the same step, where there is one).
     fn figures(run: &Run, s: &FluxStats) -> Vec<Figure> {
         if s.rows.is_empty() {
             return Vec::new();
         }
-        let step = run.scene.dzeta / run.scene.zeta;
-        let headline = Some((step, s.steps.flux_in, s.steps.flux_out));
+        let headline =
+            same_step(run.scene, &s.rows).map(|row| (row, s.steps.flux_in, s.steps.flux_out));
         vec![reading::figure(&s.rows, headline)]
     }
 
@@ -315,6 +316,19 @@ impl Experiment for Flux {
             })
             .collect()
     }
+}
+
+/// The study's row of the headline's own step, where there is one: a step row with the
+/// scene's grid, step, load, Hurst exponent and control.
+fn same_step(scene: &FluxScene, rows: &[SensitivityRow]) -> Option<usize> {
+    rows.iter().position(|r| {
+        let k = &r.config;
+        r.parameter == "dzeta_over_zeta"
+            && (k.n, k.lambda_l, k.lambda_s) == (scene.n, scene.lambda_l, scene.lambda_s)
+            && (k.zeta, k.dzeta, k.contact_area) == (scene.zeta, scene.dzeta, scene.contact_area)
+            && k.hurst.is_none()
+            && !k.fixed_area
+    })
 }
 
 /// One realization's step at the scene's settings.

@@ -20,9 +20,12 @@ pub fn matches(e: Estimate, paper: f64) -> bool {
 pub fn reproducing(rows: &[SensitivityRow]) -> Vec<String> {
     let mut hits = Vec::new();
     for r in rows {
+        let net = r.net_over_gross.map_or(String::new(), |e| {
+            format!(", net/gross {}", e.text(1.0, 2, ""))
+        });
         let pair = |i: Estimate, o: Estimate| {
             format!(
-                "in {}, out {}",
+                "in {}, out {}{net}",
                 i.text(100.0, 3, "%"),
                 o.text(100.0, 3, "%")
             )
@@ -47,22 +50,68 @@ pub fn reproducing(rows: &[SensitivityRow]) -> Vec<String> {
     hits
 }
 
-/// Log-log fit of the mean one-way flux (of the nominal area) against `dzeta / zeta`
-/// over the step rows: `(exponent, relative step giving the paper's mean one-way flux)`.
-pub fn step_scaling(rows: &[SensitivityRow]) -> Option<(Estimate, f64)> {
-    let steps: Vec<&SensitivityRow> = rows
-        .iter()
+/// How the one-step flux scales with the step actually taken, from the step rows
+/// (`dzeta_over_zeta`): log-log fits against the height variance each step adds (not the
+/// nominal step: on a coarse grid two nominal steps can add the same shells).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepScaling {
+    /// Exponent of the mean one-way flux, `(in + out) / 2 ~ variance^s`.
+    pub gross_exponent: Estimate,
+    /// Exponent of the net flux, `|out - in| ~ variance^s` (none where it cannot be fitted).
+    pub net_exponent: Option<Estimate>,
+    /// The added variance that gives the paper's mean one-way flux, over the variance the
+    /// stated step (`1.5 / 128`) adds.
+    pub variance_factor: f64,
+    /// The relative step `dzeta / zeta` that adds that variance (from a fit of the
+    /// variance against the nominal step over the same rows).
+    pub step: Option<f64>,
+    /// Net over mean one-way flux there, from the two flux fits.
+    pub net_over_gross: Option<f64>,
+}
+
+/// The step rows with a recorded, non-zero added variance and a flux, in row order.
+fn step_rows(rows: &[SensitivityRow]) -> Vec<(&SensitivityRow, f64)> {
+    rows.iter()
         .filter(|r| r.parameter == "dzeta_over_zeta")
-        .collect();
-    let x: Vec<f64> = steps.iter().map(|r| r.value.ln()).collect();
-    let y: Vec<f64> = steps
+        .filter_map(|r| Some((r, r.variance_added?.value)))
+        .filter(|(r, v)| *v > 0.0 && r.flux_in.value + r.flux_out.value > 0.0)
+        .collect()
+}
+
+/// Fits the step rows (see [`StepScaling`]); none without two distinct added variances or
+/// without the stated step among the rows.
+pub fn step_scaling(rows: &[SensitivityRow]) -> Option<StepScaling> {
+    let steps = step_rows(rows);
+    let stated = steps
         .iter()
-        .map(|r| (0.5 * (r.flux_in.value + r.flux_out.value)).ln())
-        .collect();
-    let fit = LineFit::fit(&x, &y)?;
+        .find(|(r, _)| (r.value / PAPER_RELATIVE_STEP - 1.0).abs() < 1e-9)?
+        .1;
+    let ln_v: Vec<f64> = steps.iter().map(|(_, v)| v.ln()).collect();
+    let gross = |r: &SensitivityRow| 0.5 * (r.flux_in.value + r.flux_out.value);
+    let ln_gross: Vec<f64> = steps.iter().map(|(r, _)| gross(r).ln()).collect();
+    let fit = LineFit::fit(&ln_v, &ln_gross)?;
     let target = (0.5 * (PAPER_IN + PAPER_OUT)).ln();
-    let step = ((target - fit.intercept.value) / fit.slope.value).exp();
-    Some((fit.slope, step)).filter(|(s, r)| s.value.is_finite() && r.is_finite())
+    let ln_v_needed = (target - fit.intercept.value) / fit.slope.value;
+    // The net flux, where it is non-zero.
+    let (nx, ny): (Vec<f64>, Vec<f64>) = steps
+        .iter()
+        .map(|(r, v)| (v.ln(), (r.flux_out.value - r.flux_in.value).abs()))
+        .filter(|(_, net)| *net > 0.0)
+        .map(|(x, net)| (x, net.ln()))
+        .unzip();
+    let net_fit = LineFit::fit(&nx, &ny);
+    let step_fit = LineFit::fit(
+        &ln_v,
+        &steps.iter().map(|(r, _)| r.value.ln()).collect::<Vec<_>>(),
+    );
+    let scaling = StepScaling {
+        gross_exponent: fit.slope,
+        net_exponent: net_fit.map(|f| f.slope),
+        variance_factor: (ln_v_needed - stated.ln()).exp(),
+        step: step_fit.map(|f| f.at(ln_v_needed).exp()),
+        net_over_gross: net_fit.map(|f| f.at(ln_v_needed).exp() / target.exp()),
+    };
+    (fit.slope.value.is_finite() && scaling.variance_factor.is_finite()).then_some(scaling)
 }
 
 /// Range of a measure over the rows of one parameter, in percent.
@@ -134,15 +183,8 @@ pub fn notes(rows: &[SensitivityRow], a_r_before: f64, a_r_after: f64) -> Vec<St
             in_above.join(", ")
         )
     });
-    if let Some((slope, step)) = step_scaling(rows) {
-        notes.push(format!(
-            "The mean one-way flux grows as (dzeta/zeta)^{} with the step; the paper's \
-             magnitude would need dzeta/zeta = {:.3} ({:.1} times the stated 1.5/128).",
-            slope.text(1.0, 2, ""),
-            step,
-            step / PAPER_RELATIVE_STEP
-        ));
-    }
+    notes.extend(step_notes(rows));
+    notes.extend(hypothesis_notes(rows));
     notes.push(format!(
         "Direction: the caption's red (entered, 0.675%) exceeds its blue (left, 0.597%), \
          which at fixed load would make a_r grow with zeta by 0.078% of the area per step, \
@@ -153,20 +195,136 @@ pub fn notes(rows: &[SensitivityRow], a_r_before: f64, a_r_after: f64) -> Vec<St
     notes
 }
 
-/// Flux per step against `dzeta / zeta`, log-log: the step rows in both directions, the
-/// headline step, and the paper's point.
-pub fn figure(rows: &[SensitivityRow], headline: Option<(f64, Estimate, Estimate)>) -> Figure {
-    let steps: Vec<&SensitivityRow> = rows
+/// What the step rows show: each row's step taken, magnitude and net/gross, and how the
+/// flux scales with the added variance (what the paper's magnitude would need).
+fn step_notes(rows: &[SensitivityRow]) -> Vec<String> {
+    let steps = step_rows(rows);
+    let Some((first, _)) = steps.first() else {
+        return Vec::new();
+    };
+    let n = first.config.n;
+    let listed: Vec<String> = steps
         .iter()
-        .filter(|r| r.parameter == "dzeta_over_zeta")
+        .map(|(r, v)| {
+            format!(
+                "{} (variance +{:.3}%, {} modes): in {}, out {}{}",
+                r.label,
+                100.0 * v,
+                r.modes_added.map_or("?".into(), |m| format!("{m:.0}")),
+                r.flux_in.text(100.0, 3, "%"),
+                r.flux_out.text(100.0, 3, "%"),
+                r.net_over_gross.map_or(String::new(), |e| format!(
+                    ", net/gross {}",
+                    e.text(1.0, 2, "")
+                ))
+            )
+        })
         .collect();
+    let mut notes = vec![format!(
+        "Step rows ({n}x{n}; the step taken is the height variance the added modes carry, \
+         relative to the variance at zeta): {}.",
+        listed.join("; ")
+    )];
+    if let Some(s) = step_scaling(rows) {
+        let mut text = format!(
+            "Against the added variance, the mean one-way flux grows with exponent {}",
+            s.gross_exponent.text(1.0, 2, "")
+        );
+        if let Some(e) = s.net_exponent {
+            text.push_str(&format!(
+                " and the net flux with exponent {}",
+                e.text(1.0, 2, "")
+            ));
+        }
+        text.push_str(&format!(
+            ". The paper's mean one-way flux ({:.3}%) would need {:.1} times the variance the \
+             stated step adds",
+            50.0 * (PAPER_IN + PAPER_OUT),
+            s.variance_factor
+        ));
+        if let Some(step) = s.step {
+            text.push_str(&format!(
+                " (dzeta/zeta about {:.3}, {:.1} times the stated 1.5/128)",
+                step,
+                step / PAPER_RELATIVE_STEP
+            ));
+        }
+        if let Some(ng) = s.net_over_gross {
+            text.push_str(&format!(
+                "; there the net/gross would be about {ng:.2}, against the paper's {:.2}",
+                crate::experiments::reentry::net_over_gross(PAPER_IN, PAPER_OUT)
+            ));
+        }
+        text.push_str(". An extrapolation of these rows, not a measurement.");
+        notes.push(text);
+    }
+    notes
+}
+
+/// The misprint hypotheses (another Hurst exponent or contact area than stated) and the
+/// paper's transition scene, row by row against the paper.
+fn hypothesis_notes(rows: &[SensitivityRow]) -> Vec<String> {
+    let mut notes = Vec::new();
+    let described = |r: &SensitivityRow| {
+        format!(
+            "in {}, out {} of the nominal area{}",
+            r.flux_in.text(100.0, 3, "%"),
+            r.flux_out.text(100.0, 3, "%"),
+            r.net_over_gross.map_or(String::new(), |e| format!(
+                ", net/gross {}",
+                e.text(1.0, 2, "")
+            ))
+        )
+    };
+    let verdict = |r: &SensitivityRow| {
+        if matches(r.flux_in, PAPER_IN) && matches(r.flux_out, PAPER_OUT) {
+            "matches the paper's magnitude"
+        } else {
+            "does not match the paper's magnitude"
+        }
+    };
+    for r in rows
+        .iter()
+        .filter(|r| r.parameter == "hurst" || r.parameter == "contact_area")
+    {
+        notes.push(format!(
+            "Misprinted parameter? {} at {}x{} (the rest as the base): {}: {}.",
+            r.label,
+            r.config.n,
+            r.config.n,
+            described(r),
+            verdict(r)
+        ));
+    }
+    for r in rows.iter().filter(|r| r.parameter == "transition") {
+        if let Some(z) = r.zero_bin {
+            notes.push(format!(
+                "The paper's transition scene ({}, {}x{}): {} of the non-contact at zeta \
+                 enters contact in the step (paper: about 1%); a_r = {:.4} before the step.",
+                r.label,
+                r.config.n,
+                r.config.n,
+                z.text(100.0, 2, "%"),
+                r.contact_area.value
+            ));
+        }
+    }
+    notes
+}
+
+/// Flux per step against the height variance the step adds (relative to the variance at
+/// `zeta`), log-log: the step rows in both directions, the headline step where a step row
+/// is the same step (`headline`: that row's index with the headline's fluxes), and the
+/// paper's numbers at the variance of the stated step.
+pub fn figure(rows: &[SensitivityRow], headline: Option<(usize, Estimate, Estimate)>) -> Figure {
+    let steps = step_rows(rows);
     let with = |f: fn(&SensitivityRow) -> Estimate| {
         steps
             .iter()
-            .map(|r| (r.value, f(r).value, f(r).std_error))
+            .map(|(r, v)| (*v, f(r).value, f(r).std_error))
             .collect::<Vec<_>>()
     };
-    let n = steps.first().map_or(0, |r| r.config.n);
+    let n = steps.first().map_or(0, |(r, _)| r.config.n);
     let mut series = vec![
         Series::with_errors(
             format!("into contact ({n}x{n} study)"),
@@ -179,37 +337,36 @@ pub fn figure(rows: &[SensitivityRow], headline: Option<(f64, Estimate, Estimate
             with(|r| r.flux_out),
         ),
     ];
-    if let Some((r, fin, fout)) = headline {
+    let variance_of = |i: usize| rows.get(i).and_then(|r| r.variance_added).map(|v| v.value);
+    if let Some((x, fin, fout)) = headline.and_then(|(i, a, b)| Some((variance_of(i)?, a, b))) {
         series.push(Series {
             label: "headline step, into / out of contact".into(),
             style: Style::Points,
             side: Default::default(),
-            points: vec![
-                Point {
-                    x: r,
-                    y: fin.value,
-                    err: Some(fin.std_error),
-                },
-                Point {
-                    x: r,
-                    y: fout.value,
-                    err: Some(fout.std_error),
-                },
-            ],
+            points: [fin, fout]
+                .iter()
+                .map(|e| Point {
+                    x,
+                    y: e.value,
+                    err: Some(e.std_error),
+                })
+                .collect(),
         });
     }
-    series.push(Series::xy(
-        "paper (4096^2, zeta 128 -> 129.5): 0.675% in, 0.597% out",
-        Style::Points,
-        [
-            (PAPER_RELATIVE_STEP, PAPER_IN),
-            (PAPER_RELATIVE_STEP, PAPER_OUT),
-        ],
-    ));
+    let stated = steps
+        .iter()
+        .find(|(r, _)| (r.value / PAPER_RELATIVE_STEP - 1.0).abs() < 1e-9);
+    if let Some((_, v)) = stated {
+        series.push(Series::xy(
+            "paper (4096^2, zeta 128 -> 129.5): 0.675% in, 0.597% out, at the stated step",
+            Style::Points,
+            [(*v, PAPER_IN), (*v, PAPER_OUT)],
+        ));
+    }
     Figure {
         name: "flux_vs_step".into(),
-        title: "Flux per step against the relative step dzeta / zeta (a_r = 0.14)".into(),
-        x: Axis::log("dzeta / zeta"),
+        title: "Flux per step against the height variance the step adds (a_r = 0.14)".into(),
+        x: Axis::log("added height variance / variance at zeta"),
         y: Axis::log("flux per step (fraction of the nominal area)"),
         y2: None,
         series,
@@ -226,5 +383,78 @@ mod tests {
         assert!(!matches(Estimate::new(0.0028, 0.0001), PAPER_IN));
         assert!(matches(Estimate::new(0.0050, 0.0006), PAPER_IN));
         assert!(!matches(Estimate::new(0.0050, f64::NAN), PAPER_IN));
+    }
+
+    fn step_row(factor: f64, variance: f64, flux_in: f64, flux_out: f64) -> SensitivityRow {
+        use crate::experiments::flux::sensitivity::StudyConfig;
+        let e = |v: f64| Estimate::new(v, 0.0);
+        SensitivityRow {
+            parameter: "dzeta_over_zeta".into(),
+            value: factor * PAPER_RELATIVE_STEP,
+            label: format!("{factor} x 1.5/128"),
+            config: StudyConfig {
+                n: 64,
+                lambda_l: 32.0,
+                lambda_s: 4.0,
+                contact_area: 0.14,
+                zeta: 4.0,
+                dzeta: factor * PAPER_RELATIVE_STEP * 4.0,
+                tol: 1e-8,
+                solver: crate::engine::solver::SolverKind::Cg,
+                fixed_area: false,
+                hurst: None,
+            },
+            realizations: 2,
+            flux_in: e(flux_in),
+            flux_out: e(flux_out),
+            flux_in_of_contact: e(flux_in / 0.14),
+            flux_out_of_contact: e(flux_out / 0.14),
+            contact_area: e(0.14),
+            net_over_gross: Some(e(crate::experiments::reentry::net_over_gross(
+                flux_in, flux_out,
+            ))),
+            zero_bin: Some(e(flux_in / 0.86)),
+            variance_added: Some(e(variance)),
+            modes_added: Some(8.0),
+        }
+    }
+
+    #[test]
+    fn the_step_scaling_is_fitted_against_the_variance_added() {
+        // Gross flux 0.002 sqrt(v / v1), net flux 0.0002 (v / v1): the paper's mean
+        // one-way 0.636% needs (0.00636 / 0.002)^2 = 10.1 times the stated step's variance.
+        let v1 = 1e-3;
+        let rows: Vec<SensitivityRow> = [0.5, 1.0, 2.0, 4.0]
+            .iter()
+            .map(|&f: &f64| {
+                let v = v1 * f * f; // variance ~ step^2 here
+                let gross = 0.002 * f;
+                let net = 0.0002 * f * f;
+                step_row(f, v, gross - net / 2.0, gross + net / 2.0)
+            })
+            .collect();
+        let s = step_scaling(&rows).unwrap();
+        assert!((s.gross_exponent.value - 0.5).abs() < 1e-9, "{:?}", s);
+        assert!((s.net_exponent.unwrap().value - 1.0).abs() < 1e-9);
+        let k = (0.5 * (PAPER_IN + PAPER_OUT) / 0.002f64).powi(2);
+        assert!(
+            (s.variance_factor / k - 1.0).abs() < 1e-9,
+            "{} vs {k}",
+            s.variance_factor
+        );
+        // The step: variance ~ step^2, so sqrt(k) times the stated step.
+        assert!((s.step.unwrap() / (k.sqrt() * PAPER_RELATIVE_STEP) - 1.0).abs() < 1e-9);
+        // Net/gross there: 0.0002 k / 0.00636.
+        let ng = 0.0002 * k / (0.5 * (PAPER_IN + PAPER_OUT));
+        assert!((s.net_over_gross.unwrap() / ng - 1.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn steps_that_add_the_same_modes_give_no_fit_without_a_second_variance() {
+        let rows = vec![
+            step_row(0.25, 1e-3, 0.001, 0.002),
+            step_row(1.0, 1e-3, 0.001, 0.002),
+        ];
+        assert!(step_scaling(&rows).is_none());
     }
 }

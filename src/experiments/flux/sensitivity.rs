@@ -10,16 +10,27 @@
 //! * `lambda_l_over_l`: the roll-off wavelength over the system size, the step kept at the
 //!   same place relative to `zeta_max`;
 //! * `control`: the step at fixed load (0) or at fixed contact area (1);
-//! * `solver`: GFMD (0) or CG (1).
+//! * `solver`: GFMD (0) or CG (1);
+//! * `hurst`: the Hurst exponent, and `contact_area`: the contact area at `zeta` (were the
+//!   paper's stated parameters misprinted?);
+//! * `transition`: the paper's transition scene (section 3.1, figure "reentry_histogram":
+//!   H = 0.5, a_r = 0.01, zeta 63 -> 63.3), whose share of the non-contact that enters
+//!   contact the paper gives as about 1%.
 //!
 //! Each row is a mean over realizations with its standard error, as a fraction of the
-//! nominal area and of the true contact area at `zeta`. Configurations shared by several
-//! rows (the base is in every list) run once.
+//! nominal area and of the true contact area at `zeta`, with the net over the mean one-way
+//! flux and the share of the non-contact at `zeta` that enters contact (the transition out
+//! of the zero-pressure bin). A row also states the step actually taken: the modes it adds
+//! and the height variance they carry, relative to the variance at `zeta` (on a coarse
+//! grid two nominal steps can add the same shells). Configurations shared by several rows
+//! (the base is in every list) run once.
 
 use serde::{Deserialize, Serialize};
 
 use crate::engine::solver::SolverKind;
+use crate::engine::spectrum::ShellSpectrum;
 use crate::error::{check_open, check_positive, Error, Result};
+use crate::experiments::reentry::net_over_gross;
 use crate::experiments::scene::Base;
 use crate::stats::Estimate;
 
@@ -58,6 +69,36 @@ pub struct SensitivityPlan {
     pub fixed_area: bool,
     /// Solvers (the base's among them).
     pub solvers: Vec<SolverKind>,
+    /// Hurst exponents (the scene's is the base's).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub hurst_values: Vec<f64>,
+    /// Contact areas at `zeta` (the base's is `contact_area`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub contact_areas: Vec<f64>,
+    /// The paper's transition scene as one more row (none: not run).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub transition: Option<TransitionRow>,
+}
+
+/// A row at settings of its own: the paper's transition scene (H = 0.5, a_r = 0.01, zeta
+/// 63 -> 63.3), on a grid that resolves it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TransitionRow {
+    /// Points per side.
+    pub n: usize,
+    /// Long-wavelength cutoff (grid units).
+    pub lambda_l: f64,
+    /// Short-wavelength cutoff (grid units).
+    pub lambda_s: f64,
+    /// Hurst exponent.
+    pub hurst: f64,
+    /// Contact area at `zeta`.
+    pub contact_area: f64,
+    /// Magnification before the step.
+    pub zeta: f64,
+    /// The step.
+    pub dzeta: f64,
 }
 
 /// One configuration of the study: everything a step depends on besides the Hurst
@@ -83,6 +124,9 @@ pub struct StudyConfig {
     pub solver: SolverKind,
     /// Whether the step keeps the contact area (else the load).
     pub fixed_area: bool,
+    /// Hurst exponent (none: the scene's).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub hurst: Option<f64>,
 }
 
 /// One realization of one configuration.
@@ -109,13 +153,20 @@ pub struct StudyResult {
     pub flux_out: f64,
     /// Largest solver residual.
     pub max_residual: f64,
+    /// Height variance of the modes the step adds, over the height variance at `zeta`
+    /// (absent in results stored before it was recorded).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub variance_added: Option<f64>,
+    /// Modes the step adds (full spectrum, non-zero amplitude).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub modes_added: Option<u64>,
 }
 
 /// One row of the study: one setting at one value, averaged over realizations.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SensitivityRow {
     /// The setting varied (`tol`, `dzeta_over_zeta`, `lambda_s`, `lambda_l_over_l`,
-    /// `control`, `solver`).
+    /// `control`, `solver`, `hurst`, `contact_area`, `transition`).
     pub parameter: String,
     /// Its value (`control`: 0 fixed load, 1 fixed area; `solver`: 0 GFMD, 1 CG).
     pub value: f64,
@@ -135,6 +186,19 @@ pub struct SensitivityRow {
     pub flux_out_of_contact: Estimate,
     /// Contact area at `zeta`.
     pub contact_area: Estimate,
+    /// Net over mean one-way flux, `|out - in| / ((out + in) / 2)`, per realization.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub net_over_gross: Option<Estimate>,
+    /// Share of the non-contact at `zeta` in contact after the step, `in / (1 - a_r)`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub zero_bin: Option<Estimate>,
+    /// Height variance the step adds over the variance at `zeta` (absent where the
+    /// results did not record it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub variance_added: Option<Estimate>,
+    /// Modes the step adds (mean over realizations; equal for all of them).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub modes_added: Option<f64>,
 }
 
 impl SensitivityPlan {
@@ -154,13 +218,30 @@ impl SensitivityPlan {
                 check_positive(field, v)?;
             }
         }
+        for &h in &self.hurst_values {
+            check_open("sensitivity.hurst_values", h, 0.0, 1.0)?;
+        }
+        for &a in &self.contact_areas {
+            check_open("sensitivity.contact_areas", a, 0.0, 1.0)?;
+        }
+        if let Some(t) = &self.transition {
+            check_open("sensitivity.transition.hurst", t.hurst, 0.0, 1.0)?;
+            check_open(
+                "sensitivity.transition.contact_area",
+                t.contact_area,
+                0.0,
+                1.0,
+            )?;
+            check_positive("sensitivity.transition.zeta", t.zeta)?;
+            check_positive("sensitivity.transition.dzeta", t.dzeta)?;
+        }
         if self.solvers.is_empty() {
             return Err(Error::invalid("sensitivity.solvers", "[]", "at least one"));
         }
         for (parameter, _, _, config) in self.rows() {
             let base = Base {
                 n: config.n,
-                hurst,
+                hurst: config.hurst.unwrap_or(hurst),
                 lambda_l: config.lambda_l,
                 lambda_s: config.lambda_s,
                 seeds: &self.seeds,
@@ -186,6 +267,7 @@ impl SensitivityPlan {
             tol: self.tol,
             solver: self.solver,
             fixed_area: false,
+            hurst: None,
         }
     }
 
@@ -249,6 +331,41 @@ impl SensitivityPlan {
             };
             rows.push(("solver", v, solver.name().to_string(), c));
         }
+        for &h in &self.hurst_values {
+            let c = StudyConfig {
+                hurst: Some(h),
+                ..base.clone()
+            };
+            rows.push(("hurst", h, format!("H = {h}"), c));
+        }
+        for &a in &self.contact_areas {
+            let c = StudyConfig {
+                contact_area: a,
+                ..base.clone()
+            };
+            rows.push(("contact_area", a, format!("a_r = {a}"), c));
+        }
+        if let Some(t) = &self.transition {
+            let c = StudyConfig {
+                n: t.n,
+                lambda_l: t.lambda_l,
+                lambda_s: t.lambda_s,
+                contact_area: t.contact_area,
+                zeta: t.zeta,
+                dzeta: t.dzeta,
+                hurst: Some(t.hurst),
+                ..base.clone()
+            };
+            let label = format!(
+                "H = {}, a_r = {}, zeta {} -> {} (n = {})",
+                t.hurst,
+                t.contact_area,
+                t.zeta,
+                t.zeta + t.dzeta,
+                t.n
+            );
+            rows.push(("transition", t.contact_area, label, c));
+        }
         rows
     }
 
@@ -288,6 +405,10 @@ impl SensitivityPlan {
                     Estimate::mean_of(&runs.iter().map(|r| f(r)).collect::<Vec<_>>())
                 };
                 let of_contact = |x: f64, r: &StudyResult| x / r.a_r_old.max(f64::MIN_POSITIVE);
+                let of_noncontact =
+                    |r: &StudyResult| r.flux_in / (1.0 - r.a_r_old).max(f64::MIN_POSITIVE);
+                let variances: Option<Vec<f64>> = runs.iter().map(|r| r.variance_added).collect();
+                let modes: Option<Vec<u64>> = runs.iter().map(|r| r.modes_added).collect();
                 Some(SensitivityRow {
                     parameter: parameter.to_string(),
                     value,
@@ -299,6 +420,11 @@ impl SensitivityPlan {
                     flux_in_of_contact: mean(&|r| of_contact(r.flux_in, r)),
                     flux_out_of_contact: mean(&|r| of_contact(r.flux_out, r)),
                     contact_area: mean(&|r| r.a_r_old),
+                    net_over_gross: Some(mean(&|r| net_over_gross(r.flux_in, r.flux_out))),
+                    zero_bin: Some(mean(&of_noncontact)),
+                    variance_added: variances.map(|v| Estimate::mean_of(&v)),
+                    modes_added: modes
+                        .map(|m| m.iter().map(|&x| x as f64).sum::<f64>() / m.len() as f64),
                 })
             })
             .collect()
@@ -312,7 +438,7 @@ pub fn run(hurst: f64, job: &StudyJob) -> Result<StudyResult> {
     let seeds = [job.seed];
     let base = Base {
         n: c.n,
-        hurst,
+        hurst: c.hurst.unwrap_or(hurst),
         lambda_l: c.lambda_l,
         lambda_s: c.lambda_s,
         seeds: &seeds,
@@ -338,13 +464,28 @@ pub fn run(hurst: f64, job: &StudyJob) -> Result<StudyResult> {
         .map(|(&a, &b)| super::category(a, b))
         .collect();
     let (flux_in, flux_out) = super::fluxes(&categories);
+    let (variance_added, modes_added) = step_taken(&r.surface.shells(), c.zeta, c.dzeta);
     Ok(StudyResult {
         a_r_old: old.contact_area(),
         a_r_new: new.contact_area(),
         flux_in,
         flux_out,
         max_residual: old.stats.residual.value().max(new.stats.residual.value()),
+        variance_added: Some(variance_added),
+        modes_added: Some(modes_added),
     })
+}
+
+/// The step actually taken from `zeta` to `zeta + dzeta`: the height variance of the modes
+/// it adds over the height variance at `zeta`, and how many modes it adds.
+pub fn step_taken(shells: &ShellSpectrum, zeta: f64, dzeta: f64) -> (f64, u64) {
+    let before = shells.up_to(zeta);
+    let after = shells.up_to(zeta + dzeta);
+    let added = &after[before.len()..];
+    let variance: f64 = before.iter().map(|s| s.h2).sum();
+    let variance_added: f64 = added.iter().map(|s| s.h2).sum();
+    let modes = added.iter().map(|s| u64::from(s.modes)).sum();
+    (variance_added / variance.max(f64::MIN_POSITIVE), modes)
 }
 
 #[cfg(test)]
@@ -367,6 +508,17 @@ mod tests {
             lambda_l_fractions: vec![0.25, 0.5],
             fixed_area: true,
             solvers: vec![SolverKind::Gfmd, SolverKind::Cg],
+            hurst_values: vec![0.3],
+            contact_areas: vec![0.5],
+            transition: Some(TransitionRow {
+                n: 128,
+                lambda_l: 64.0,
+                lambda_s: 4.0,
+                hurst: 0.5,
+                contact_area: 0.01,
+                zeta: 15.0,
+                dzeta: 0.3,
+            }),
         }
     }
 
@@ -375,7 +527,7 @@ mod tests {
         let p = plan();
         p.validate(0.8).unwrap();
         let rows = p.rows();
-        assert_eq!(rows.len(), 2 + 3 + 2 + 2 + 2 + 2);
+        assert_eq!(rows.len(), 2 + 3 + 2 + 2 + 2 + 2 + 1 + 1 + 1);
         // The base appears once per list; the jobs run it once.
         let base = p.base();
         assert_eq!(rows.iter().filter(|r| r.3 == base).count(), 6);
@@ -395,6 +547,36 @@ mod tests {
             .unwrap()
             .3;
         assert_eq!((short.lambda_l, short.zeta), (16.0, 2.0));
+        // The misprint hypotheses and the transition scene carry their own settings.
+        let hurst = &rows.iter().find(|r| r.0 == "hurst").unwrap().3;
+        assert_eq!((hurst.hurst, hurst.contact_area), (Some(0.3), 0.14));
+        let area = &rows.iter().find(|r| r.0 == "contact_area").unwrap().3;
+        assert_eq!((area.hurst, area.contact_area), (None, 0.5));
+        let t = &rows.iter().find(|r| r.0 == "transition").unwrap().3;
+        assert_eq!((t.n, t.hurst, t.zeta, t.dzeta), (128, Some(0.5), 15.0, 0.3));
+    }
+
+    #[test]
+    fn a_transition_scene_beyond_its_grid_is_refused_by_name() {
+        let mut p = plan();
+        p.transition.as_mut().unwrap().zeta = 63.0;
+        let e = p.validate(0.8).unwrap_err().to_string();
+        assert!(e.contains("sensitivity.transition"), "{e}");
+    }
+
+    #[test]
+    fn the_step_taken_counts_the_added_shells_only() {
+        use crate::engine::surface::{Surface, SurfaceParams};
+        let s = Surface::generate(&SurfaceParams::new(64, 0.8, 32.0, 2.0, 3)).unwrap();
+        let shells = s.shells();
+        let (v, m) = step_taken(&shells, 4.0, 1.0);
+        let lo: f64 = shells.up_to(4.0).iter().map(|s| s.h2).sum();
+        let hi: f64 = shells.up_to(5.0).iter().map(|s| s.h2).sum();
+        assert!((v - (hi - lo) / lo).abs() < 1e-12 * v, "{v}");
+        assert!(m > 0);
+        // A step inside one gap between shells adds nothing.
+        let (v0, m0) = step_taken(&shells, 4.0, 1e-9);
+        assert_eq!((v0, m0), (0.0, 0));
     }
 
     #[test]
@@ -409,6 +591,8 @@ mod tests {
                 flux_in: 0.001 * j.seed as f64,
                 flux_out: 0.002,
                 max_residual: 0.0,
+                variance_added: Some(0.01),
+                modes_added: Some(8),
             })
             .collect();
         let pairs: Vec<(&StudyJob, &StudyResult)> = jobs.iter().zip(&results).collect();
@@ -418,5 +602,12 @@ mod tests {
         assert!((r.flux_in.value - 0.0015).abs() < 1e-15);
         assert!((r.flux_in_of_contact.value - 0.015).abs() < 1e-14);
         assert!((r.flux_out.std_error).abs() < 1e-15);
+        // Zero-bin share: flux in over the non-contact at zeta.
+        assert!((r.zero_bin.unwrap().value - 0.0015 / 0.9).abs() < 1e-15);
+        assert_eq!(r.variance_added.unwrap().value, 0.01);
+        assert_eq!(r.modes_added, Some(8.0));
+        let net = r.net_over_gross.unwrap().value;
+        let expected = (net_over_gross(0.001, 0.002) + net_over_gross(0.002, 0.002)) / 2.0;
+        assert!((net - expected).abs() < 1e-15);
     }
 }
