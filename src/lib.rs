@@ -62,6 +62,7 @@ pub mod engine;
 pub mod error;
 pub mod experiments;
 pub mod io;
+pub mod measured;
 pub mod persson;
 pub mod plot;
 pub mod provenance;

@@ -1,0 +1,5 @@
+//! Persson's theory checked on a measured surface: the user's own height maps, read and
+//! checked ([`scan`]), their statistics and spectrum ([`psd`]).
+
+pub mod psd;
+pub mod scan;
