@@ -3,3 +3,4 @@
 
 pub mod psd;
 pub mod scan;
+pub mod theory;
