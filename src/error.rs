@@ -57,6 +57,20 @@ pub enum Error {
         /// Iteration where it was detected.
         iteration: usize,
     },
+    /// The contact set of a solve emptied: no point carries the load, so the load cannot be
+    /// restored by scaling the pressure.
+    #[error(
+        "{solver}: the contact set emptied at iteration {iteration} (p0 = {p0:.3e}): no point is left to carry the load. \
+         Start the solve cold rather than from a distant solution, or raise p0 or refine the grid so that the contact spans more than a few points"
+    )]
+    LostContact {
+        /// Solver name.
+        solver: &'static str,
+        /// Iteration where the last point left contact.
+        iteration: usize,
+        /// The mean pressure of the problem.
+        p0: f64,
+    },
     /// Root finding on the load failed (for example, a target contact area not reachable).
     #[error("load search: {0}")]
     LoadSearch(String),
@@ -82,6 +96,8 @@ pub enum Termination {
     Stalled,
     /// A NaN or an infinity appeared in the solver's state.
     NonFinite,
+    /// No point was left in contact to carry the load.
+    LostContact,
 }
 
 impl std::fmt::Display for Termination {
@@ -91,17 +107,19 @@ impl std::fmt::Display for Termination {
             Termination::BudgetExhausted => "iteration budget exhausted",
             Termination::Stalled => "stalled at the rounding floor",
             Termination::NonFinite => "non-finite value",
+            Termination::LostContact => "contact set emptied",
         })
     }
 }
 
 impl Error {
     /// Why the solve behind this error stopped, for errors that come from an iterative
-    /// solve ([`Error::NotConverged`], [`Error::NonFinite`]).
+    /// solve ([`Error::NotConverged`], [`Error::NonFinite`], [`Error::LostContact`]).
     pub fn termination(&self) -> Option<Termination> {
         match self {
             Error::NotConverged { reason, .. } => Some(*reason),
             Error::NonFinite { .. } => Some(Termination::NonFinite),
+            Error::LostContact { .. } => Some(Termination::LostContact),
             _ => None,
         }
     }
@@ -206,6 +224,15 @@ mod tests {
             iteration: 4,
         };
         assert_eq!(e.termination(), Some(Termination::NonFinite));
+        let e = Error::LostContact {
+            solver: "cg",
+            iteration: 9,
+            p0: 1e-5,
+        };
+        assert_eq!(e.termination(), Some(Termination::LostContact));
+        let text = e.to_string();
+        assert!(text.contains("contact set emptied at iteration 9"), "{e}");
+        assert!(!text.contains("non-finite"), "{e}");
         assert_eq!(Error::invalid("n", 3, "> 4").termination(), None);
     }
 }

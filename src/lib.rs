@@ -19,6 +19,7 @@
 //!
 //! | layer | what it is |
 //! |---|---|
+//! | [`tasks`] | the tasks both front ends offer (surface, solve, sweep, theory, validations, parsers) |
 //! | [`report`] | the Markdown scorecard, from outcome files |
 //! | [`validation`] | definitions, verdicts, the registry of experiments, the runner |
 //! | [`experiments`], [`speed`] | the measurements behind the validations; the speed study |
@@ -28,7 +29,8 @@
 //! | [`io`], [`stats`], [`provenance`] | atomic files, `.npy`, checkpoints; estimates with errors; provenance |
 //! | [`error`] | the error type |
 //!
-//! The binary's subcommands (`src/commands/`) sit on top.
+//! The binary's subcommands (`src/commands/`) and the Python package (`python/`) sit on
+//! top, and call [`tasks`] for everything they both offer.
 //!
 //! ## The paper's equations
 //!
@@ -69,6 +71,7 @@ pub mod provenance;
 pub mod report;
 pub mod speed;
 pub mod stats;
+pub mod tasks;
 pub mod validation;
 
 pub use error::{Error, Result};

@@ -18,6 +18,7 @@ mod commands;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
+use persson_check::tasks::parse::MAX_THREADS;
 
 /// Tests Persson's contact mechanics theory against hard-wall contact simulations.
 #[derive(Parser, Debug)]
@@ -28,7 +29,7 @@ struct Cli {
         long,
         global = true,
         allow_negative_numbers = true,
-        value_parser = clap::value_parser!(u16).range(1..=1024)
+        value_parser = clap::value_parser!(u16).range(1..=MAX_THREADS as i64)
     )]
     threads: Option<u16>,
     #[command(subcommand)]

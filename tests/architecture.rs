@@ -2,7 +2,7 @@
 //! depend on each other.
 //!
 //! Layers, from the bottom: `error`; `io`, `stats`, `provenance`; `plot`; `engine`;
-//! `persson`; `experiments` and `speed`; `validation`; `report`. A module may use modules of
+//! `persson`; `experiments` and `speed`; `validation`; `report`; `tasks`. A module may use modules of
 //! its own layer's folder and of lower layers only. Within and across folders, the
 //! "uses" relation between modules that are not ancestors of each other has no cycle.
 //! References are read from `crate::...` paths and `super::` imports outside comments
@@ -24,6 +24,7 @@ const LAYERS: &[(&str, u32)] = &[
     ("speed", 5),
     ("validation", 6),
     ("report", 7),
+    ("tasks", 8),
 ];
 
 /// Every library source file with its module path (`engine::solver::cg`).

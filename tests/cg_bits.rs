@@ -3,14 +3,15 @@
 //! displacement for a set of solves (cold and warm, both preconditioning modes, and two
 //! failing solves). Run before and after a change and compare the output:
 //!
-//! `cargo test cg_bits -- --ignored --nocapture`
+//! `cargo test --test suite cg_bits -- --ignored --nocapture`
 
 use persson_check::engine::contact::{ContactProblem, ContactSolution, Model};
 use persson_check::engine::solver::{ConstrainedCg, SolveOptions, Solver, Start};
 use persson_check::engine::surface::{Surface, SurfaceParams};
 use sha2::{Digest, Sha256};
 
-fn digest(v: &[f64]) -> String {
+/// The first twelve bytes of the SHA-256 of the bit patterns of `v`, in hex.
+pub(crate) fn digest(v: &[f64]) -> String {
     let mut hasher = Sha256::new();
     for x in v {
         hasher.update(x.to_bits().to_le_bytes());
@@ -23,7 +24,8 @@ fn digest(v: &[f64]) -> String {
         .collect()
 }
 
-fn line(label: &str, result: &persson_check::error::Result<ContactSolution>) -> String {
+/// One line of a probe: iterations, residual bits and digests of a solution, or the error.
+pub(crate) fn line(label: &str, result: &persson_check::error::Result<ContactSolution>) -> String {
     match result {
         Ok(s) => format!(
             "{label}: ok it={} res={:016x} p={} u={}",

@@ -6,6 +6,7 @@ mod bad_input;
 mod cg_bits;
 mod common;
 mod determinism;
+mod gfmd_bits;
 mod hard_scenes;
 mod one_realization;
 mod persson;

@@ -14,6 +14,7 @@ Units: lengths in grid spacings, pressures in units of E* (E* = 1), generated su
 unit rms gradient. Bad input raises ValueError or TypeError with the command line's
 message (a flag such as ``--p0`` named by its keyword ``p0``); a solve that does not
 converge raises :class:`SolveError`. Solves release the GIL, and Ctrl-C stops them.
+Paths may be given as strings or as :class:`os.PathLike` objects (``pathlib.Path``).
 """
 
 from __future__ import annotations
@@ -28,11 +29,8 @@ from ._native import (
     SweepStep,
     Theory,
     contact_area_law,
-    merge,
     plan,
-    report,
     surface,
-    validate,
 )
 
 __all__ = [
@@ -129,6 +127,33 @@ def theory(heights, p0, variant="original", lambda_l=None, e_star=1.0):
     )
 
 
-solve.__doc__ = _native.solve.__doc__
-sweep.__doc__ = _native.sweep.__doc__
-theory.__doc__ = _native.theory.__doc__
+def validate(
+    names=None,
+    out="out",
+    full=False,
+    solver=None,
+    resume=False,
+    dir=None,
+    threads=None,
+):
+    return _native.validate(names, out, full, solver, resume, dir, threads)
+
+
+def merge(
+    names=None,
+    out="out",
+    full=False,
+    solver=None,
+    accept_other_commit=False,
+    dir=None,
+):
+    return _native.merge(names, out, full, solver, accept_other_commit, dir)
+
+
+def report(source="out", out="scorecard.md", golden=None, speed=False, speed_n=256):
+    return _native.report(source, out, golden, speed, speed_n)
+
+
+for _wrapper in (solve, sweep, theory, validate, merge, report):
+    _wrapper.__doc__ = getattr(_native, _wrapper.__name__).__doc__
+del _wrapper

@@ -1,5 +1,6 @@
 """Type stubs of persson_check (the Rust extension persson_check._native and its wrappers)."""
 
+import os
 from collections.abc import Callable, Iterator, Sequence
 from typing import Any, Literal, Optional, Union
 
@@ -12,6 +13,7 @@ Array2 = npt.NDArray[np.float64]
 Progress = Callable[[int, float], object]
 SolverName = Literal["cg", "gfmd"]
 Names = Union[str, Sequence[str], None]
+Path = Union[str, os.PathLike[str]]
 
 class SolveError(RuntimeError):
     """A solve that stopped before its tolerance, or a load search that found no load."""
@@ -39,10 +41,11 @@ class Solution:
     e_star: float
     tol: float
     load_solves: int
+    source: str
     residual_components: dict[str, float]
     tamaas_error: float
     def summary(self) -> dict[str, Any]:
-        """The summary values as a dict with summary.json's keys."""
+        """The summary values as a dict with summary.json's keys and values."""
 
 class SweepStep:
     """One magnification step of :func:`sweep`."""
@@ -148,11 +151,11 @@ def contact_area_law(p_reduced: float) -> float:
 
 def validate(
     names: Names = None,
-    out: str = "out",
+    out: Path = "out",
     full: bool = False,
     solver: Optional[SolverName] = None,
     resume: bool = False,
-    dir: Optional[str] = None,
+    dir: Optional[Path] = None,
     threads: Optional[int] = None,
 ) -> list[dict[str, Any]]:
     """Runs validations; returns their outcomes (the keys of <name>.json)."""
@@ -162,25 +165,25 @@ def plan(
     shards: Optional[int] = None,
     full: bool = False,
     solver: Optional[SolverName] = None,
-    out: Optional[str] = None,
-    dir: Optional[str] = None,
+    out: Optional[Path] = None,
+    dir: Optional[Path] = None,
 ) -> dict[str, Any]:
     """The jobs of validations with their estimated costs (and shares)."""
 
 def merge(
     names: Names = None,
-    out: str = "out",
+    out: Path = "out",
     full: bool = False,
     solver: Optional[SolverName] = None,
     accept_other_commit: bool = False,
-    dir: Optional[str] = None,
+    dir: Optional[Path] = None,
 ) -> list[dict[str, Any]]:
     """The outcomes from the job results that shares stored under out/jobs/."""
 
 def report(
-    source: str = "out",
-    out: str = "scorecard.md",
-    golden: Optional[str] = None,
+    source: Path = "out",
+    out: Path = "scorecard.md",
+    golden: Optional[Path] = None,
     speed: bool = False,
     speed_n: int = 256,
 ) -> dict[str, Any]:

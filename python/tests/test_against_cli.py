@@ -57,6 +57,16 @@ def test_solve_gives_the_cli_area_and_pressure(cli, tmp_path, n, solver):
     assert set(summary) - {"source"} <= set(ours)
 
 
+def test_summary_has_the_keys_of_summary_json_in_order(cli, tmp_path):
+    h = persson_check.surface(64, 0.8, 32.0, 4.0, 1)
+    summary, _, _ = _cli_solve(cli, tmp_path, h, "--p0", 0.1)
+    ours = persson_check.solve(h, p0=0.1).summary()
+    assert list(ours) == list(summary)
+    assert list(ours["residual_components"]) == list(summary["residual_components"])
+    assert summary["source"].endswith("h.npy")
+    assert ours["source"] == "array"
+
+
 def test_solve_at_a_contact_area_matches_the_cli(cli, tmp_path):
     h = persson_check.surface(64, 0.8, 32.0, 4.0, 5)
     summary, pressure, _ = _cli_solve(cli, tmp_path, h, "--contact-area", 0.2)

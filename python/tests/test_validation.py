@@ -45,3 +45,12 @@ def test_report_writes_the_scorecard(d_onset, tmp_path):
 def test_merge_needs_the_shares_results(tmp_path):
     with pytest.raises(ValueError):
         persson_check.merge("d_onset", out=str(tmp_path))
+
+
+def test_paths_may_be_pathlib_paths(d_onset, tmp_path):
+    out, _ = d_onset
+    assert isinstance(out, type(tmp_path))
+    summary = persson_check.report(source=out, out=tmp_path / "card.md", golden=ROOT / "golden")
+    assert summary["path"] == str(tmp_path / "card.md")
+    plan = persson_check.plan("d_onset", out=out)
+    assert {row["validation"] for row in plan["jobs"]} == {"d_onset"}

@@ -1,4 +1,5 @@
-//! One module per subcommand; each parses nothing itself (clap does) and writes its
+//! One module per subcommand; each parses nothing itself (clap does), calls the library's
+//! [`persson_check::tasks`] for the work the Python package offers too, and writes its
 //! outputs only once everything has been computed.
 
 pub mod report;
@@ -11,7 +12,8 @@ use clap::Args as ClapArgs;
 use persson_check::engine::scene::{read_scene, Scene, SurfaceScene};
 use persson_check::engine::surface::{Amplitudes, Surface};
 use persson_check::error::{Error, Result};
-use std::path::{Path, PathBuf};
+use persson_check::tasks::{Flags, Spelling};
+use std::path::PathBuf;
 
 /// Surface given on the command line or by a scene file.
 #[derive(ClapArgs, Debug, Clone)]
@@ -55,7 +57,7 @@ impl SurfaceArgs {
                     rms_gradient: 1.0,
                     seed: None,
                 };
-                surface.validate().map_err(as_flag)?;
+                surface.validate().map_err(|e| FLAGS.rename(e))?;
                 Scene {
                     surface,
                     solve: Default::default(),
@@ -81,40 +83,5 @@ impl SurfaceArgs {
     }
 }
 
-/// A range error from parameters given as flags, with the field named as its flag
-/// (`lambda_l` -> `--lambda-l`).
-pub fn as_flag(e: Error) -> Error {
-    match &e {
-        Error::InvalidInput { field, .. } => {
-            let flag = format!("--{}", field.replace('_', "-"));
-            e.with_field(&flag)
-        }
-        _ => e,
-    }
-}
-
-/// Checks, before any work, that `--out` can become a folder (it is one, or does not
-/// exist yet).
-pub fn check_out_dir(out: &Path) -> Result<()> {
-    if out.exists() && !out.is_dir() {
-        return Err(Error::invalid(
-            "--out",
-            out.display(),
-            "a folder (this path exists and is not one)",
-        ));
-    }
-    Ok(())
-}
-
-/// Checks, before any work, that `--out` can become a file (it is one, or does not exist
-/// yet).
-pub fn check_out_file(out: &Path) -> Result<()> {
-    if out.is_dir() {
-        return Err(Error::invalid(
-            "--out",
-            out.display(),
-            "a file (this path is a folder)",
-        ));
-    }
-    Ok(())
-}
+/// The command line's spelling of parameters: `contact_area` is `--contact-area`.
+pub const FLAGS: Flags<'static> = Flags { renamed: &[] };

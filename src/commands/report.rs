@@ -7,6 +7,7 @@ use clap::Args as ClapArgs;
 use persson_check::error::{Error, Result};
 use persson_check::report::{write, ReportOptions, SpeedChoice};
 use persson_check::speed::SpeedOptions;
+use persson_check::tasks::check_out_file;
 
 /// Arguments of `report`.
 #[derive(ClapArgs, Debug)]
@@ -38,7 +39,7 @@ pub fn run(args: Args) -> Result<()> {
             "an existing folder of outcomes (<name>.json), as written by `validate --out`",
         ));
     }
-    super::check_out_file(&args.out)?;
+    check_out_file(&args.out, &super::FLAGS)?;
     let golden = match args.golden {
         Some(dir) if dir.is_dir() => Some(dir),
         Some(dir) => {

@@ -7,7 +7,9 @@ use clap::Args as ClapArgs;
 use persson_check::error::{Error, Result};
 use persson_check::speed::{run as run_study, SpeedOptions};
 
-use super::check_out_dir;
+use persson_check::tasks::check_out_dir;
+
+use super::FLAGS;
 
 /// Arguments of `speed`.
 #[derive(ClapArgs, Debug)]
@@ -45,7 +47,7 @@ pub fn run(args: Args) -> Result<()> {
         }
         _ => e,
     })?;
-    check_out_dir(&args.out)?;
+    check_out_dir(&args.out, &FLAGS)?;
     let study = run_study(&opts, &mut |line| eprintln!("speed: {line}"))?;
     std::fs::create_dir_all(&args.out).map_err(|e| Error::io(&args.out, e))?;
     for path in study.write(&args.out)? {
@@ -53,30 +55,40 @@ pub fn run(args: Args) -> Result<()> {
     }
     for r in &study.floor {
         println!(
-            "floor {:>4} N = {:>5}: FFT pair {:.3e} s, {} iterations in {:.3e} s, \
-             {:.2} pairs/iteration, iteration = {:.2} pairs, each pair used = {:.2} pairs",
+            "floor {:>4} N = {:>5}: FFT pair {:.3e} s, {} iterations in {} s, \
+             {} pairs/iteration, iteration = {} pairs, each pair used = {} pairs",
             r.solver.name(),
             r.n,
             r.fft_pair_s,
-            r.iterations.unwrap_or(0),
-            r.wall_s.unwrap_or(f64::NAN),
-            r.pairs_per_iteration.unwrap_or(f64::NAN),
-            r.iteration_in_pairs.unwrap_or(f64::NAN),
-            r.overhead.unwrap_or(f64::NAN),
+            count(r.iterations),
+            shown(r.wall_s, |x| format!("{x:.3e}")),
+            shown(r.pairs_per_iteration, |x| format!("{x:.2}")),
+            shown(r.iteration_in_pairs, |x| format!("{x:.2}")),
+            shown(r.overhead, |x| format!("{x:.2}")),
         );
     }
     for r in &study.warm {
         println!(
-            "warm  {:>4} N = {:>5}, {}: cold {} it {:.3e} s, warm {} it {:.3e} s, ratio {:.3}",
+            "warm  {:>4} N = {:>5}, {}: cold {} it {} s, warm {} it {} s, ratio {}",
             r.solver.name(),
             r.n,
             r.change,
-            r.cold_iterations.unwrap_or(0),
-            r.cold_wall_s.unwrap_or(f64::NAN),
-            r.warm_iterations.unwrap_or(0),
-            r.warm_wall_s.unwrap_or(f64::NAN),
-            r.ratio.unwrap_or(f64::NAN),
+            count(r.cold_iterations),
+            shown(r.cold_wall_s, |x| format!("{x:.3e}")),
+            count(r.warm_iterations),
+            shown(r.warm_wall_s, |x| format!("{x:.3e}")),
+            shown(r.ratio, |x| format!("{x:.3}")),
         );
     }
     Ok(())
+}
+
+/// A value of a row, or "n/a" where the solve failed.
+fn shown(value: Option<f64>, format: impl Fn(f64) -> String) -> String {
+    value.map_or_else(|| "n/a".into(), format)
+}
+
+/// A count of a row, or "n/a" where the solve failed.
+fn count(value: Option<usize>) -> String {
+    value.map_or_else(|| "n/a".into(), |n| n.to_string())
 }

@@ -3,12 +3,10 @@
 use std::path::PathBuf;
 
 use clap::Args as ClapArgs;
-use persson_check::engine::fft::Fft2;
-use persson_check::engine::scene::check_zeta;
-use persson_check::engine::surface::Surface;
 use persson_check::error::Result;
+use persson_check::tasks::{check_out_file, surface};
 
-use super::{check_out_file, SurfaceArgs};
+use super::{SurfaceArgs, FLAGS};
 
 /// Arguments of `surface`.
 #[derive(ClapArgs, Debug)]
@@ -24,13 +22,9 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> Result<()> {
-    check_out_file(&args.out)?;
+    check_out_file(&args.out, &FLAGS)?;
     let (scene, seed) = args.surface.resolve()?;
-    let zeta = args.zeta.unwrap_or(scene.surface.zeta_max());
-    check_zeta(zeta, scene.surface.zeta_max()).map_err(|e| e.with_field("--zeta"))?;
-    let surface = Surface::generate(&scene.surface.params(seed))?;
-    let fft = Fft2::new(surface.grid());
-    let h = surface.heights_at(zeta, &fft);
-    persson_check::io::npy::write_field(&args.out, surface.grid().n(), &h)?;
+    let h = surface::generate(&scene.surface, seed, args.zeta, &FLAGS)?;
+    persson_check::io::npy::write_field(&args.out, scene.surface.n, &h)?;
     Ok(())
 }

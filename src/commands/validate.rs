@@ -1,15 +1,18 @@
 //! `validate`: run named validations (all by default) and write their outcomes.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use clap::Args as ClapArgs;
 use persson_check::engine::solver::SolverKind;
 use persson_check::error::{Error, Result};
-use persson_check::validation::plan::Plan;
+use persson_check::tasks::parse::MAX_SHARDS;
+use persson_check::tasks::{check_out_dir, validations};
 use persson_check::validation::shard::Shard;
-use persson_check::validation::source::{builtin_sources, select, sources_in, Source};
-use persson_check::validation::{Mode, Outcome, Registry, RunOptions, Scale};
+use persson_check::validation::source::Source;
+use persson_check::validation::{Mode, Outcome, Registry};
+
+use super::FLAGS;
 
 /// Arguments of `validate`.
 #[derive(ClapArgs, Debug)]
@@ -38,7 +41,7 @@ pub struct Args {
     #[arg(long, conflicts_with_all = ["merge", "plan", "resume"])]
     shard: Option<String>,
     /// Number of shares, for --plan and for --shard auto in a Kubernetes indexed job.
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_SHARDS as i64))]
     shards: Option<u32>,
     /// Write the outcomes from the job results the shares stored under <out>/jobs/,
     /// exactly as one process running every job would; runs nothing.
@@ -56,35 +59,15 @@ pub struct Args {
 
 pub fn run(args: Args) -> Result<()> {
     if let Some(out) = &args.out {
-        super::check_out_dir(out)?;
+        check_out_dir(out, &FLAGS)?;
     }
-    let sources = match &args.dir {
-        Some(dir) => definitions_in(dir)?,
-        None => builtin_sources(),
-    };
-    let sources = select(sources, &args.names)?;
+    let sources = definitions(args.dir.as_deref(), &args.names)?;
     let registry = Registry::builtin();
     // Every definition is checked before any runs: bad input writes nothing.
-    for source in &sources {
-        registry.check(source)?;
-    }
+    validations::check(&registry, &sources)?;
     // Without --out (a plan only), results are looked for nowhere.
     let out = args.out.clone().unwrap_or_default();
-    let mut opts = RunOptions {
-        scale: if args.full {
-            Scale::Full
-        } else {
-            Scale::Reduced
-        },
-        out: out.clone(),
-        resume: args.resume,
-        progress: true,
-        solvers: match args.solver {
-            Some(kind) => vec![kind],
-            None => RunOptions::BOTH.to_vec(),
-        },
-        mode: Mode::All,
-    };
+    let mut opts = validations::run_options(args.full, out, args.resume, true, args.solver);
     let shard = match args.shard.as_deref() {
         None => None,
         Some("auto") => Some(Shard::from_env(
@@ -94,12 +77,8 @@ pub fn run(args: Args) -> Result<()> {
         Some(text) => Some(Shard::parse(text)?),
     };
     if args.plan || shard.is_some() || args.merge {
-        let mut units = Vec::new();
-        for source in &sources {
-            units.extend(registry.jobs(source, &opts)?);
-        }
         let shards = shard.map(|s| s.n).or(args.shards.map(|n| n as usize));
-        let plan = Plan::new(units, shards);
+        let plan = validations::plan(&registry, &sources, &opts, shards)?;
         if args.plan {
             let json = serde_json::to_string_pretty(&plan).expect("plans serialise");
             println!("{json}");
@@ -121,14 +100,11 @@ pub fn run(args: Args) -> Result<()> {
         } else {
             // Merge: every job's result must be there (and usable) before anything is
             // written.
-            plan.check_merge(args.accept_other_commit)?;
-            opts.mode = Mode::Merge {
-                other_commits_accepted: args.accept_other_commit,
-            };
+            validations::merge(&plan, args.accept_other_commit, &mut opts)?;
         }
     }
     let mut failed = Vec::new();
-    for (path, result) in registry.run_all(&sources, &opts) {
+    for (path, result) in validations::run(&registry, &sources, &opts, &|| true) {
         match result {
             Ok(Some(o)) => println!("{}", summary_line(&o)),
             Ok(None) => {}
@@ -189,22 +165,15 @@ fn summary_line(o: &Outcome) -> String {
     )
 }
 
-/// The definitions in `--dir` (at least one).
-fn definitions_in(dir: &std::path::Path) -> Result<Vec<Source>> {
-    let sources = sources_in(dir).map_err(|e| match e {
-        Error::Io { path, source } if path == dir => Error::invalid(
+/// The definitions named, from `--dir` or the built-in copies; a `--dir` that cannot be
+/// read is named as the flag.
+fn definitions(dir: Option<&Path>, names: &[String]) -> Result<Vec<Source>> {
+    validations::definitions(dir, names, &FLAGS).map_err(|e| match (e, dir) {
+        (Error::Io { path, source }, Some(dir)) if path == dir => Error::invalid(
             "--dir",
             format!("{} ({source})", dir.display()),
             "a readable folder of validation definitions (*.toml)",
         ),
-        e => e,
-    })?;
-    if sources.is_empty() {
-        return Err(Error::invalid(
-            "--dir",
-            format!("{} (no *.toml files)", dir.display()),
-            "a folder of validation definitions (*.toml)",
-        ));
-    }
-    Ok(sources)
+        (e, _) => e,
+    })
 }

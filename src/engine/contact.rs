@@ -27,6 +27,26 @@
 //! The residual is the largest component; a solver stops when it falls below the requested
 //! tolerance. The [`Residual::tamaas`] figure, `sum p (g - min g) / (sum p std(h))`, is
 //! reported as well so that tolerances here and in tamaas can be put side by side.
+//!
+//! Each component is written once, as a function of sums over the points
+//! ([`Residual::penetration_of`], [`Residual::complementarity_of`],
+//! [`Residual::equilibrium_of`], [`Residual::load_of`]): the full residual takes them from
+//! the returned fields, and the solvers' cheap estimates from the sums their iterations
+//! take anyway (CG: penetration and complementarity from its gap pass; GFMD: equilibrium
+//! and load from its stress pass). The gap is [`gap`], also written once.
+//!
+//! # The elastic operator
+//!
+//! The solvers see the elastic body only through the [`Model`]: its stiffness and
+//! compliance kernels ([`Model::stiffness`], [`Model::compliance`]), the compliance of one
+//! point ([`Model::point_compliance`]) and the inverse masses of mass-weighted dynamics
+//! ([`Model::inverse_mass`]), all derived from one stiffness table. Another elastic body
+//! (a free-boundary half-space: the real-space Green's function of a uniformly loaded
+//! pixel on a zero-padded doubled grid, whose transform gives the stiffness table there,
+//! with the hard wall only over the original window) is another way of making these items;
+//! no solver computes `q E*/2` itself.
+
+use std::sync::OnceLock;
 
 use rustfft::num_complex::Complex64;
 use serde::{Deserialize, Serialize};
@@ -37,7 +57,9 @@ use crate::engine::field;
 use crate::engine::grid::Grid;
 use crate::error::{check_positive, Error, Result};
 
-/// The elastic model on a grid: geometry, material and the FFT plans. Plain data.
+/// The elastic model on a grid: geometry, material, the FFT plans and the elastic operator
+/// as the solvers use it (see "The elastic operator" in the module docs). Plain data, but
+/// for the inverse masses, made on first use.
 #[derive(Debug)]
 pub struct Model {
     /// The grid.
@@ -51,6 +73,8 @@ pub struct Model {
     /// The compliance `2 / (q E*)` as a convolution kernel (the stiffness's values, inverted
     /// as they are read).
     pub compliance: Kernel,
+    /// The inverse masses, made on first use ([`Model::inverse_mass`]).
+    inverse_mass: OnceLock<Kernel>,
 }
 
 impl Model {
@@ -66,8 +90,50 @@ impl Model {
             fft,
             stiffness,
             compliance,
+            inverse_mass: OnceLock::new(),
         })
     }
+
+    /// The displacement of a point under unit pressure on that point alone,
+    /// `G(0) = N^-2 sum_q 2 / (q E*)`: the diagonal of the compliance in real space.
+    pub fn point_compliance(&self) -> f64 {
+        let grid = &self.grid;
+        let sum: f64 = self
+            .halfspace
+            .compliance()
+            .enumerate()
+            .map(|(s, c)| grid.weight_of(s) * c)
+            .sum();
+        sum / grid.points() as f64
+    }
+
+    /// The inverse masses `1/m(q)` of mass-weighted dynamics as a convolution kernel: the
+    /// mass of a mode is its stiffness, `m(q) = q E*/2`, so that every free mode
+    /// oscillates with one frequency, and the rigid mode `q = 0` has the mass of the
+    /// softest non-zero mode (Zhou, Moseler & Müser, PRB 99, 144103 (2019)). Made from the
+    /// stiffness table on first use and kept.
+    pub fn inverse_mass(&self) -> &Kernel {
+        self.inverse_mass.get_or_init(|| {
+            let stiffness = self.halfspace.stiffness();
+            let k_min = stiffness
+                .iter()
+                .copied()
+                .filter(|&k| k > 0.0)
+                .fold(f64::INFINITY, f64::min);
+            let table: Vec<f64> = stiffness
+                .iter()
+                .map(|&k| 1.0 / if k > 0.0 { k } else { k_min })
+                .collect();
+            self.fft.kernel(&table)
+        })
+    }
+}
+
+/// The gap `g = u - h` between the elastic surface at `u` and the substrate at `h`
+/// (negative where the surface penetrates the substrate).
+#[inline]
+pub fn gap(u: f64, h: f64) -> f64 {
+    u - h
 }
 
 /// One hard-wall problem: a model, substrate heights and the mean pressure.
@@ -163,6 +229,43 @@ impl Residual {
             .max(self.load)
     }
 
+    /// Interpenetration, `max(0, deepest) / ell`, from the deepest penetration
+    /// `deepest = max(-g) = -min g`.
+    #[inline]
+    pub fn penetration_of(deepest: f64, ell: f64) -> f64 {
+        deepest.max(0.0) / ell
+    }
+
+    /// Complementarity, `sum p |g| / (ell sum p)` from `p_abs_gap = sum p |g|` and
+    /// `sum_p = sum p`; 0 where no pressure acts.
+    #[inline]
+    pub fn complementarity_of(p_abs_gap: f64, sum_p: f64, ell: f64) -> f64 {
+        if sum_p > 0.0 {
+            p_abs_gap / (ell * sum_p)
+        } else {
+            0.0
+        }
+    }
+
+    /// The rms `sqrt(sum_sq / npts)` of a field from the sum of its squares.
+    #[inline]
+    pub fn rms_of(sum_sq: f64, npts: f64) -> f64 {
+        (sum_sq / npts).sqrt()
+    }
+
+    /// Equilibrium, `rms(K u + p0 - p) / rms_p`, from `unbalanced = sum (K u + p0 - p)^2`
+    /// over `npts` points and the pressure scale `rms_p`.
+    #[inline]
+    pub fn equilibrium_of(unbalanced: f64, npts: f64, rms_p: f64) -> f64 {
+        Self::rms_of(unbalanced, npts) / rms_p
+    }
+
+    /// Load balance, `|mean p - p0| / p0`, from `sum_p = sum p` over `npts` points.
+    #[inline]
+    pub fn load_of(sum_p: f64, npts: f64, p0: f64) -> f64 {
+        (sum_p / npts - p0).abs() / p0
+    }
+
     /// Evaluates the residual of `(p, u)` for `problem`. `spec` (a half spectrum) and
     /// `scratch` (a real field) are work space.
     pub fn evaluate(
@@ -183,7 +286,7 @@ impl Residual {
             |rg| {
                 let mut acc = PointSums::default();
                 for ((&pi, &ui), &hi) in p[rg.clone()].iter().zip(&u[rg.clone()]).zip(&h[rg]) {
-                    let g = ui - hi;
+                    let g = gap(ui, hi);
                     acc.sum_p += pi;
                     acc.p_abs_gap += pi * g.abs();
                     acc.p_gap += pi * g;
@@ -213,24 +316,21 @@ impl Residual {
         );
         let unbalanced: f64 = rows.iter().sum();
         let (sum_p, min_g) = (s.sum_p, s.min_g);
-        let rms_p = (s.sum_p2 / npts).sqrt();
+        let rms_p = Self::rms_of(s.sum_p2, npts);
         let h_std = problem.heights_std;
         let tamaas = if h_std > 0.0 && sum_p > 0.0 {
             (s.p_gap - min_g * sum_p) / (sum_p * h_std)
         } else {
             0.0
         };
+        // Without any pressure, the pressures are measured against the load.
         let rms_p = if rms_p > 0.0 { rms_p } else { problem.p0 };
         Self {
-            penetration: (-min_g).max(0.0) / ell,
-            complementarity: if sum_p > 0.0 {
-                s.p_abs_gap / (ell * sum_p)
-            } else {
-                0.0
-            },
+            penetration: Self::penetration_of(-min_g, ell),
+            complementarity: Self::complementarity_of(s.p_abs_gap, sum_p, ell),
             tension: (-s.min_p).max(0.0) / rms_p,
-            equilibrium: (unbalanced / npts).sqrt() / rms_p,
-            load: (sum_p / npts - problem.p0).abs() / problem.p0,
+            equilibrium: Self::equilibrium_of(unbalanced, npts, rms_p),
+            load: Self::load_of(sum_p, npts, problem.p0),
             tamaas,
         }
     }
@@ -307,18 +407,20 @@ impl ContactSolution {
         field::positive_fraction(&self.pressure)
     }
 
-    /// Gap `g = u - h`.
+    /// Gap `g = u - h` ([`gap`]), clipped at 0 (a converged solution penetrates only by
+    /// rounding).
     pub fn gap(&self, heights: &[f64]) -> Vec<f64> {
         self.displacement
             .iter()
             .zip(heights)
-            .map(|(u, h)| (u - h).max(0.0))
+            .map(|(&u, &h)| gap(u, h).max(0.0))
             .collect()
     }
 
-    /// Mean gap `mean(u - h)`.
+    /// Mean gap `mean(u - h)`, clipped at 0 point by point as in [`Self::gap`].
     pub fn mean_gap(&self, heights: &[f64]) -> f64 {
-        field::sum_zip(&self.displacement, heights, |u, h| (u - h).max(0.0)) / heights.len() as f64
+        field::sum_zip(&self.displacement, heights, |u, h| gap(u, h).max(0.0))
+            / heights.len() as f64
     }
 
     /// Elastic energy per unit area, `(1/2) mean[(p - p0) u]` (see [`crate::engine::elastic`]).

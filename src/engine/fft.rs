@@ -72,6 +72,19 @@ impl Kernel {
     }
 }
 
+/// Complex values in a gathered block of columns: 256 KiB, so that the block stays in a
+/// core's L2 cache (a size from the cache, not a measurement).
+const BLOCK_VALUES: usize = 16384;
+/// Fewest columns in a block: four complex values are one 64-byte cache line, so the
+/// gather reads whole lines of every row.
+const BLOCK_COLUMNS_MIN: usize = 4;
+/// Most columns in a block (small grids): enough for whole lines, few enough for several
+/// blocks per thread.
+const BLOCK_COLUMNS_MAX: usize = 16;
+/// Tasks per thread of a row pass: a few, for load balance on a shared machine (not a
+/// measurement).
+const TASKS_PER_THREAD: usize = 4;
+
 /// Per-thread work space, kept between calls: allocating and zeroing scratch for every
 /// task of every transform cost more than a tenth of a solve.
 #[derive(Default)]
@@ -114,9 +127,7 @@ impl Fft2 {
         let n = grid.n();
         let mut real_planner = RealFftPlanner::<f64>::new();
         let mut planner = FftPlanner::<f64>::new();
-        // Columns per gathered block: enough for whole cache lines when reading rows,
-        // few enough that the block stays in L2 (about 256 KiB).
-        let block = (16384 / n).clamp(4, 16);
+        let block = (BLOCK_VALUES / n).clamp(BLOCK_COLUMNS_MIN, BLOCK_COLUMNS_MAX);
         Self {
             n,
             m: grid.half_cols(),
@@ -263,21 +274,42 @@ impl Fft2 {
         I: Fn(usize, &mut [f64], &mut [f64], &[f64]) -> B + Sync,
         O: Fn(usize, &[f64], &[f64]) -> A + Sync,
     {
-        let (n, m) = (self.n, self.m);
+        let n = self.n;
         assert_eq!(kernel.n, n, "kernel planned for another grid");
-        assert_eq!(spec.len(), n * m, "spectrum length");
+        assert_eq!(spec.len(), n * self.m, "spectrum length");
         assert_eq!(out.len(), n * n, "output length");
+        if let Some(s) = &side {
+            assert_eq!(s.len(), n * n, "side length");
+        }
         self.count(2);
         let rows = rows_per_task(n);
-        let mut none: Vec<f64> = Vec::new();
-        let (side, side_rows) = match side {
-            Some(s) => {
-                assert_eq!(s.len(), n * n, "side length");
-                (s, n)
-            }
-            None => (&mut none[..], 0),
-        };
-        let side_chunk = (side_rows * rows).max(1);
+        let mut side = side;
+        let generated = self.generate(spec, side.as_deref_mut(), out, rows, &input);
+        self.columns_with(spec, kernel);
+        let consumed = self.consume(spec, out, side.as_deref(), rows, &output);
+        (
+            generated.into_iter().flatten().collect(),
+            consumed.into_iter().flatten().collect(),
+        )
+    }
+
+    /// The input pass of [`Fft2::convolve`]: row `i` of `x` from `input(i, row, side row,
+    /// old row)`, transformed along the row into `spec`, `rows` rows per task; the values
+    /// of each task's rows, in order.
+    fn generate<B, I>(
+        &self,
+        spec: &mut [Complex64],
+        side: Option<&mut [f64]>,
+        old: &[f64],
+        rows: usize,
+        input: &I,
+    ) -> Vec<Vec<B>>
+    where
+        B: Send,
+        I: Fn(usize, &mut [f64], &mut [f64], &[f64]) -> B + Sync,
+    {
+        let (n, m) = (self.n, self.m);
+        let side_rows = if side.is_some() { n } else { 0 };
         let forward =
             |c: usize, spec_chunk: &mut [Complex64], side_chunk: &mut [f64], old_chunk: &[f64]| {
                 SCRATCH.with(|cell| {
@@ -301,21 +333,40 @@ impl Fft2 {
                     values
                 })
             };
-        let generated: Vec<Vec<B>> = if side_rows > 0 {
-            spec.par_chunks_mut(m * rows)
-                .zip(side.par_chunks_mut(side_chunk))
-                .zip(out.par_chunks(n * rows))
+        match side {
+            Some(side) => spec
+                .par_chunks_mut(m * rows)
+                .zip(side.par_chunks_mut(n * rows))
+                .zip(old.par_chunks(n * rows))
                 .enumerate()
                 .map(|(c, ((a, b), o))| forward(c, a, b, o))
-                .collect()
-        } else {
-            spec.par_chunks_mut(m * rows)
-                .zip(out.par_chunks(n * rows))
+                .collect(),
+            None => spec
+                .par_chunks_mut(m * rows)
+                .zip(old.par_chunks(n * rows))
                 .enumerate()
                 .map(|(c, (chunk, o))| forward(c, chunk, &mut [], o))
-                .collect()
-        };
-        self.columns_with(spec, kernel);
+                .collect(),
+        }
+    }
+
+    /// The output pass of [`Fft2::convolve`]: `spec` transformed back along the rows into
+    /// `out`, `rows` rows per task, and `output(i, out row, side row)` of every row; the
+    /// values of each task's rows, in order.
+    fn consume<A, O>(
+        &self,
+        spec: &mut [Complex64],
+        out: &mut [f64],
+        side: Option<&[f64]>,
+        rows: usize,
+        output: &O,
+    ) -> Vec<Vec<A>>
+    where
+        A: Send,
+        O: Fn(usize, &[f64], &[f64]) -> A + Sync,
+    {
+        let (n, m) = (self.n, self.m);
+        let side_rows = if side.is_some() { n } else { 0 };
         let even = n % 2 == 0;
         let backward =
             |c: usize, spec_chunk: &mut [Complex64], out_chunk: &mut [f64], side_chunk: &[f64]| {
@@ -345,85 +396,72 @@ impl Fft2 {
                     values
                 })
             };
-        let consumed: Vec<Vec<A>> = if side_rows > 0 {
-            spec.par_chunks_mut(m * rows)
+        match side {
+            Some(side) => spec
+                .par_chunks_mut(m * rows)
                 .zip(out.par_chunks_mut(n * rows))
-                .zip(side.par_chunks(side_chunk))
+                .zip(side.par_chunks(n * rows))
                 .enumerate()
                 .map(|(c, ((a, b), d))| backward(c, a, b, d))
-                .collect()
-        } else {
-            spec.par_chunks_mut(m * rows)
+                .collect(),
+            None => spec
+                .par_chunks_mut(m * rows)
                 .zip(out.par_chunks_mut(n * rows))
                 .enumerate()
                 .map(|(c, (a, b))| backward(c, a, b, &[]))
-                .collect()
-        };
-        (
-            generated.into_iter().flatten().collect(),
-            consumed.into_iter().flatten().collect(),
-        )
+                .collect(),
+        }
     }
 
     /// Column pass of a convolution: forward transform, multiplication by the kernel,
     /// inverse transform, block by block.
     fn columns_with(&self, spec: &mut [Complex64], kernel: &Kernel) {
-        let (n, m, block) = (self.n, self.m, self.block);
-        let blocks = m.div_ceil(block);
-        let base = SharedMut(spec.as_mut_ptr());
-        (0..blocks).into_par_iter().for_each(|b| {
-            SCRATCH.with(|cell| {
-                let mut guard = cell.borrow_mut();
-                let Scratch {
-                    complex,
-                    block: buf,
-                    ..
-                } = &mut *guard;
-                let c0 = b * block;
-                let width = block.min(m - c0);
-                let buf = at_least(buf, width * n);
-                let len = self
-                    .col_fwd
-                    .get_inplace_scratch_len()
-                    .max(self.col_inv.get_inplace_scratch_len());
-                let scratch = at_least(complex, len);
-                // SAFETY: as in `columns`: block `b` owns its columns.
-                unsafe {
-                    for ky in 0..n {
-                        let row = base.get().add(ky * m + c0);
-                        for c in 0..width {
-                            *buf.get_unchecked_mut(c * n + ky) = *row.add(c);
-                        }
-                    }
+        let n = self.n;
+        let scratch_len = self
+            .col_fwd
+            .get_inplace_scratch_len()
+            .max(self.col_inv.get_inplace_scratch_len());
+        self.column_blocks(spec, scratch_len, None, |c0, buf, scratch| {
+            self.col_fwd.process_with_scratch(buf, scratch);
+            let k = &kernel.values[c0 * n..c0 * n + buf.len()];
+            if kernel.inverse {
+                // kv = k / N^2, and the inverse needs (1/k) / N^2 = N^-4 / kv.
+                let norm2 = kernel.norm * kernel.norm;
+                for (b, &kv) in buf.iter_mut().zip(k) {
+                    *b *= if kv > 0.0 { norm2 / kv } else { 0.0 };
                 }
-                self.col_fwd.process_with_scratch(buf, scratch);
-                let k = &kernel.values[c0 * n..(c0 + width) * n];
-                if kernel.inverse {
-                    // kv = k / N^2, and the inverse needs (1/k) / N^2 = N^-4 / kv.
-                    let norm2 = kernel.norm * kernel.norm;
-                    for (b, &kv) in buf.iter_mut().zip(k) {
-                        *b *= if kv > 0.0 { norm2 / kv } else { 0.0 };
-                    }
-                } else {
-                    for (b, &kv) in buf.iter_mut().zip(k) {
-                        *b *= kv;
-                    }
+            } else {
+                for (b, &kv) in buf.iter_mut().zip(k) {
+                    *b *= kv;
                 }
-                self.col_inv.process_with_scratch(buf, scratch);
-                unsafe {
-                    for ky in 0..n {
-                        let row = base.get().add(ky * m + c0);
-                        for c in 0..width {
-                            *row.add(c) = *buf.get_unchecked(c * n + ky);
-                        }
-                    }
-                }
-            })
+            }
+            self.col_inv.process_with_scratch(buf, scratch);
         });
     }
 
     /// Transforms every column of the half spectrum with `fft`, scaling by `scale`.
     fn columns(&self, spec: &mut [Complex64], fft: &Arc<dyn Fft<f64>>, scale: f64) {
+        self.column_blocks(
+            spec,
+            fft.get_inplace_scratch_len(),
+            Some(scale),
+            |_, buf, scratch| fft.process_with_scratch(buf, scratch),
+        );
+    }
+
+    /// The column pass: blocks of [`Fft2::new`]'s `block` columns of the half spectrum,
+    /// in parallel, each gathered column by column into a contiguous buffer, handed to
+    /// `body(first column, buffer, scratch of scratch_len)`, and scattered back (times
+    /// `scale`, when given).
+    fn column_blocks<F>(
+        &self,
+        spec: &mut [Complex64],
+        scratch_len: usize,
+        scale: Option<f64>,
+        body: F,
+    ) where
+        F: Fn(usize, &mut [Complex64], &mut [Complex64]) + Sync,
+    {
         let (n, m, block) = (self.n, self.m, self.block);
         let blocks = m.div_ceil(block);
         let base = SharedMut(spec.as_mut_ptr());
@@ -438,7 +476,7 @@ impl Fft2 {
                 let c0 = b * block;
                 let width = block.min(m - c0);
                 let buf = at_least(buf, width * n);
-                let scratch = at_least(complex, fft.get_inplace_scratch_len());
+                let scratch = at_least(complex, scratch_len);
                 // SAFETY: block `b` owns columns c0..c0+width of every row; no other task
                 // touches them, and `spec` outlives this loop.
                 unsafe {
@@ -449,12 +487,25 @@ impl Fft2 {
                         }
                     }
                 }
-                fft.process_with_scratch(buf, scratch);
+                body(c0, buf, scratch);
+                // SAFETY: as above.
                 unsafe {
-                    for ky in 0..n {
-                        let row = base.get().add(ky * m + c0);
-                        for c in 0..width {
-                            *row.add(c) = *buf.get_unchecked(c * n + ky) * scale;
+                    match scale {
+                        Some(scale) => {
+                            for ky in 0..n {
+                                let row = base.get().add(ky * m + c0);
+                                for c in 0..width {
+                                    *row.add(c) = *buf.get_unchecked(c * n + ky) * scale;
+                                }
+                            }
+                        }
+                        None => {
+                            for ky in 0..n {
+                                let row = base.get().add(ky * m + c0);
+                                for c in 0..width {
+                                    *row.add(c) = *buf.get_unchecked(c * n + ky);
+                                }
+                            }
                         }
                     }
                 }
@@ -465,7 +516,7 @@ impl Fft2 {
 
 /// Rows handed to one rayon task: a few tasks per thread for load balance.
 fn rows_per_task(n: usize) -> usize {
-    let tasks = 4 * rayon::current_num_threads().max(1);
+    let tasks = TASKS_PER_THREAD * rayon::current_num_threads().max(1);
     n.div_ceil(tasks).max(1)
 }
 

@@ -65,12 +65,37 @@ pub fn reduce_chunks<const K: usize, F>(len: usize, f: F) -> [f64; K]
 where
     F: Fn(std::ops::Range<usize>) -> [f64; K] + Sync,
 {
-    fold_chunks(len, [0.0; K], f, |mut a, b| {
-        for (x, y) in a.iter_mut().zip(b) {
-            *x += y;
-        }
-        a
-    })
+    fold_chunks(len, [0.0; K], f, add)
+}
+
+/// Deterministic parallel pass over two fields of equal length that it may change: `f`
+/// maps each fixed chunk of indices, with the matching chunks of `a` and `b`, to a
+/// partial result; the partials come back in chunk order, to be combined in that order.
+pub fn map_chunks_mut<T, F>(a: &mut [f64], b: &mut [f64], f: F) -> Vec<T>
+where
+    T: Send,
+    F: Fn(std::ops::Range<usize>, &mut [f64], &mut [f64]) -> T + Sync,
+{
+    assert_eq!(a.len(), b.len(), "fields of one grid");
+    a.par_chunks_mut(CHUNK)
+        .zip(b.par_chunks_mut(CHUNK))
+        .enumerate()
+        .map(|(c, (ca, cb))| f(c * CHUNK..c * CHUNK + ca.len(), ca, cb))
+        .collect()
+}
+
+/// `K` sums added element by element.
+pub fn add<const K: usize>(mut a: [f64; K], b: [f64; K]) -> [f64; K] {
+    for (x, y) in a.iter_mut().zip(b) {
+        *x += y;
+    }
+    a
+}
+
+/// Partial sums (of rows or chunks, say) added in order: the same bits whatever the number
+/// of threads that computed them.
+pub fn add_all<const K: usize>(parts: impl IntoIterator<Item = [f64; K]>) -> [f64; K] {
+    parts.into_iter().fold([0.0; K], add)
 }
 
 /// Sum of a field.

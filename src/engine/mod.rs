@@ -11,7 +11,9 @@
 //! * [`boussinesq`]: the free-boundary half-space (a pixel's Boussinesq response) on a
 //!   doubled, zero-padded grid, for surfaces that are not periodic;
 //! * [`contact`]: the problem, its solution and the solver-independent residual;
-//! * [`solver`]: the [`solver::Solver`] trait, GFMD and constrained conjugate gradients;
+//! * [`solver`]: the [`solver::Solver`] trait, GFMD and constrained conjugate gradients on
+//!   one scaffold (an executor that runs either, their work space, warm starts and the
+//!   packaging of a solution);
 //! * [`load`]: the load that gives a target contact area;
 //! * [`sweep`]: one realization solved at a sequence of magnifications, warm-started;
 //! * [`scene`]: scene files (a surface and a solve);

@@ -6,7 +6,7 @@
 mod render;
 mod waterfall;
 
-pub use render::{render, render_raster, render_waterfall};
+pub use render::{render, render_raster, render_waterfall, significant};
 pub use waterfall::{CutPanel, Waterfall};
 
 use serde::{Deserialize, Serialize};

@@ -1,7 +1,7 @@
 //! The summary's "needs attention" list: inconclusive verdicts, findings not reproduced,
 //! solvers that disagree, golden values that differ.
 
-use super::format::{num, pm, sig};
+use super::format::{no_nan, num, pm, sig};
 use super::golden::GoldenMatch;
 use super::outcomes::Loaded;
 use crate::validation::Verdict;
@@ -28,7 +28,7 @@ pub(super) fn attention(loaded: &[Loaded], golden: &[GoldenMatch]) -> Vec<String
                 .checks
                 .iter()
                 .filter(|c| c.decided && !c.passed)
-                .map(|c| format!("{} ({})", c.name, c.detail))
+                .map(|c| format!("{} ({})", no_nan(&c.name), no_nan(&c.detail)))
                 .collect();
             let why = if o.verdict != o.paper_verdict {
                 format!(

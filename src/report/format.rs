@@ -1,5 +1,6 @@
 //! Markdown and number formatting for the scorecard.
 
+use std::borrow::Borrow;
 use std::path::{Component, Path, PathBuf};
 
 /// Escapes text for Markdown (table cells and paragraphs): characters that start emphasis,
@@ -19,8 +20,43 @@ pub fn md(text: &str) -> String {
     out
 }
 
+/// Text an outcome carries (its account, notes, checks, the names of its statistics),
+/// escaped as [`md`], with any NaN in it said in words ([`no_nan`]).
+pub fn prose(text: &str) -> String {
+    md(&no_nan(text))
+}
+
+/// `text` with every NaN said in words: `x +- NaN` (or `x ± NaN`) as `x (no error bar)`,
+/// any other `NaN` as `n/a`. Outcome text formatted by earlier versions prints a missing
+/// error bar (one realization) as NaN.
+pub fn no_nan(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(k) = rest.find("NaN") {
+        let (before, after) = (&rest[..k], &rest[k + 3..]);
+        rest = after;
+        let word =
+            !before.ends_with(char::is_alphanumeric) && !after.starts_with(char::is_alphanumeric);
+        if !word {
+            out.push_str(before);
+            out.push_str("NaN");
+        } else if let Some(value) = before
+            .strip_suffix("+- ")
+            .or_else(|| before.strip_suffix("± "))
+        {
+            out.push_str(value.trim_end());
+            out.push_str(" (no error bar)");
+        } else {
+            out.push_str(before);
+            out.push_str("n/a");
+        }
+    }
+    out.push_str(rest);
+    out
+}
+
 /// A Markdown table from a header and rows (cells already escaped).
-pub fn table(header: &[&str], rows: &[Vec<String>]) -> String {
+pub fn table<S: Borrow<str>>(header: &[S], rows: &[Vec<String>]) -> String {
     let mut s = format!("| {} |\n", header.join(" | "));
     s.push_str(&format!("|{}\n", "---|".repeat(header.len())));
     for row in rows {
@@ -29,40 +65,34 @@ pub fn table(header: &[&str], rows: &[Vec<String>]) -> String {
     s
 }
 
+/// A Markdown table and the blank line after it, appended to `s`.
+pub fn push_table<S: Borrow<str>>(s: &mut String, header: &[S], rows: &[Vec<String>]) {
+    s.push_str(&table(header, rows));
+    s.push('\n');
+}
+
+/// A cell of a value that may be absent: `shown(value)`, or an em dash.
+pub fn or_dash<T>(value: Option<T>, shown: impl FnOnce(T) -> String) -> String {
+    value.map_or_else(|| "—".into(), shown)
+}
+
+/// The cell of a run that failed: `**failed**: why`.
+pub fn failed(why: &str) -> String {
+    format!("**failed**: {}", md(why))
+}
+
 /// A number to four significant digits (exponent form below 1e-3 and from 1e5), "n/a"
 /// for NaN.
 pub fn num(x: f64) -> String {
     sig(x, 4)
 }
 
-/// A number to `digits` significant digits.
+/// A number to `digits` significant digits ([`crate::plot::significant`]), "n/a" for NaN.
 pub fn sig(x: f64, digits: usize) -> String {
     if x.is_nan() {
         return "n/a".into();
     }
-    if x.is_infinite() {
-        return if x > 0.0 { "inf".into() } else { "-inf".into() };
-    }
-    if x == 0.0 {
-        return "0".into();
-    }
-    let digits = digits.max(1);
-    let a = x.abs();
-    if !(1e-3..1e5).contains(&a) {
-        let s = format!("{x:.*e}", digits - 1);
-        let (mantissa, exp) = s.split_once('e').unwrap_or((&s, "0"));
-        return format!("{}e{exp}", trim_zeros(mantissa));
-    }
-    let decimals = (digits as i32 - 1 - a.log10().floor() as i32).max(0) as usize;
-    trim_zeros(&format!("{x:.decimals$}"))
-}
-
-fn trim_zeros(s: &str) -> String {
-    if s.contains('.') {
-        s.trim_end_matches('0').trim_end_matches('.').to_string()
-    } else {
-        s.to_string()
-    }
+    crate::plot::significant(x, digits)
 }
 
 /// `value ± error`, the error to two significant digits and the value to the same decimal
@@ -183,6 +213,20 @@ mod tests {
         assert_eq!(duration(185.0), "3 min 05 s");
         assert_eq!(duration(7390.0), "2 h 03 min");
         assert_eq!(ranges(&[4, 1, 2, 3, 7, 9, 10]), "1-4, 7, 9-10");
+    }
+
+    #[test]
+    fn nan_in_outcome_text_is_said_in_words() {
+        assert_eq!(
+            no_nan("D = 1.63 +- NaN times Persson's (z = NaN); 0.5 ± NaN."),
+            "D = 1.63 (no error bar) times Persson's (z = n/a); 0.5 (no error bar)."
+        );
+        assert_eq!(no_nan("NaN"), "n/a");
+        assert_eq!(
+            no_nan("NaNs and aNaN stay; 1 +- 0.1"),
+            "NaNs and aNaN stay; 1 +- 0.1"
+        );
+        assert_eq!(prose("a_r = NaN"), "a\\_r = n/a");
     }
 
     #[test]

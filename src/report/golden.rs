@@ -114,8 +114,10 @@ pub fn compare(outcome: &BTreeMap<String, f64>, snapshot: &BTreeMap<String, f64>
     let mut diffs = Vec::new();
     for (key, &v) in outcome {
         match snapshot.get(key) {
-            None => diffs.push(format!("{key} = {v} not in the snapshot")),
-            Some(&s) if !same(v, s) => diffs.push(format!("{key} = {v}, snapshot {s}")),
+            None => diffs.push(format!("{key} = {} not in the snapshot", exact(v))),
+            Some(&s) if !same(v, s) => {
+                diffs.push(format!("{key} = {}, snapshot {}", exact(v), exact(s)))
+            }
             Some(_) => {}
         }
     }
@@ -123,6 +125,15 @@ pub fn compare(outcome: &BTreeMap<String, f64>, snapshot: &BTreeMap<String, f64>
         diffs.push(format!("{key} missing from the outcome"));
     }
     diffs
+}
+
+/// A golden value as written (every digit), "n/a" for NaN.
+fn exact(x: f64) -> String {
+    if x.is_nan() {
+        "n/a".into()
+    } else {
+        x.to_string()
+    }
 }
 
 fn same(a: f64, b: f64) -> bool {

@@ -15,6 +15,7 @@
 mod attention;
 mod format;
 mod golden;
+mod lenient;
 mod outcomes;
 mod provenance_section;
 mod resolution;
@@ -22,6 +23,7 @@ mod speed_section;
 mod table;
 #[cfg(test)]
 mod tests;
+mod validation;
 
 pub use golden::{read_snapshot, GoldenMatch};
 pub use outcomes::{read_outcome, read_outcomes, scene_grids, scene_seeds, Loaded};
@@ -92,36 +94,8 @@ pub fn write(opts: &ReportOptions, progress: &mut dyn FnMut(&str)) -> Result<Rep
         ));
     }
     let mut files = Vec::new();
-    let speed = match &opts.speed {
-        SpeedChoice::Run(speed_opts) => match crate::speed::run(speed_opts, progress) {
-            Ok(study) => {
-                files.extend(study.write(&opts.from)?);
-                SpeedSection::Fresh(Box::new(study))
-            }
-            Err(e) => SpeedSection::Failed(e.to_string()),
-        },
-        SpeedChoice::Skip => {
-            let path = opts.from.join(SpeedStudy::JSON);
-            if path.exists() {
-                match SpeedStudy::read(&path) {
-                    Ok(study) => SpeedSection::Earlier(Box::new(study)),
-                    Err(e) => SpeedSection::Failed(format!("earlier study unreadable: {e}")),
-                }
-            } else {
-                SpeedSection::Skipped
-            }
-        }
-    };
-    let mut resolution = resolution_studies(&loaded);
-    for r in &mut resolution {
-        let fig = resolution_figure(r);
-        let paths = crate::plot::render(&fig, &opts.from.join("resolution"))?;
-        r.figure = paths
-            .iter()
-            .find(|p| p.extension().is_some_and(|e| e == "png"))
-            .cloned();
-        files.extend(paths);
-    }
+    let speed = prepare_speed(opts, progress, &mut files)?;
+    let resolution = resolution_figures(&loaded, &opts.from, &mut files)?;
     let golden: Vec<GoldenMatch> = loaded
         .iter()
         .map(|l| GoldenMatch::of(&l.outcome, opts.golden.as_deref()))
@@ -154,6 +128,53 @@ pub fn write(opts: &ReportOptions, progress: &mut dyn FnMut(&str)) -> Result<Rep
             _ => None,
         },
     })
+}
+
+/// Runs the speed study, or reads an earlier one; adds the files written to `files`.
+fn prepare_speed(
+    opts: &ReportOptions,
+    progress: &mut dyn FnMut(&str),
+    files: &mut Vec<PathBuf>,
+) -> Result<SpeedSection> {
+    Ok(match &opts.speed {
+        SpeedChoice::Run(speed_opts) => match crate::speed::run(speed_opts, progress) {
+            Ok(study) => {
+                files.extend(study.write(&opts.from)?);
+                SpeedSection::Fresh(Box::new(study))
+            }
+            Err(e) => SpeedSection::Failed(e.to_string()),
+        },
+        SpeedChoice::Skip => {
+            let path = opts.from.join(SpeedStudy::JSON);
+            if !path.exists() {
+                SpeedSection::Skipped
+            } else {
+                match SpeedStudy::read(&path) {
+                    Ok(study) => SpeedSection::Earlier(Box::new(study)),
+                    Err(e) => SpeedSection::Failed(format!("earlier study unreadable: {e}")),
+                }
+            }
+        }
+    })
+}
+
+/// The statistics measured on several grids, each with its figure drawn under
+/// `from/resolution`; adds the files written to `files`.
+fn resolution_figures(
+    loaded: &[Loaded],
+    from: &Path,
+    files: &mut Vec<PathBuf>,
+) -> Result<Vec<Resolution>> {
+    let mut resolution = resolution_studies(loaded);
+    for r in &mut resolution {
+        let paths = crate::plot::render(&resolution_figure(r), &from.join("resolution"))?;
+        r.figure = paths
+            .iter()
+            .find(|p| p.extension().is_some_and(|e| e == "png"))
+            .cloned();
+        files.extend(paths);
+    }
+    Ok(resolution)
 }
 
 /// Everything the Markdown is made from.

@@ -1,9 +1,11 @@
 //! Reading `<name>.json` outcomes back, and the scene facts the scorecard shows.
 //!
 //! JSON has no NaN: serde_json writes a NaN as `null`, which does not read back into an
-//! `f64`. An outcome's float fields can legitimately be NaN (a standard error from one
-//! realization, a detail without an error bar), so the reader turns `null` in exactly those
-//! fields back into NaN before the typed parse; `null` anywhere else is an error as usual.
+//! `f64`, and a writer may leave out a number it does not have. An outcome's numbers can
+//! legitimately be missing (the error bar of one realization, a detail or a cross-check
+//! without one), so the reader reads every float that is `null` or absent as NaN
+//! ([`super::lenient`]), which the scorecard prints as "n/a" or "no error bar"; anything else
+//! missing is an error as usual.
 
 use std::path::{Path, PathBuf};
 use std::time::SystemTime;
@@ -11,6 +13,7 @@ use std::time::SystemTime;
 use serde_json::Value;
 
 use super::format::ranges;
+use super::lenient;
 use crate::error::{Error, Result};
 use crate::validation::Outcome;
 
@@ -48,7 +51,7 @@ pub fn read_outcomes(dir: &Path) -> Result<Vec<Loaded>> {
         if !looks_like_outcome(&value) {
             continue;
         }
-        let outcome = outcome_from_value(value).map_err(|e| Error::bad_file(&path, e))?;
+        let outcome = outcome_from_value(&value).map_err(|e| Error::bad_file(&path, e))?;
         let modified = std::fs::metadata(&path).and_then(|m| m.modified()).ok();
         out.push(Loaded {
             outcome,
@@ -65,7 +68,7 @@ pub fn read_outcome(path: &Path) -> Result<Outcome> {
     let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
     let value: Value =
         serde_json::from_slice(&bytes).map_err(|e| Error::bad_file(path, e.to_string()))?;
-    outcome_from_value(value).map_err(|e| Error::bad_file(path, e))
+    outcome_from_value(&value).map_err(|e| Error::bad_file(path, e))
 }
 
 fn looks_like_outcome(v: &Value) -> bool {
@@ -74,80 +77,9 @@ fn looks_like_outcome(v: &Value) -> bool {
         .all(|k| v.get(k).is_some())
 }
 
-/// Where a NaN was written as `null`.
-enum Slot {
-    Top(&'static str),
-    DetailValue(usize),
-    DetailError(usize),
-    Golden(String),
-    CrossValue,
-    CrossError,
-}
-
-/// The typed outcome, with `null` read as NaN in the float fields.
-fn outcome_from_value(mut v: Value) -> std::result::Result<Outcome, String> {
-    let mut slots = Vec::new();
-    let zero = || Value::from(0.0);
-    for key in ["value", "std_error", "persson", "wall_s", "max_residual"] {
-        if let Some(x) = v.get_mut(key).filter(|x| x.is_null()) {
-            *x = zero();
-            slots.push(Slot::Top(key));
-        }
-    }
-    if let Some(details) = v.get_mut("details").and_then(Value::as_array_mut) {
-        for (k, d) in details.iter_mut().enumerate() {
-            if let Some(est) = d.get_mut("value") {
-                if let Some(x) = est.get_mut("value").filter(|x| x.is_null()) {
-                    *x = zero();
-                    slots.push(Slot::DetailValue(k));
-                }
-                if let Some(x) = est.get_mut("std_error").filter(|x| x.is_null()) {
-                    *x = zero();
-                    slots.push(Slot::DetailError(k));
-                }
-            }
-        }
-    }
-    if let Some(cross) = v.get_mut("cross_check").filter(|c| c.is_object()) {
-        for (key, slot) in [("value", Slot::CrossValue), ("std_error", Slot::CrossError)] {
-            if let Some(x) = cross.get_mut(key).filter(|x| x.is_null()) {
-                *x = zero();
-                slots.push(slot);
-            }
-        }
-    }
-    if let Some(golden) = v.get_mut("golden").and_then(Value::as_object_mut) {
-        for (key, x) in golden.iter_mut().filter(|(_, x)| x.is_null()) {
-            *x = zero();
-            slots.push(Slot::Golden(key.clone()));
-        }
-    }
-    let mut o: Outcome = serde_json::from_value(v).map_err(|e| e.to_string())?;
-    for slot in slots {
-        match slot {
-            Slot::Top("value") => o.value = f64::NAN,
-            Slot::Top("std_error") => o.std_error = f64::NAN,
-            Slot::Top("persson") => o.persson = f64::NAN,
-            Slot::Top("wall_s") => o.wall_s = f64::NAN,
-            Slot::Top(_) => o.max_residual = f64::NAN,
-            Slot::DetailValue(k) => o.details[k].value.value = f64::NAN,
-            Slot::DetailError(k) => o.details[k].value.std_error = f64::NAN,
-            Slot::Golden(key) => {
-                o.golden.insert(key, f64::NAN);
-            }
-            Slot::CrossValue => {
-                if let Some(c) = o.cross_check.as_mut() {
-                    c.value = f64::NAN;
-                }
-            }
-            Slot::CrossError => {
-                if let Some(c) = o.cross_check.as_mut() {
-                    c.std_error = f64::NAN;
-                }
-            }
-        }
-    }
-    Ok(o)
+/// The typed outcome, a float that is `null` or absent read as NaN.
+fn outcome_from_value(v: &Value) -> std::result::Result<Outcome, String> {
+    lenient::from_value(v).map_err(|e| e.to_string())
 }
 
 /// A key's value in the scene: at the top level, or in a table one level down (scenes

@@ -4,7 +4,7 @@
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
-use super::format::{md, num, pm, table};
+use super::format::{md, num, or_dash, pm, prose, push_table};
 use super::outcomes::Loaded;
 use super::Scorecard;
 use crate::plot::{Axis, Figure, Series, Style};
@@ -116,30 +116,27 @@ impl Scorecard<'_> {
                 for (n, d) in group {
                     rows.push(vec![
                         md(&r.validation),
-                        md(&d.name),
+                        prose(&d.name),
                         n.to_string(),
                         pm(d.value.value, d.value.std_error),
-                        prev.map_or_else(|| "—".into(), |p| num(d.value.value - p)),
-                        d.persson.map_or_else(|| "—".into(), num),
-                        d.paper.map_or_else(|| "—".into(), num),
+                        or_dash(prev, |p| num(d.value.value - p)),
+                        or_dash(d.persson, num),
+                        or_dash(d.paper, num),
                     ]);
                     prev = Some(d.value.value);
                 }
             }
         }
-        s.push_str(&table(
-            &[
-                "validation",
-                "statistic",
-                "grid",
-                "measured ± error",
-                "change from the previous grid",
-                "Persson",
-                "paper",
-            ],
-            &rows,
-        ));
-        s.push('\n');
+        let header = [
+            "validation",
+            "statistic",
+            "grid",
+            "measured ± error",
+            "change from the previous grid",
+            "Persson",
+            "paper",
+        ];
+        push_table(s, &header, &rows);
         for r in self.resolution {
             if let Some(png) = &r.figure {
                 let _ = writeln!(

@@ -151,17 +151,6 @@ fn links(text: &str) -> Vec<String> {
     out
 }
 
-fn tiny_speed() -> SpeedOptions {
-    SpeedOptions {
-        tols: vec![1e-4, 1e-8],
-        reference_tol: 1e-11,
-        threads: vec![1, 2],
-        floor_sizes: vec![32],
-        repeats: 1,
-        ..SpeedOptions::with_n(32)
-    }
-}
-
 #[test]
 fn scorecard_states_every_verdict_and_links_existing_files() {
     let root = tempfile::tempdir().unwrap();
@@ -172,7 +161,7 @@ fn scorecard_states_every_verdict_and_links_existing_files() {
         from: from.clone(),
         out: out.clone(),
         golden: Some(golden),
-        speed: SpeedChoice::Run(tiny_speed()),
+        speed: SpeedChoice::Run(SpeedOptions::tiny()),
     };
     let summary = write(&opts, &mut |_| {}).unwrap();
     assert_eq!(
@@ -181,10 +170,19 @@ fn scorecard_states_every_verdict_and_links_existing_files() {
     );
     assert_eq!(summary.speed_error, None);
     let text = std::fs::read_to_string(&out).unwrap();
+    table_rows_state_verdicts(&text);
+    summary_names_what_needs_attention(&text, &summary);
+    sections_show_account_details_and_resolution(&text, &from);
+    links_point_at_existing_files(&text, &out);
+    speed_and_provenance_are_shown(&text, &from);
+    // Written atomically: nothing else in the scorecard's folder.
+    assert_eq!(std::fs::read_dir(out.parent().unwrap()).unwrap().count(), 1);
+}
 
-    // Columns: validation, assumption, statistic, Persson, measured (solver), cross-check,
-    // paper, verdict, reproduced, golden match, grid, seeds, wall time, solver residual.
-    let a = row(&text, "a_holds");
+/// Columns: validation, assumption, statistic, Persson, measured (solver), cross-check,
+/// paper, verdict, reproduced, golden match, grid, seeds, wall time, solver residual.
+fn table_rows_state_verdicts(text: &str) {
+    let a = row(text, "a_holds");
     assert_eq!(a.len(), 14, "{a:?}");
     assert_eq!(
         &a[3..],
@@ -202,11 +200,11 @@ fn scorecard_states_every_verdict_and_links_existing_files() {
             "3e-9"
         ]
     );
-    let b = row(&text, "b_violated");
+    let b = row(text, "b_violated");
     assert_eq!(b[7], "violated");
     assert_eq!(b[8], "**NO**");
     assert_eq!(b[9], "no (1 differ: kappa = 2.5, snapshot 2.6)");
-    let c = row(&text, "c_inconclusive");
+    let c = row(text, "c_inconclusive");
     assert_eq!(
         c[4], "2.5 (one realization: no error bar) (GFMD)",
         "NaN read back from null"
@@ -214,11 +212,13 @@ fn scorecard_states_every_verdict_and_links_existing_files() {
     assert_eq!(c[7], "**inconclusive**");
     assert_eq!(c[8], "**undecided** (verdict inconclusive)");
     assert_eq!(c[9], "not checked");
-    let d = row(&text, "d_full");
+    let d = row(text, "d_full");
     assert!(d[0].ends_with("(full)"), "{d:?}");
     assert_eq!(d[9], "n/a (full scene)", "full scenes are not compared");
+}
 
-    // The summary says plainly what is inconclusive or not reproduced.
+/// The summary says plainly what is inconclusive or not reproduced.
+fn summary_names_what_needs_attention(text: &str, summary: &ReportSummary) {
     assert!(
         text.contains("1 holds, 2 violated, 1 inconclusive"),
         "{}",
@@ -229,8 +229,10 @@ fn scorecard_states_every_verdict_and_links_existing_files() {
     assert!(text.contains("b\\_violated: the paper's finding is NOT reproduced: failed checks: check of b\\_violated (numbers behind it)"));
     assert_eq!(summary.attention.len(), 3, "{:?}", summary.attention);
     assert!(text.contains("| check of b\\_violated | **FAILED** | numbers behind it |"));
+}
 
-    // Sections: account, details, resolution study.
+/// Sections: account, details, resolution study, missing files.
+fn sections_show_account_details_and_resolution(text: &str, from: &Path) {
     assert!(text.contains("## a\\_holds: Title of a\\_holds"));
     assert!(text.contains("Account of a\\_holds: kappa = 2.5 +- 0.05."));
     assert!(text.contains("| largest deviation | 0.08 (no error estimate) | 1 | 2 | — |"));
@@ -243,9 +245,11 @@ fn scorecard_states_every_verdict_and_links_existing_files() {
     );
     assert!(from.join("resolution/resolution_a_holds.png").exists());
     assert!(text.contains("**Missing files**") && text.contains("d\\_full.csv"));
+}
 
-    // Every relative link points at an existing file, images included.
-    let targets = links(&text);
+/// Every relative link points at an existing file, images included.
+fn links_point_at_existing_files(text: &str, out: &Path) {
+    let targets = links(text);
     let base = out.parent().unwrap();
     assert!(
         targets.iter().any(|t| t == "../out/a_holds/fig.png"),
@@ -258,8 +262,10 @@ fn scorecard_states_every_verdict_and_links_existing_files() {
     for t in &targets {
         assert!(base.join(t).exists(), "link to missing file {t}");
     }
+}
 
-    // The speed section and the provenance block.
+/// The speed section and the provenance block.
+fn speed_and_provenance_are_shown(text: &str, from: &Path) {
     assert!(text.contains("## Speed against error"));
     assert!(text.contains("**Times are from one run on a shared machine**"));
     assert!(text.contains("exponent k (iterations ~ N^k)"));
@@ -279,8 +285,6 @@ fn scorecard_states_every_verdict_and_links_existing_files() {
         from.display()
     )));
     assert!(text.contains("| a\\_holds | reduced |") && text.contains("| 1, 2, 3 | 2 | 12.5 s |"));
-    // Written atomically: nothing else in the scorecard's folder.
-    assert_eq!(std::fs::read_dir(base).unwrap().count(), 1);
 }
 
 #[test]
@@ -301,7 +305,7 @@ fn skipped_speed_study_is_said_or_shown_as_earlier() {
     // Links from a scorecard inside the outcomes' folder are plain relative paths.
     assert!(text.contains("](a_holds/fig.png)"));
 
-    let study = crate::speed::run(&tiny_speed(), &mut |_| {}).unwrap();
+    let study = crate::speed::run(&SpeedOptions::tiny(), &mut |_| {}).unwrap();
     study.write(&from).unwrap();
     write(&opts, &mut |_| {}).unwrap();
     let text = std::fs::read_to_string(&out).unwrap();
@@ -441,4 +445,96 @@ fn one_realization_shows_no_error_bar_and_no_nan() {
     let text = std::fs::read_to_string(root.path().join("s.md")).unwrap();
     assert!(!text.contains("NaN"), "NaN in the scorecard");
     assert!(text.contains("one realization: no error bar"));
+}
+
+/// An outcome of one realization as written by hand: the error bars `null` (serde_json's
+/// NaN) in the headline, a detail, the sensitivity rows and the cross-check, one detail's
+/// error bar left out, and NaN in the outcome's own text.
+const NULL_ERROR_BARS: &str = r#"{
+  "name": "one_seed", "title": "One realization", "assumption": "(c) p = 0 absorbs",
+  "statistic": "flux_in / flux_out", "value": 0.8585, "std_error": null,
+  "persson": 0.0, "persson_text": "ratio 0", "paper": "ratio 1.13", "paper_value": 1.13,
+  "paper_verdict": "violated", "verdict": "inconclusive", "reproduced": null,
+  "rule": {"significance": 3.0, "resolution": 0.05}, "scale": "reduced",
+  "scene": {"n": 512, "seeds": [1]}, "definition_sha256": "00",
+  "wall_s": 5.1, "max_residual": 9e-9,
+  "details": [
+    {"key": "flux_in", "name": "flux in", "value": {"value": 0.0025, "std_error": null},
+     "persson": null, "paper": 0.00675, "grid": null},
+    {"key": "flux_out", "name": "flux out", "value": {"value": 0.0029}, "paper": 0.00597},
+    {"key": "x", "name": "x = 0.35 +- NaN", "value": {"value": null, "std_error": null},
+     "persson": 0.42, "paper": null}
+  ],
+  "checks": [{"key": "enter", "name": "points enter contact", "passed": false,
+              "detail": "flux in = 0.0025 +- NaN", "decided": false}],
+  "account": "One realization: the ratio is 0.86 +- NaN (z = NaN).",
+  "golden": {"ratio": 0.86, "z": null},
+  "sensitivity": [{"parameter": "tol", "value": 0.0001, "label": "1e-4",
+    "config": {"n": 128, "lambda_l": 64.0, "lambda_s": 4.0, "contact_area": 0.14, "zeta": 8.0,
+               "dzeta": 0.09375, "tol": 0.0001, "solver": "cg", "fixed_area": false},
+    "realizations": 1,
+    "flux_in": {"value": 0.00525, "std_error": null}, "flux_out": {"value": 0.005},
+    "flux_in_of_contact": {"value": 0.0375, "std_error": null},
+    "flux_out_of_contact": {"value": 0.0358, "std_error": null},
+    "contact_area": {"value": 0.1398, "std_error": null}}],
+  "files": [], "threads": 1, "solver": "gfmd",
+  "cross_check": {"solver": "cg", "value": 0.8585, "std_error": null, "agrees": true}
+}"#;
+
+#[test]
+fn outcomes_with_null_or_absent_error_bars_are_read_and_say_so() {
+    let root = tempfile::tempdir().unwrap();
+    std::fs::write(root.path().join("one_seed.json"), NULL_ERROR_BARS).unwrap();
+    // The same outcome with every error bar left out and no cross-check.
+    let mut absent: serde_json::Value = serde_json::from_str(NULL_ERROR_BARS).unwrap();
+    fn drop_error_bars(v: &mut serde_json::Value) {
+        match v {
+            serde_json::Value::Object(map) => {
+                map.remove("std_error");
+                map.values_mut().for_each(drop_error_bars);
+            }
+            serde_json::Value::Array(items) => items.iter_mut().for_each(drop_error_bars),
+            _ => {}
+        }
+    }
+    drop_error_bars(&mut absent);
+    absent["name"] = json!("one_seed_absent");
+    absent["cross_check"] = serde_json::Value::Null;
+    std::fs::write(
+        root.path().join("one_seed_absent.json"),
+        serde_json::to_vec(&absent).unwrap(),
+    )
+    .unwrap();
+    let out = root.path().join("s.md");
+    let opts = ReportOptions {
+        from: root.path().to_path_buf(),
+        out: out.clone(),
+        golden: None,
+        speed: SpeedChoice::Skip,
+    };
+    let summary = write(&opts, &mut |_| {}).unwrap();
+    assert_eq!(summary.validations, ["one_seed", "one_seed_absent"]);
+    let text = std::fs::read_to_string(&out).unwrap();
+    let nan = text
+        .split(|c: char| !c.is_ascii_alphanumeric())
+        .any(|word| word.eq_ignore_ascii_case("nan"));
+    assert!(!nan, "NaN in the scorecard:\n{text}");
+
+    let null = row(&text, "one_seed");
+    assert_eq!(null[4], "0.8585 (one realization: no error bar) (GFMD)");
+    assert_eq!(null[5], "CG 0.8585 (one realization: no error bar), agrees");
+    assert_eq!(null[8], "**undecided** (verdict inconclusive)");
+    let absent = row(&text, "one_seed_absent");
+    assert_eq!(absent[4], null[4], "absent reads as null");
+    assert_eq!(absent[5], "not run");
+    for line in [
+        "| flux in | 0.0025 (no error estimate) | — | 0.00675 | — |",
+        "| flux out | 0.0029 (no error estimate) | — | 0.00597 | — |",
+        "| x = 0.35 (no error bar) | n/a | 0.42 | — | — |",
+        "| tol | 1e-4 | 128x128, cg | 0.525 (no error estimate) | 0.5 (no error estimate) |",
+        "| points enter contact | not decided (1 realization) | flux in = 0.0025 (no error bar) |",
+        "One realization: the ratio is 0.86 (no error bar) (z = n/a).",
+    ] {
+        assert!(text.contains(line), "no line {line:?} in\n{text}");
+    }
 }

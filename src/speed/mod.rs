@@ -66,23 +66,62 @@ pub fn run(opts: &SpeedOptions, progress: &mut dyn FnMut(&str)) -> Result<SpeedS
     let started_at = crate::provenance::now_utc();
     let timer = Instant::now();
     let scene = Scene::new(opts, opts.n)?;
+    let reference = reference(&scene, opts, progress)?;
+    let tolerance = tolerance_study(&scene, &reference, opts, progress);
+    let sizes = size_study(opts, progress)?;
+    let fits = SOLVERS
+        .iter()
+        .map(|&kind| fit_exponent(kind, &sizes))
+        .collect();
+    let threads_study = thread_study(&scene, opts, progress)?;
+    let (floor, warm) = floor_and_warm_study(opts, progress)?;
+    Ok(SpeedStudy {
+        options: opts.clone(),
+        machine: Machine::detect(),
+        threads: rayon::current_num_threads(),
+        commit: crate::provenance::commit_label(),
+        started_at,
+        wall_s: timer.elapsed().as_secs_f64(),
+        reference,
+        tolerance,
+        sizes,
+        fits,
+        threads_study,
+        floor,
+        warm,
+    })
+}
 
+/// The reference: a tightly converged CG solve of the scene.
+fn reference(
+    scene: &Scene,
+    opts: &SpeedOptions,
+    progress: &mut dyn FnMut(&str),
+) -> Result<Reference> {
     progress(&format!(
         "reference: cg, N = {}, tol = {:e}",
         opts.n, opts.reference_tol
     ));
-    let (ref_sol, ref_t) = scene.solve(SolverKind::Cg, opts.reference_tol)?;
-    let reference = Reference {
+    let (solution, wall_s) = scene.solve(SolverKind::Cg, opts.reference_tol)?;
+    Ok(Reference {
         solver: SolverKind::Cg,
         tol: opts.reference_tol,
-        residual: ref_sol.stats.residual.value(),
-        iterations: ref_sol.stats.iterations,
-        wall_s: ref_t,
-        contact_area: ref_sol.contact_area(),
-        elastic_energy: ref_sol.elastic_energy(),
-    };
+        residual: solution.stats.residual.value(),
+        iterations: solution.stats.iterations,
+        wall_s,
+        contact_area: solution.contact_area(),
+        elastic_energy: solution.elastic_energy(),
+    })
+}
 
-    let mut tolerance = Vec::new();
+/// Cold solves at each tolerance, solver by solver.
+fn tolerance_study(
+    scene: &Scene,
+    reference: &Reference,
+    opts: &SpeedOptions,
+    progress: &mut dyn FnMut(&str),
+) -> Vec<ToleranceRow> {
+    let mut rows = Vec::new();
     for kind in SOLVERS {
         for &tol in &opts.tols {
             progress(&format!(
@@ -90,43 +129,21 @@ pub fn run(opts: &SpeedOptions, progress: &mut dyn FnMut(&str)) -> Result<SpeedS
                 kind.name(),
                 opts.n
             ));
-            tolerance.push(match scene.timed(kind, tol, opts.repeats) {
-                Ok((s, t)) => ToleranceRow {
-                    solver: kind,
-                    tol,
-                    wall_s: Some(t),
-                    iterations: Some(s.stats.iterations),
-                    residual: Some(s.stats.residual.value()),
-                    tamaas: Some(s.stats.residual.tamaas),
-                    area_error: Some((s.contact_area() - reference.contact_area).abs()),
-                    energy_error: Some(
-                        ((s.elastic_energy() - reference.elastic_energy)
-                            / reference.elastic_energy)
-                            .abs(),
-                    ),
-                    error: None,
-                },
-                Err(e) => ToleranceRow {
-                    solver: kind,
-                    tol,
-                    wall_s: None,
-                    iterations: None,
-                    residual: None,
-                    tamaas: None,
-                    area_error: None,
-                    energy_error: None,
-                    error: Some(e.to_string()),
-                },
-            });
+            let solved = scene.timed(kind, tol, opts.repeats);
+            rows.push(ToleranceRow::of(kind, tol, solved, reference));
         }
     }
+    rows
+}
 
-    let mut sizes = Vec::new();
-    let grids = opts.valid_sizes();
-    let scenes: Vec<(usize, Scene)> = grids
+/// Cold solves on each grid of the size study, solver by solver.
+fn size_study(opts: &SpeedOptions, progress: &mut dyn FnMut(&str)) -> Result<Vec<SizeRow>> {
+    let scenes: Vec<(usize, Scene)> = opts
+        .valid_sizes()
         .iter()
         .map(|&n| Ok((n, Scene::new(opts, n)?)))
         .collect::<Result<_>>()?;
+    let mut rows = Vec::new();
     for kind in SOLVERS {
         for (n, scene) in &scenes {
             progress(&format!(
@@ -134,32 +151,20 @@ pub fn run(opts: &SpeedOptions, progress: &mut dyn FnMut(&str)) -> Result<SpeedS
                 kind.name(),
                 opts.size_tol
             ));
-            sizes.push(match scene.timed(kind, opts.size_tol, opts.repeats) {
-                Ok((s, t)) => SizeRow {
-                    solver: kind,
-                    n: *n,
-                    iterations: Some(s.stats.iterations),
-                    wall_s: Some(t),
-                    residual: Some(s.stats.residual.value()),
-                    error: None,
-                },
-                Err(e) => SizeRow {
-                    solver: kind,
-                    n: *n,
-                    iterations: None,
-                    wall_s: None,
-                    residual: None,
-                    error: Some(e.to_string()),
-                },
-            });
+            let solved = scene.timed(kind, opts.size_tol, opts.repeats);
+            rows.push(SizeRow::of(kind, *n, solved));
         }
     }
-    let fits = SOLVERS
-        .iter()
-        .map(|&kind| fit_exponent(kind, &sizes))
-        .collect();
+    Ok(rows)
+}
 
-    let mut threads_study = Vec::new();
+/// The same cold solve in pools of each size, solver by solver.
+fn thread_study(
+    scene: &Scene,
+    opts: &SpeedOptions,
+    progress: &mut dyn FnMut(&str),
+) -> Result<Vec<ThreadRow>> {
+    let mut rows = Vec::new();
     for kind in SOLVERS {
         let mut single = None;
         for &k in &opts.threads {
@@ -175,32 +180,24 @@ pub fn run(opts: &SpeedOptions, progress: &mut dyn FnMut(&str)) -> Result<SpeedS
                 .map_err(|e| {
                     Error::invalid("speed threads", k, format!("a pool rayon can build ({e})"))
                 })?;
-            let result = pool.install(|| scene.timed(kind, opts.size_tol, opts.repeats));
-            let row = match result {
-                Ok((_, t)) => {
-                    if k == 1 {
-                        single = Some(t);
-                    }
-                    ThreadRow {
-                        solver: kind,
-                        threads: k,
-                        wall_s: Some(t),
-                        speedup: single.map(|t1| t1 / t),
-                        error: None,
-                    }
-                }
-                Err(e) => ThreadRow {
-                    solver: kind,
-                    threads: k,
-                    wall_s: None,
-                    speedup: None,
-                    error: Some(e.to_string()),
-                },
-            };
-            threads_study.push(row);
+            let wall_s = pool
+                .install(|| scene.timed(kind, opts.size_tol, opts.repeats))
+                .map(|(_, t)| t);
+            if let (1, Ok(t)) = (k, &wall_s) {
+                single = Some(*t);
+            }
+            rows.push(ThreadRow::of(kind, k, wall_s, single));
         }
     }
+    Ok(rows)
+}
 
+/// On each grid of `floor_sizes`: the FFT pair, then each solver's cold solve counted in
+/// pairs and its warm re-solves.
+fn floor_and_warm_study(
+    opts: &SpeedOptions,
+    progress: &mut dyn FnMut(&str),
+) -> Result<(Vec<FloorRow>, Vec<WarmRow>)> {
     let mut floor = Vec::new();
     let mut warm = Vec::new();
     for &n in &opts.floor_sizes {
@@ -222,22 +219,7 @@ pub fn run(opts: &SpeedOptions, progress: &mut dyn FnMut(&str)) -> Result<SpeedS
             warm.extend(scene.warm(kind, opts.shell_zeta, opts.size_tol, opts.repeats));
         }
     }
-
-    Ok(SpeedStudy {
-        options: opts.clone(),
-        machine: Machine::detect(),
-        threads: rayon::current_num_threads(),
-        commit: crate::provenance::commit_label(),
-        started_at,
-        wall_s: timer.elapsed().as_secs_f64(),
-        reference,
-        tolerance,
-        sizes,
-        fits,
-        threads_study,
-        floor,
-        warm,
-    })
+    Ok((floor, warm))
 }
 
 /// Least-squares slope of `ln iterations` against `ln N` over the converged grids.

@@ -133,3 +133,20 @@ impl SpeedOptions {
         sizes
     }
 }
+
+#[cfg(test)]
+impl SpeedOptions {
+    /// The smallest study that exercises every part (for tests): N = 32, sizes 32 and 64
+    /// (8 and 16 cannot hold lambda_s = 8), two tolerances, pools of 1 and 2 threads, the
+    /// floor and warm starts on N = 32, one repeat.
+    pub(crate) fn tiny() -> Self {
+        Self {
+            tols: vec![1e-4, 1e-8],
+            reference_tol: 1e-11,
+            threads: vec![1, 2],
+            floor_sizes: vec![32],
+            repeats: 1,
+            ..Self::with_n(32)
+        }
+    }
+}

@@ -169,3 +169,115 @@ pub struct SpeedStudy {
     #[serde(default)]
     pub warm: Vec<WarmRow>,
 }
+
+/// A timed solve: the solution and its wall time (the fastest of the repeats).
+type Timed = (ContactSolution, f64);
+
+impl ToleranceRow {
+    /// The row of a cold solve at `tol`, its errors measured against `reference`.
+    pub(super) fn of(
+        solver: SolverKind,
+        tol: f64,
+        solved: Result<Timed>,
+        reference: &Reference,
+    ) -> Self {
+        let ok = solved.as_ref().ok();
+        let area_error = |s: &ContactSolution| (s.contact_area() - reference.contact_area).abs();
+        let energy_error = |s: &ContactSolution| {
+            ((s.elastic_energy() - reference.elastic_energy) / reference.elastic_energy).abs()
+        };
+        Self {
+            solver,
+            tol,
+            wall_s: ok.map(|(_, t)| *t),
+            iterations: ok.map(|(s, _)| s.stats.iterations),
+            residual: ok.map(|(s, _)| s.stats.residual.value()),
+            tamaas: ok.map(|(s, _)| s.stats.residual.tamaas),
+            area_error: ok.map(|(s, _)| area_error(s)),
+            energy_error: ok.map(|(s, _)| energy_error(s)),
+            error: solved.err().map(|e| e.to_string()),
+        }
+    }
+}
+
+impl SizeRow {
+    /// The row of a cold solve on an `n x n` grid.
+    pub(super) fn of(solver: SolverKind, n: usize, solved: Result<Timed>) -> Self {
+        let ok = solved.as_ref().ok();
+        Self {
+            solver,
+            n,
+            iterations: ok.map(|(s, _)| s.stats.iterations),
+            wall_s: ok.map(|(_, t)| *t),
+            residual: ok.map(|(s, _)| s.stats.residual.value()),
+            error: solved.err().map(|e| e.to_string()),
+        }
+    }
+}
+
+impl ThreadRow {
+    /// The row of a solve taking `wall_s` in a pool of `threads`, against `single`, the
+    /// time in one thread if known.
+    pub(super) fn of(
+        solver: SolverKind,
+        threads: usize,
+        wall_s: Result<f64>,
+        single: Option<f64>,
+    ) -> Self {
+        let ok = wall_s.as_ref().ok().copied();
+        Self {
+            solver,
+            threads,
+            wall_s: ok,
+            speedup: ok.and_then(|t| single.map(|t1| t1 / t)),
+            error: wall_s.err().map(|e| e.to_string()),
+        }
+    }
+}
+
+impl FloorRow {
+    /// The row of a cold solve counted in FFT pairs: its iterations, wall time and the
+    /// pairs it used.
+    pub(super) fn of(
+        solver: SolverKind,
+        n: usize,
+        fft_pair_s: f64,
+        counted: Result<(usize, f64, f64)>,
+    ) -> Self {
+        let ok = counted.as_ref().ok().copied();
+        Self {
+            solver,
+            n,
+            fft_pair_s,
+            iterations: ok.map(|(it, _, _)| it),
+            wall_s: ok.map(|(_, t, _)| t),
+            pairs_per_iteration: ok.map(|(it, _, pairs)| pairs / it.max(1) as f64),
+            iteration_in_pairs: ok.map(|(it, t, _)| t / (it.max(1) as f64 * fft_pair_s)),
+            overhead: ok.map(|(_, t, pairs)| t / (pairs * fft_pair_s)),
+            error: counted.err().map(|e| e.to_string()),
+        }
+    }
+}
+
+impl WarmRow {
+    /// The row of a cold solve and a warm re-solve after `change`.
+    pub(super) fn of(
+        solver: SolverKind,
+        n: usize,
+        change: String,
+        solved: Result<(Timed, Timed)>,
+    ) -> Self {
+        let ok = solved.as_ref().ok();
+        Self {
+            solver,
+            n,
+            change,
+            cold_iterations: ok.map(|((cold, _), _)| cold.stats.iterations),
+            cold_wall_s: ok.map(|((_, tc), _)| *tc),
+            warm_iterations: ok.map(|(_, (warm, _))| warm.stats.iterations),
+            warm_wall_s: ok.map(|(_, (_, tw))| *tw),
+            ratio: ok.map(|((_, tc), (_, tw))| tw / tc),
+            error: solved.err().map(|e| e.to_string()),
+        }
+    }
+}

@@ -10,6 +10,18 @@ pub(super) struct Scene {
     p0: f64,
 }
 
+/// What one solve on the scene's grid solves: the heights, the mean pressure, and where
+/// it starts.
+#[derive(Clone, Copy)]
+struct Case<'a> {
+    heights: &'a [f64],
+    p0: f64,
+    start: Start<'a>,
+}
+
+/// A cold solve and a warm re-solve of the same problem, each with its wall time.
+type ColdAndWarm = ((ContactSolution, f64), (ContactSolution, f64));
+
 impl Scene {
     pub(super) fn new(opts: &SpeedOptions, n: usize) -> Result<Self> {
         let surface = Surface::generate(&opts.params(n))?;
@@ -23,36 +35,35 @@ impl Scene {
         })
     }
 
-    /// A solve of `heights` at `p0` from `start` with a fresh solver; returns the solution
-    /// and its wall time.
-    pub(super) fn solve_with(
-        &self,
-        kind: SolverKind,
-        heights: &[f64],
-        p0: f64,
-        start: Start,
-        tol: f64,
-    ) -> Result<(ContactSolution, f64)> {
-        let problem = ContactProblem::new(&self.model, heights, p0)?;
+    /// The scene itself: its full heights at its load, from scratch.
+    fn cold(&self) -> Case<'_> {
+        Case {
+            heights: &self.heights,
+            p0: self.p0,
+            start: Start::Cold,
+        }
+    }
+
+    /// One solve of `case` with a fresh solver; returns the solution and its wall time.
+    fn solve_case(&self, kind: SolverKind, case: Case, tol: f64) -> Result<(ContactSolution, f64)> {
+        let problem = ContactProblem::new(&self.model, case.heights, case.p0)?;
         let mut solver = kind.build();
         let timer = Instant::now();
-        let solution = solver.solve(&problem, start, &SolveOptions::with_tol(tol))?;
+        let solution = solver.solve(&problem, case.start, &SolveOptions::with_tol(tol))?;
         Ok((solution, timer.elapsed().as_secs_f64()))
     }
 
-    /// The fastest of `repeats` solves of `heights` at `p0` from `start`.
-    pub(super) fn timed_with(
+    /// The fastest of `repeats` solves of `case`.
+    fn fastest(
         &self,
         kind: SolverKind,
-        heights: &[f64],
-        p0: f64,
-        start: Start,
+        case: Case,
         tol: f64,
         repeats: usize,
     ) -> Result<(ContactSolution, f64)> {
-        let (mut best, mut t) = self.solve_with(kind, heights, p0, start, tol)?;
+        let (mut best, mut t) = self.solve_case(kind, case, tol)?;
         for _ in 1..repeats {
-            let (s, dt) = self.solve_with(kind, heights, p0, start, tol)?;
+            let (s, dt) = self.solve_case(kind, case, tol)?;
             if dt < t {
                 (best, t) = (s, dt);
             }
@@ -67,12 +78,12 @@ impl Scene {
         tol: f64,
         repeats: usize,
     ) -> Result<(ContactSolution, f64)> {
-        self.timed_with(kind, &self.heights, self.p0, Start::Cold, tol, repeats)
+        self.fastest(kind, self.cold(), tol, repeats)
     }
 
     /// A cold solve of the scene; returns the solution and its wall time.
     pub(super) fn solve(&self, kind: SolverKind, tol: f64) -> Result<(ContactSolution, f64)> {
-        self.solve_with(kind, &self.heights, self.p0, Start::Cold, tol)
+        self.solve_case(kind, self.cold(), tol)
     }
 
     /// Mean wall time of one forward + inverse FFT pair: the fastest of a few batches, each
@@ -108,37 +119,13 @@ impl Scene {
         tol: f64,
         repeats: usize,
     ) -> FloorRow {
-        let n = self.model.grid.n();
         let before = self.model.fft.transforms();
-        let result = self.solve(kind, tol).and_then(|(s, _)| {
+        let counted = self.solve(kind, tol).and_then(|(s, _)| {
             let pairs = (self.model.fft.transforms() - before) as f64 / 2.0;
             let (_, t) = self.timed(kind, tol, repeats)?;
             Ok((s.stats.iterations, t, pairs))
         });
-        match result {
-            Ok((it, t, pairs)) => FloorRow {
-                solver: kind,
-                n,
-                fft_pair_s,
-                iterations: Some(it),
-                wall_s: Some(t),
-                pairs_per_iteration: Some(pairs / it.max(1) as f64),
-                iteration_in_pairs: Some(t / (it.max(1) as f64 * fft_pair_s)),
-                overhead: Some(t / (pairs * fft_pair_s)),
-                error: None,
-            },
-            Err(e) => FloorRow {
-                solver: kind,
-                n,
-                fft_pair_s,
-                iterations: None,
-                wall_s: None,
-                pairs_per_iteration: None,
-                iteration_in_pairs: None,
-                overhead: None,
-                error: Some(e.to_string()),
-            },
-        }
+        FloorRow::of(kind, self.model.grid.n(), fft_pair_s, counted)
     }
 
     /// Warm re-solves of one solver: after a 1% load change, and after adding the last
@@ -151,41 +138,16 @@ impl Scene {
         repeats: usize,
     ) -> Vec<WarmRow> {
         let n = self.model.grid.n();
-        let row =
-            |change: String, r: Result<((ContactSolution, f64), (ContactSolution, f64))>| match r {
-                Ok(((cold, tc), (warm, tw))) => WarmRow {
-                    solver: kind,
-                    n,
-                    change,
-                    cold_iterations: Some(cold.stats.iterations),
-                    cold_wall_s: Some(tc),
-                    warm_iterations: Some(warm.stats.iterations),
-                    warm_wall_s: Some(tw),
-                    ratio: Some(tw / tc),
-                    error: None,
-                },
-                Err(e) => WarmRow {
-                    solver: kind,
-                    n,
-                    change,
-                    cold_iterations: None,
-                    cold_wall_s: None,
-                    warm_iterations: None,
-                    warm_wall_s: None,
-                    ratio: None,
-                    error: Some(e.to_string()),
-                },
-            };
         let mut rows = Vec::new();
         // Load +1%, from the converged solution at p0.
-        let p1 = 1.01 * self.p0;
         let load = self.solve(kind, tol).and_then(|(from, _)| {
-            let cold = self.timed_with(kind, &self.heights, p1, Start::Cold, tol, repeats)?;
-            let warm =
-                self.timed_with(kind, &self.heights, p1, Start::Warm(&from), tol, repeats)?;
-            Ok((cold, warm))
+            let changed = Case {
+                p0: 1.01 * self.p0,
+                ..self.cold()
+            };
+            self.cold_and_warm(kind, changed, &from, tol, repeats)
         });
-        rows.push(row("load +1%".into(), load));
+        rows.push(WarmRow::of(kind, n, "load +1%".into(), load));
         // One shell: the last at or below shell_zeta, from the solution one shell lower.
         let top = shell_zeta.min(self.surface.zeta_max());
         let steps = shell_steps(&self.surface, 1.0, top);
@@ -193,27 +155,23 @@ impl Scene {
             [.., below, at] => {
                 let h_below = self.surface.heights_at(*below, &self.model.fft);
                 let h_at = self.surface.heights_at(*at, &self.model.fft);
-                let shell = self
-                    .solve_with(kind, &h_below, self.p0, Start::Cold, tol)
-                    .and_then(|(from, _)| {
-                        let cold =
-                            self.timed_with(kind, &h_at, self.p0, Start::Cold, tol, repeats)?;
-                        let warm = self.timed_with(
-                            kind,
-                            &h_at,
-                            self.p0,
-                            Start::Warm(&from),
-                            tol,
-                            repeats,
-                        )?;
-                        Ok((cold, warm))
-                    });
-                rows.push(row(
-                    format!("one shell at zeta = {}", round_sig(*at, 4)),
-                    shell,
-                ));
+                let lower = Case {
+                    heights: &h_below,
+                    ..self.cold()
+                };
+                let shell = self.solve_case(kind, lower, tol).and_then(|(from, _)| {
+                    let added = Case {
+                        heights: &h_at,
+                        ..self.cold()
+                    };
+                    self.cold_and_warm(kind, added, &from, tol, repeats)
+                });
+                let change = format!("one shell at zeta = {}", round_sig(*at, 4));
+                rows.push(WarmRow::of(kind, n, change, shell));
             }
-            _ => rows.push(row(
+            _ => rows.push(WarmRow::of(
+                kind,
+                n,
                 format!("one shell below zeta = {top}"),
                 Err(Error::invalid(
                     "speed shell zeta",
@@ -223,5 +181,23 @@ impl Scene {
             )),
         }
         rows
+    }
+
+    /// The fastest cold solve of `case` and the fastest warm solve of it from `from`.
+    fn cold_and_warm(
+        &self,
+        kind: SolverKind,
+        case: Case,
+        from: &ContactSolution,
+        tol: f64,
+        repeats: usize,
+    ) -> Result<ColdAndWarm> {
+        let cold = self.fastest(kind, case, tol, repeats)?;
+        let warm_case = Case {
+            start: Start::Warm(from),
+            ..case
+        };
+        let warm = self.fastest(kind, warm_case, tol, repeats)?;
+        Ok((cold, warm))
     }
 }

@@ -2,21 +2,9 @@
 
 use super::*;
 
-/// The smallest study that exercises every part: N = 32, sizes 32 and 64.
-fn tiny() -> SpeedOptions {
-    SpeedOptions {
-        tols: vec![1e-4, 1e-8],
-        reference_tol: 1e-11,
-        threads: vec![1, 2],
-        floor_sizes: vec![32],
-        repeats: 1,
-        ..SpeedOptions::with_n(32)
-    }
-}
-
 #[test]
 fn tiny_study_produces_every_row_and_its_files() {
-    let opts = tiny();
+    let opts = SpeedOptions::tiny();
     let mut lines = Vec::new();
     let study = run(&opts, &mut |l| lines.push(l.to_string())).unwrap();
     // Sizes 8 and 16 cannot hold lambda_s = 8 < lambda_l = N/2: left out.
@@ -28,6 +16,19 @@ fn tiny_study_produces_every_row_and_its_files() {
         lines.iter().any(|l| l.starts_with("reference")),
         "{lines:?}"
     );
+    tighter_tolerances_are_more_accurate(&study, &opts);
+    for fit in &study.fits {
+        assert_eq!(fit.points, 2);
+        assert!(fit.exponent.unwrap().is_finite());
+        assert_eq!(fit.std_error, None, "two points give no error bar");
+    }
+    assert_eq!(study.threads_study[0].speedup, Some(1.0));
+    floor_counts_fft_pairs(&study);
+    warm_starts_converge(&study);
+    files_hold_every_row(&study);
+}
+
+fn tighter_tolerances_are_more_accurate(study: &SpeedStudy, opts: &SpeedOptions) {
     assert!(study.reference.residual <= opts.reference_tol);
     for row in &study.tolerance {
         assert!(row.error.is_none(), "{row:?}");
@@ -53,16 +54,12 @@ fn tiny_study_produces_every_row_and_its_files() {
             e[1]
         );
     }
-    for fit in &study.fits {
-        assert_eq!(fit.points, 2);
-        assert!(fit.exponent.unwrap().is_finite());
-        assert_eq!(fit.std_error, None, "two points give no error bar");
-    }
-    assert_eq!(study.threads_study[0].speedup, Some(1.0));
-    // Floor: CG uses two FFT pairs an iteration (the preconditioner's and the
-    // compliance's) and a third when the contact set changed (u = K^-1 p recomputed);
-    // GFMD two (the stress and the mass filter); both plus the set-up and the final
-    // residual.
+}
+
+/// CG uses two FFT pairs an iteration (the preconditioner's and the compliance's) and a
+/// third when the contact set changed (u = K^-1 p recomputed); GFMD two (the stress and
+/// the mass filter); both plus the set-up and the final residual.
+fn floor_counts_fft_pairs(study: &SpeedStudy) {
     assert_eq!(study.floor.len(), 2);
     for row in &study.floor {
         assert!(row.error.is_none(), "{row:?}");
@@ -73,11 +70,14 @@ fn tiny_study_produces_every_row_and_its_files() {
             "{row:?}"
         );
     }
-    // Warm starts: a load change and one shell, each solver, converged; after the 1%
-    // load change never slower in iterations than a cold solve of the same problem. (On
-    // this grid the roughness stops at zeta = 2, so the "one shell" adds half of it: a
-    // warm start there is not near the solution, and GFMD's smaller warm step may take a
-    // few more iterations than its cold solve.)
+}
+
+/// A load change and one shell, each solver, converged; after the 1% load change never
+/// slower in iterations than a cold solve of the same problem. (On this grid the roughness
+/// stops at zeta = 2, so the "one shell" adds half of it: a warm start there is not near
+/// the solution, and GFMD's smaller warm step may take a few more iterations than its cold
+/// solve.)
+fn warm_starts_converge(study: &SpeedStudy) {
     assert_eq!(study.warm.len(), 4);
     for row in &study.warm {
         assert!(row.error.is_none(), "{row:?}");
@@ -92,12 +92,15 @@ fn tiny_study_produces_every_row_and_its_files() {
         .warm
         .iter()
         .any(|r| r.change.starts_with("one shell at zeta = ")));
+}
 
+/// One table per study, its header from the row type, one line per row; the figures; the
+/// JSON read back.
+fn files_hold_every_row(study: &SpeedStudy) {
     let dir = tempfile::tempdir().unwrap();
     let written = study.write(dir.path()).unwrap();
     assert!(dir.path().join("speed/speed_error.png").exists());
     assert!(dir.path().join("speed/speed_iterations.svg").exists());
-    // One table per study, its header from the row type, one line per row.
     let table = |name: &str| {
         let path = SpeedStudy::table_path(dir.path(), name);
         assert!(written.contains(&path), "{name} not written");

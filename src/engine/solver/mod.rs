@@ -7,13 +7,33 @@
 //! * [`ConstrainedCg`]: constrained conjugate gradients on the pressure
 //!   (Polonsky & Keer 1999), the algorithm of tamaas and ContactMechanics.
 //!
-//! Both implement [`Solver`], start cold or from a previous solution, stop
-//! at the solver-independent [`crate::engine::contact::Residual`], and fail with
-//! [`crate::Error::NotConverged`] (carrying the residual) or [`crate::Error::NonFinite`]
-//! rather than return an unconverged field.
+//! Both are [`Solver`]s, start cold or from a previous solution, stop at the
+//! solver-independent [`crate::engine::contact::Residual`], and fail with
+//! [`crate::Error::NotConverged`] (carrying the residual), [`crate::Error::NonFinite`] or
+//! [`crate::Error::LostContact`] rather than return an unconverged field.
+//!
+//! # One scaffold under both
+//!
+//! A solver keeps only its own steps. What every solve does is written once:
+//!
+//! * [`executor`]: the loop that runs any [`executor::Method`] (after argmin's executor):
+//!   the method starts a solve from a problem and a start (`init`), and each iteration
+//!   measures the residual estimate the monitor sees (`measure`), judges whether the solve
+//!   has converged or must stop (`judge`), and takes the rest of its step (`step`); at the
+//!   end, `terminate` returns the final state or the error, with an explicit
+//!   [`Termination`](crate::error::Termination);
+//! * [`workspace`]: the work buffers kept between solves, the check that a warm start is
+//!   on the problem's grid, and the packaging of fields into a
+//!   [`ContactSolution`] with its residual and [`SolveStats`](crate::engine::contact::SolveStats);
+//! * in [`crate::engine::contact`]: the residual's components and the gap; in
+//!   [`crate::engine::field`]: the chunked reductions that give the same bits on any
+//!   number of threads; the elastic operator (kernels, point compliance, inverse masses)
+//!   comes from the [`Model`](crate::engine::contact::Model).
 
 mod cg;
+pub mod executor;
 mod gfmd;
+pub mod workspace;
 
 pub use cg::ConstrainedCg;
 pub use gfmd::{Gfmd, GfmdParams};
@@ -49,14 +69,6 @@ impl SolverKind {
             SolverKind::Gfmd => "gfmd",
             SolverKind::Cg => "cg",
         }
-    }
-}
-
-/// Resizes `v` to `len` (contents unspecified).
-pub(crate) fn ensure_len<T: Clone + Default>(v: &mut Vec<T>, len: usize) {
-    if v.len() != len {
-        v.clear();
-        v.resize(len, T::default());
     }
 }
 
@@ -117,7 +129,8 @@ pub struct Progress {
     pub residual: f64,
 }
 
-/// A hard-wall contact solver.
+/// A hard-wall contact solver. Every [`executor::Method`] is one, run by
+/// [`executor::run`].
 pub trait Solver {
     /// Short name (`"gfmd"`, `"cg"`).
     fn name(&self) -> &'static str;
@@ -140,5 +153,23 @@ pub trait Solver {
         opts: &SolveOptions,
     ) -> Result<ContactSolution> {
         self.solve_monitored(problem, start, opts, &mut |_| {})
+    }
+}
+
+impl<M: executor::Method> Solver for M {
+    fn name(&self) -> &'static str {
+        M::NAME
+    }
+
+    fn solve_monitored(
+        &mut self,
+        problem: &ContactProblem,
+        start: Start,
+        opts: &SolveOptions,
+        monitor: &mut dyn FnMut(Progress),
+    ) -> Result<ContactSolution> {
+        opts.validate()?;
+        let solve = self.init(problem, start, opts)?;
+        executor::run(solve, opts.max_iter, monitor)
     }
 }

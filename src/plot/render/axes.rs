@@ -174,21 +174,27 @@ impl ValueFormatter<f64> for AxisCoord {
     }
 }
 
-/// A tick label: at most four significant digits, exponent form for very large or small
-/// magnitudes, no trailing zeros.
+/// A tick label: at most four significant digits ([`significant`]).
 pub(crate) fn format_tick(v: f64) -> String {
-    if v == 0.0 || !v.is_finite() {
-        return if v == 0.0 { "0".into() } else { format!("{v}") };
+    significant(v, 4)
+}
+
+/// `x` to `digits` significant digits (at least one), exponent form below 1e-3 and from
+/// 1e5, no trailing zeros: `0.3`, `12.5`, `1e-4`, `2.5e5`; zero as `0`, and a value that is
+/// not finite as Rust prints it (`NaN`, `inf`, `-inf`).
+pub fn significant(x: f64, digits: usize) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return if x == 0.0 { "0".into() } else { format!("{x}") };
     }
-    let a = v.abs();
+    let digits = digits.max(1);
+    let a = x.abs();
     if !(1e-3..1e5).contains(&a) {
-        let s = format!("{v:.3e}");
+        let s = format!("{x:.*e}", digits - 1);
         let (mantissa, exp) = s.split_once('e').unwrap_or((&s, "0"));
-        let mantissa = trim_zeros(mantissa);
-        return format!("{mantissa}e{exp}");
+        return format!("{}e{exp}", trim_zeros(mantissa));
     }
-    let decimals = (3 - a.log10().floor() as i32).max(0) as usize;
-    trim_zeros(&format!("{v:.decimals$}"))
+    let decimals = (digits as i32 - 1 - a.log10().floor() as i32).max(0) as usize;
+    trim_zeros(&format!("{x:.decimals$}"))
 }
 
 fn trim_zeros(s: &str) -> String {

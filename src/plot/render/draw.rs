@@ -1,7 +1,11 @@
 //! Drawing a figure: the layout (title, chart, legend strip), series and markers.
 
+use plotters::chart::DualCoordChartContext;
+use plotters::element::{Drawable, PointCollection};
+
 use super::axes::AxisCoord;
 use super::*;
+
 /// What a figure needs besides its data: axes, title lines and legend geometry.
 pub(super) struct Layout {
     pub(super) x: AxisCoord,
@@ -102,22 +106,52 @@ fn legend_label(figure: &Figure, s: &crate::plot::Series) -> String {
     label
 }
 
-type DrawResult<DB> =
-    std::result::Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
+/// The chart: the data axes on the left, and the right axis (the left one again when the
+/// figure has none).
+type Chart<'a, DB> = DualCoordChartContext<
+    'a,
+    DB,
+    Cartesian2d<AxisCoord, AxisCoord>,
+    Cartesian2d<AxisCoord, AxisCoord>,
+>;
 
-pub(super) fn draw_figure<DB: DrawingBackend>(
+/// A figure with its layout, drawn on any backend.
+pub(super) struct Plot<'a> {
+    pub(super) figure: &'a Figure,
+    pub(super) layout: &'a Layout,
+}
+
+impl Drawing for Plot<'_> {
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<DB> {
+        draw_figure(root, self.figure, self.layout)
+    }
+}
+
+/// The title, the chart with every series, and the legend strip.
+fn draw_figure<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     figure: &Figure,
     layout: &Layout,
 ) -> DrawResult<DB> {
     root.fill(&WHITE)?;
     draw_title(root, &layout.title)?;
-    let legend_h = layout.legend_height();
     let (_, rest) = root.split_vertically(layout.title_height());
     let (chart_area, legend_area) = rest.split_vertically(CHART_HEIGHT);
+    let mut chart = chart(&chart_area, figure, layout)?;
+    for (k, series) in figure.series.iter().enumerate() {
+        draw_series(root, &mut chart, layout, k, series)?;
+    }
+    draw_legend(&legend_area, figure, layout)
+}
 
+/// The chart on `area`: both axes, their labels and the grid.
+fn chart<'a, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, Shift>,
+    figure: &Figure,
+    layout: &Layout,
+) -> std::result::Result<Chart<'a, DB>, DrawingAreaErrorKind<DB::ErrorType>> {
     let has_y2 = layout.y2.is_some();
-    let mut chart = ChartBuilder::on(&chart_area)
+    let mut chart = ChartBuilder::on(area)
         .margin(MARGIN)
         .margin_right(if has_y2 { MARGIN } else { 2 * MARGIN })
         .x_label_area_size(64)
@@ -149,122 +183,131 @@ pub(super) fn draw_figure<DB: DrawingBackend>(
             .y_labels(10)
             .draw()?;
     }
+    Ok(chart)
+}
 
-    for (k, series) in figure.series.iter().enumerate() {
-        let colour = COLOURS[k % COLOURS.len()];
-        let shape = Marker::of(k);
-        let right = series.side == Side::Right && has_y2;
-        let ya = if right {
+/// Series `k`: its lines, then its error bars and markers.
+fn draw_series<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    chart: &mut Chart<'_, DB>,
+    layout: &Layout,
+    k: usize,
+    series: &crate::plot::Series,
+) -> DrawResult<DB> {
+    let colour = COLOURS[k % COLOURS.len()];
+    let right = series.side == Side::Right && layout.y2.is_some();
+    let frame = Frame {
+        x: &layout.x,
+        y: if right {
             layout.y2.as_ref().expect("checked")
         } else {
             &layout.y
-        };
-        let frame = Frame {
-            x: &layout.x,
-            y: ya,
-        };
+        },
+    };
+    if matches!(
+        series.style,
+        Style::Line | Style::Dashed | Style::LinePoints
+    ) {
         let line_style = colour.stroke_width(3);
-        if matches!(
-            series.style,
-            Style::Line | Style::Dashed | Style::LinePoints
-        ) {
-            for line in frame.polylines(&series.points) {
-                macro_rules! draw_line {
-                    ($elements:expr) => {
-                        if right {
-                            chart.draw_secondary_series($elements)?;
-                        } else {
-                            chart.draw_series($elements)?;
-                        }
-                    };
-                }
-                if series.style == Style::Dashed {
-                    draw_line!(DashedLineSeries::new(line.clone(), 12u32, 8u32, line_style));
-                } else {
-                    draw_line!(LineSeries::new(line.clone(), line_style));
-                }
-            }
-        }
-        if matches!(series.style, Style::Points | Style::LinePoints) {
-            let inside: Vec<&Point> = series
-                .points
-                .iter()
-                .filter(|p| frame.x.contains(p.x) && frame.y.contains(p.y))
-                .collect();
-            let bars: Vec<(f64, f64, f64, f64)> = inside
-                .iter()
-                .filter_map(|p| {
-                    let e = p.err.filter(|e| e.is_finite() && *e > 0.0)?;
-                    let lo = if ya.log && p.y - e <= 0.0 {
-                        ya.lo
-                    } else {
-                        ya.clamp(p.y - e)
-                    };
-                    Some((p.x, lo, p.y, ya.clamp(p.y + e)))
-                })
-                .collect();
-            let bar_style = colour.stroke_width(2);
-            let bar = |b: &(f64, f64, f64, f64)| {
-                ErrorBar::new_vertical(b.0, b.1, b.2, b.3, bar_style, 10)
-            };
-            if right {
-                chart.draw_secondary_series(bars.iter().map(bar))?;
+        for line in frame.polylines(&series.points) {
+            if series.style == Style::Dashed {
+                let dashed = DashedLineSeries::new(line, 12u32, 8u32, line_style);
+                draw_on(chart, right, dashed)?;
             } else {
-                chart.draw_series(bars.iter().map(bar))?;
-            }
-            // Markers are drawn in pixels on the root area (whose origin is the backend's),
-            // so that both axes share one marker code.
-            for p in &inside {
-                let px = if right {
-                    chart.secondary_plotting_area().map_coordinate(&(p.x, p.y))
-                } else {
-                    chart.plotting_area().map_coordinate(&(p.x, p.y))
-                };
-                shape.draw(root, px, colour)?;
+                draw_on(chart, right, LineSeries::new(line, line_style))?;
             }
         }
     }
-
-    // Legend strip.
-    if legend_h > 0 && !figure.series.is_empty() {
-        let (lw, _) = legend_area.dim_in_pixel();
-        let columns = layout.legend_columns;
-        let col_w = (lw - 2 * MARGIN) / columns as u32;
-        let text_style = TextStyle::from(font(LEGEND_SIZE)).pos(Pos::new(HPos::Left, VPos::Center));
-        legend_area.draw(&Rectangle::new(
-            [
-                (MARGIN as i32 - 6, 2),
-                ((lw - MARGIN) as i32 + 6, legend_h as i32 - 8),
-            ],
-            RGBColor(0, 0, 0).mix(0.3),
-        ))?;
-        for (k, series) in figure.series.iter().enumerate() {
-            let colour = COLOURS[k % COLOURS.len()];
-            let (row, col) = ((k / columns) as i32, (k % columns) as i32);
-            let x0 = MARGIN as i32 + col * col_w as i32 + 8;
-            let yc = 8 + row * LEGEND_ROW as i32 + LEGEND_ROW as i32 / 2;
-            let seg = [(x0, yc), (x0 + LEGEND_SAMPLE, yc)];
-            match series.style {
-                Style::Line | Style::LinePoints => {
-                    legend_area.draw(&PathElement::new(seg, colour.stroke_width(3)))?
-                }
-                Style::Dashed => legend_area.draw(&DashedPathElement::new(
-                    seg,
-                    12u32,
-                    8u32,
-                    colour.stroke_width(3),
-                ))?,
-                Style::Points => {}
-            }
-            if matches!(series.style, Style::Points | Style::LinePoints) {
-                Marker::of(k).draw(&legend_area, (x0 + LEGEND_SAMPLE / 2, yc), colour)?;
-            }
-            legend_area.draw(&Text::new(
-                legend_label(figure, series),
-                (x0 + LEGEND_SAMPLE + 12, yc),
-                text_style.clone(),
-            ))?;
+    if matches!(series.style, Style::Points | Style::LinePoints) {
+        let inside: Vec<&Point> = series
+            .points
+            .iter()
+            .filter(|p| frame.x.contains(p.x) && frame.y.contains(p.y))
+            .collect();
+        let bar_style = colour.stroke_width(2);
+        let bars = inside.iter().filter_map(|p| {
+            let (x, lo, y, hi) = frame.error_bar(p)?;
+            Some(ErrorBar::new_vertical(x, lo, y, hi, bar_style, 10))
+        });
+        draw_on(chart, right, bars)?;
+        // Markers are drawn in pixels on the root area (whose origin is the backend's),
+        // so that both axes share one marker code.
+        for p in &inside {
+            let px = if right {
+                chart.secondary_plotting_area().map_coordinate(&(p.x, p.y))
+            } else {
+                chart.plotting_area().map_coordinate(&(p.x, p.y))
+            };
+            Marker::of(k).draw(root, px, colour)?;
         }
+    }
+    Ok(())
+}
+
+/// Draws `elements` against the right axis or the left one.
+fn draw_on<DB, E, R, S>(chart: &mut Chart<'_, DB>, right: bool, elements: S) -> DrawResult<DB>
+where
+    DB: DrawingBackend,
+    for<'b> &'b E: PointCollection<'b, (f64, f64)>,
+    E: Drawable<DB>,
+    R: std::borrow::Borrow<E>,
+    S: IntoIterator<Item = R>,
+{
+    if right {
+        chart.draw_secondary_series(elements)?;
+    } else {
+        chart.draw_series(elements)?;
+    }
+    Ok(())
+}
+
+/// The legend strip: a sample of each series' line and marker, and its label.
+fn draw_legend<DB: DrawingBackend>(
+    legend_area: &DrawingArea<DB, Shift>,
+    figure: &Figure,
+    layout: &Layout,
+) -> DrawResult<DB> {
+    let legend_h = layout.legend_height();
+    if legend_h == 0 || figure.series.is_empty() {
+        return Ok(());
+    }
+    let (lw, _) = legend_area.dim_in_pixel();
+    let columns = layout.legend_columns;
+    let col_w = (lw - 2 * MARGIN) / columns as u32;
+    let text_style = TextStyle::from(font(LEGEND_SIZE)).pos(Pos::new(HPos::Left, VPos::Center));
+    legend_area.draw(&Rectangle::new(
+        [
+            (MARGIN as i32 - 6, 2),
+            ((lw - MARGIN) as i32 + 6, legend_h as i32 - 8),
+        ],
+        RGBColor(0, 0, 0).mix(0.3),
+    ))?;
+    for (k, series) in figure.series.iter().enumerate() {
+        let colour = COLOURS[k % COLOURS.len()];
+        let (row, col) = ((k / columns) as i32, (k % columns) as i32);
+        let x0 = MARGIN as i32 + col * col_w as i32 + 8;
+        let yc = 8 + row * LEGEND_ROW as i32 + LEGEND_ROW as i32 / 2;
+        let seg = [(x0, yc), (x0 + LEGEND_SAMPLE, yc)];
+        match series.style {
+            Style::Line | Style::LinePoints => {
+                legend_area.draw(&PathElement::new(seg, colour.stroke_width(3)))?
+            }
+            Style::Dashed => legend_area.draw(&DashedPathElement::new(
+                seg,
+                12u32,
+                8u32,
+                colour.stroke_width(3),
+            ))?,
+            Style::Points => {}
+        }
+        if matches!(series.style, Style::Points | Style::LinePoints) {
+            Marker::of(k).draw(legend_area, (x0 + LEGEND_SAMPLE / 2, yc), colour)?;
+        }
+        legend_area.draw(&Text::new(
+            legend_label(figure, series),
+            (x0 + LEGEND_SAMPLE + 12, yc),
+            text_style.clone(),
+        ))?;
     }
     Ok(())
 }
@@ -319,6 +362,19 @@ pub(super) struct Frame<'a> {
 }
 
 impl Frame<'_> {
+    /// The error bar of `p` as (x, low end, y, high end), clamped to the vertical axis
+    /// (down to its bottom on a log axis where `y - err` is not positive); `None` without
+    /// a finite, positive error.
+    fn error_bar(&self, p: &Point) -> Option<(f64, f64, f64, f64)> {
+        let e = p.err.filter(|e| e.is_finite() && *e > 0.0)?;
+        let lo = if self.y.log && p.y - e <= 0.0 {
+            self.y.lo
+        } else {
+            self.y.clamp(p.y - e)
+        };
+        Some((p.x, lo, p.y, self.y.clamp(p.y + e)))
+    }
+
     /// The drawable parts of a line through `points`: broken where a point cannot be
     /// drawn, clipped to the axes' ranges.
     pub(super) fn polylines(&self, points: &[Point]) -> Vec<Vec<(f64, f64)>> {

@@ -31,7 +31,8 @@ mod draw;
 mod tests;
 mod waterfall;
 
-use self::draw::{draw_figure, Layout};
+pub use self::axes::significant;
+use self::draw::{Layout, Plot};
 pub use self::waterfall::render_waterfall;
 use super::{Axis, Figure, Point, Raster, Side, Style};
 use crate::error::{Error, Result};
@@ -70,23 +71,50 @@ pub fn render(figure: &Figure, dir: &Path) -> Result<Vec<PathBuf>> {
     check_stem("figure name", &figure.name)?;
     ensure_fonts()?;
     let layout = Layout::of(figure)?;
-    let (w, h) = (WIDTH, layout.height());
+    let plot = Plot {
+        figure,
+        layout: &layout,
+    };
+    write_svg_and_png(dir, &figure.name, (WIDTH, layout.height()), &plot)
+}
+
+/// The result of drawing on a backend.
+type DrawResult<DB> =
+    std::result::Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
+
+/// Something drawn by the same code on every backend (SVG and bitmap).
+trait Drawing {
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<DB>;
+}
+
+/// Draws `drawing` on `w x h` pixels to `<name>.svg` and `<name>.png` in `dir`, each
+/// rendered in memory and written atomically; returns the paths.
+fn write_svg_and_png(
+    dir: &Path,
+    name: &str,
+    (w, h): (u32, u32),
+    drawing: &impl Drawing,
+) -> Result<Vec<PathBuf>> {
     let fail = |path: &Path, e: String| Error::bad_file(path, format!("rendering: {e}"));
 
-    let svg_path = dir.join(format!("{}.svg", figure.name));
+    let svg_path = dir.join(format!("{name}.svg"));
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (w, h)).into_drawing_area();
-        draw_figure(&root, figure, &layout).map_err(|e| fail(&svg_path, e.to_string()))?;
+        drawing
+            .draw(&root)
+            .map_err(|e| fail(&svg_path, e.to_string()))?;
         root.present().map_err(|e| fail(&svg_path, e.to_string()))?;
     }
     crate::io::write_atomic(&svg_path, svg.as_bytes())?;
 
-    let png_path = dir.join(format!("{}.png", figure.name));
+    let png_path = dir.join(format!("{name}.png"));
     let mut rgb = vec![255u8; (w * h * 3) as usize];
     {
         let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
-        draw_figure(&root, figure, &layout).map_err(|e| fail(&png_path, e.to_string()))?;
+        drawing
+            .draw(&root)
+            .map_err(|e| fail(&png_path, e.to_string()))?;
         root.present().map_err(|e| fail(&png_path, e.to_string()))?;
     }
     write_png(&png_path, &rgb, w, h)?;

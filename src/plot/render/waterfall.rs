@@ -30,26 +30,23 @@ pub fn render_waterfall(waterfall: &Waterfall, dir: &Path) -> Result<Vec<PathBuf
         WIDTH,
         title_height(title.len()) + panels_h + LEGEND_ROW + 24,
     );
-    let fail = |path: &Path, e: String| Error::bad_file(path, format!("rendering: {e}"));
+    let stack = Stack {
+        waterfall,
+        title: &title,
+    };
+    write_svg_and_png(dir, &waterfall.name, (w, h), &stack)
+}
 
-    let svg_path = dir.join(format!("{}.svg", waterfall.name));
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (w, h)).into_drawing_area();
-        draw(&root, waterfall, &title).map_err(|e| fail(&svg_path, e.to_string()))?;
-        root.present().map_err(|e| fail(&svg_path, e.to_string()))?;
-    }
-    crate::io::write_atomic(&svg_path, svg.as_bytes())?;
+/// A waterfall with its title lines, drawn on any backend.
+struct Stack<'a> {
+    waterfall: &'a Waterfall,
+    title: &'a [String],
+}
 
-    let png_path = dir.join(format!("{}.png", waterfall.name));
-    let mut rgb = vec![255u8; (w * h * 3) as usize];
-    {
-        let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
-        draw(&root, waterfall, &title).map_err(|e| fail(&png_path, e.to_string()))?;
-        root.present().map_err(|e| fail(&png_path, e.to_string()))?;
+impl Drawing for Stack<'_> {
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<DB> {
+        draw(root, self.waterfall, self.title)
     }
-    write_png(&png_path, &rgb, w, h)?;
-    Ok(vec![svg_path, png_path])
 }
 
 fn check_waterfall(w: &Waterfall) -> Result<()> {
@@ -89,7 +86,7 @@ fn draw<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     w: &Waterfall,
     title: &[String],
-) -> std::result::Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+) -> DrawResult<DB> {
     root.fill(&WHITE)?;
     draw_title(root, title)?;
     let (_, rest) = root.split_vertically(title_height(title.len()));

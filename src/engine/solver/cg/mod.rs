@@ -28,7 +28,9 @@
 //! 6. [`Solve::refresh`]: `u` and the rigid shift `gbar` of the new pressure.
 //!
 //! Between steps 1 and 2, [`Solve::stalled`] and [`Solve::check`] decide whether the
-//! solve stops (see "Stopping" below).
+//! solve stops (see "Stopping" below). The executor
+//! ([`crate::engine::solver::executor`]) runs these steps: step 1 is the measure, the two
+//! checks the judgement, steps 2 to 6 the step, and [`Solve::conclude`] the termination.
 //!
 //! Preconditioning (on by default; Vollebregt, J. Comput. Phys. 257, 333 (2014)): the
 //! Hessian of the complementary energy is the compliance `K^-1`, whose condition number
@@ -39,14 +41,15 @@
 //!
 //! The displacement is updated incrementally, `u <- u - tau r`, which is exact as long as
 //! step 4 clips nothing and adds nothing; otherwise `u = K^-1 p` is recomputed. `u`
-//! is also recomputed every [`ConstrainedCg::refresh_every`] iterations and before the
-//! final residual, so rounding in the incremental update never reaches a result. In a
-//! warm solve points enter or leave at nearly every iteration, so after an update that
-//! changed the contact set the next one recomputes `u` whatever happens: its update of `p`
-//! is the input pass of the convolution `K^-1 p` (no incremental update, and no separate
-//! sweep over `p`; the guess costs a transform when it is wrong, once per solve or so). The
-//! load rescaling of step 5 is applied lazily (a scale factor read with `p` and `u`), and
-//! the rigid shift of the next iteration is summed in the same sweep that updates `p`.
+//! is also recomputed every [`ConstrainedCg::refresh_every`] ([`REFRESH_EVERY`])
+//! iterations and before the final residual, so rounding in the incremental update never
+//! reaches a result. In a warm solve points enter or leave at nearly every iteration, so
+//! after an update that changed the contact set the next one recomputes `u` whatever
+//! happens: its update of `p` is the input pass of the convolution `K^-1 p` (no
+//! incremental update, and no separate sweep over `p`; the guess costs a transform when it
+//! is wrong, once per solve or so). The load rescaling of step 5 is applied lazily (a
+//! scale factor read with `p` and `u`), and the rigid shift of the next iteration is
+//! summed in the same sweep that updates `p`.
 //!
 //! A cold start (`p = p0` everywhere) needs no transform: a uniform pressure displaces
 //! nothing, `u = 0`. The number of points in contact comes from the sweep that updates `p`.
@@ -76,168 +79,119 @@
 //! update into the recomputation of `u` saves about four passes over a field per
 //! iteration, with the same iterations.
 
-use std::time::Instant;
-
+use rayon::prelude::*;
 use rustfft::num_complex::Complex64;
 
-use super::ensure_len;
-use crate::engine::contact::{ContactProblem, ContactSolution, Residual, SolveStats};
-use crate::engine::field::{fold_chunks, CHUNK};
-use crate::engine::solver::{Progress, SolveOptions, Solver, Start};
-use crate::error::{Error, Result, Termination};
-use rayon::prelude::*;
+use crate::engine::contact::{ContactProblem, ContactSolution};
+use crate::engine::field::add_all;
+use crate::engine::solver::executor::{Iteration, Method, Verdict};
+use crate::engine::solver::workspace::{warm_start, Record, Workspace};
+use crate::engine::solver::{SolveOptions, Start};
+use crate::error::{Result, Termination};
 
+mod stopping;
 mod sums;
+mod update;
 
-use self::sums::{add_all, contact_sums, Direction, Gap, GapSums, Step, Update, View};
+use self::stopping::Stopping;
+use self::sums::{Direction, Frame, Gap, GapSums, Step, View};
+
+/// Recompute `u = K^-1 p` from scratch at least this often (iterations): a safeguard
+/// against rounding in the incremental update `u <- u - tau r`, not a tuned value (a warm
+/// solve recomputes `u` at nearly every iteration anyway, and every final residual is
+/// taken after a recomputation).
+pub const REFRESH_EVERY: usize = 50;
+/// Iterations without halving the residual estimate after which a preconditioned solve
+/// continues unpreconditioned, and after which an unpreconditioned solve whose estimate
+/// is already below the tolerance gives up (see "Stopping" in the module docs): iterating
+/// on at rounding level only lets the conjugate directions drift away from the solution.
+/// A safeguard, not a tuned value.
+pub const STAGNATION: usize = 200;
+/// Polonsky & Keer reset conjugacy whenever a point enters contact. Late in a solve a few
+/// points enter or leave at every iteration, so that rule turns CG into steepest descent;
+/// resetting only when more than this fraction of the contact set enters keeps the
+/// conjugate directions through those small changes (the README's measured section:
+/// 83 -> 50 iterations at 1024^2; 0 restores the original rule).
+pub const KEEP_CONJUGACY: f64 = 0.01;
 
 /// Constrained conjugate-gradient solver with its work buffers.
 #[derive(Debug, Clone)]
 pub struct ConstrainedCg {
     /// Recompute `u = K^-1 p` from scratch at least this often (iterations).
     pub refresh_every: usize,
-    /// Precondition the gap with the stiffness `K` (one more FFT pair per iteration).
+    /// Precondition the gap with the stiffness `K` (one more FFT pair per iteration; the
+    /// README's measured section: 104 -> 37 iterations at 256^2, 488 -> 85 at 1024^2).
     pub preconditioned: bool,
-    p: Vec<f64>,
-    u: Vec<f64>,
-    t: Vec<f64>,
-    r: Vec<f64>,
-    spec: Vec<Complex64>,
+    /// `p`, `u`, `t` and `r` (see [`Solve`]) and a half spectrum.
+    work: Workspace<4>,
 }
 
 impl Default for ConstrainedCg {
     fn default() -> Self {
         Self {
-            refresh_every: 50,
+            refresh_every: REFRESH_EVERY,
             preconditioned: true,
-            p: Vec::new(),
-            u: Vec::new(),
-            t: Vec::new(),
-            r: Vec::new(),
-            spec: Vec::new(),
+            work: Workspace::default(),
         }
     }
 }
 
-const NAME: &str = "cg";
-/// Iterations without halving the residual estimate after which a preconditioned solve
-/// continues unpreconditioned, and after which an unpreconditioned solve whose estimate
-/// is already below the tolerance gives up (see "Stopping" in the module docs): iterating
-/// on at rounding level only lets the conjugate directions drift away from the solution.
-const STAGNATION: usize = 200;
-/// Polonsky & Keer reset conjugacy whenever a point enters contact. Late in a solve a few
-/// points enter or leave at every iteration, so that rule turns CG into steepest descent;
-/// resetting only when more than this fraction of the contact set enters keeps the
-/// conjugate directions through those small changes (fewer iterations: the README's
-/// measured section; 0 restores the original rule).
-const KEEP_CONJUGACY: f64 = 0.01;
+impl Method for ConstrainedCg {
+    const NAME: &'static str = "cg";
+    type Solve<'a> = Solve<'a>;
 
-impl ConstrainedCg {
-    /// Solves `problem` from `start`: the steps of the module docs, until the residual is
-    /// below the tolerance, the budget is spent, or the solve stalls.
-    fn run(
-        &mut self,
-        problem: &ContactProblem,
+    fn init<'a>(
+        &'a mut self,
+        problem: &'a ContactProblem<'a>,
         start: Start,
         opts: &SolveOptions,
-        monitor: &mut dyn FnMut(Progress),
-    ) -> Result<ContactSolution> {
-        opts.validate()?;
-        let mut solve = Solve::start(self, problem, start, opts.tol)?;
-        let mut stop = (opts.max_iter, Termination::BudgetExhausted);
-        for it in 0..opts.max_iter {
-            let gap = solve.gap(it)?;
-            monitor(Progress {
-                iteration: it,
-                residual: gap.estimate,
-            });
-            if solve.stalled(it, gap.estimate) {
-                stop = (it, Termination::Stalled);
-                break;
-            }
-            match solve.check(it, gap.estimate) {
-                Check::Converged(solution) => return Ok(solution),
-                Check::Retry => continue,
-                Check::Iterate => {}
-            }
-            let direction = solve.direction(&gap);
-            let Some(step) = solve.step_length(it, &gap, &direction)? else {
-                continue; // conjugacy reset: the next iteration starts along the gap
-            };
-            let update = solve.update(step);
-            solve.restore_load(it, &update)?;
-            solve.refresh(&update);
-        }
-        solve.conclude(stop)
+    ) -> Result<Solve<'a>> {
+        Solve::start(self, problem, start, opts.tol)
     }
 }
 
-/// The error of a solve that met a non-finite `what` at iteration `iteration`.
-fn non_finite(what: &'static str, iteration: usize) -> Error {
-    Error::NonFinite {
-        solver: NAME,
-        what,
-        iteration,
-    }
-}
+impl Iteration for Solve<'_> {
+    type Measure = Gap;
 
-/// What [`Solve::check`] found.
-enum Check {
-    /// Not converged: go on with this iteration.
-    Iterate,
-    /// `u` was recomputed and the estimate no longer holds: start the next iteration.
-    Retry,
-    /// The full residual is below the tolerance.
-    Converged(ContactSolution),
-}
-
-/// The stopping bookkeeping of a solve (see "Stopping" in the module docs).
-#[derive(Debug, Clone, Copy)]
-struct Stopping {
-    /// The requested tolerance of the full residual.
-    tol: f64,
-    /// The estimate's target: the tolerance, lowered each time the full residual fails.
-    target: f64,
-    /// The lowest estimate that halved the one before, and its iteration.
-    best: f64,
-    best_at: usize,
-    /// Smallest full residual evaluated.
-    reached: f64,
-}
-
-impl Stopping {
-    fn new(tol: f64) -> Self {
-        Self {
-            tol,
-            target: tol,
-            best: f64::INFINITY,
-            best_at: 0,
-            reached: f64::INFINITY,
-        }
+    fn measure(&mut self, it: usize) -> Result<Gap> {
+        self.gap(it)
     }
 
-    /// Records the estimate of iteration `it`; true when it has not halved for
-    /// [`STAGNATION`] iterations.
-    fn stagnant(&mut self, it: usize, estimate: f64) -> bool {
-        if estimate < 0.5 * self.best {
-            self.best = estimate;
-            self.best_at = it;
-            false
-        } else {
-            it - self.best_at > STAGNATION
+    fn estimate(gap: &Gap) -> f64 {
+        gap.estimate
+    }
+
+    fn judge(&mut self, it: usize, gap: &Gap) -> Verdict {
+        if self.stalled(it, gap.estimate) {
+            return Verdict::Stopped(Termination::Stalled);
         }
+        self.check(it, gap.estimate)
+    }
+
+    fn step(&mut self, it: usize, gap: Gap) -> Result<Option<Termination>> {
+        let direction = self.direction(&gap);
+        let Some(step) = self.step_length(it, &gap, &direction)? else {
+            return Ok(None); // conjugacy reset: the next iteration starts along the gap
+        };
+        let update = self.update(step);
+        self.restore_load(it, &update)?;
+        self.refresh(&update);
+        Ok(None)
+    }
+
+    fn terminate(self, iterations: usize, reason: Termination) -> Result<ContactSolution> {
+        self.conclude(iterations, reason)
     }
 }
 
 /// The state of one solve: the fields (in the solver's buffers), with the load scale and
 /// the rigid shift they are read with, the conjugate-gradient recurrence, and when `u`
 /// was last recomputed.
-struct Solve<'a> {
+pub struct Solve<'a> {
     problem: &'a ContactProblem<'a>,
     refresh_every: usize,
-    warm: bool,
-    timer: Instant,
-    /// The pressure as stored: the true pressure is `scale p`.
+    record: Record,
+    /// The pressure as stored: the true pressure is `scale p` ([`Frame`]).
     p: &'a mut Vec<f64>,
     /// The displacement `K^-1 p` of the stored pressure (the true one is `scale u`).
     u: &'a mut Vec<f64>,
@@ -246,10 +200,9 @@ struct Solve<'a> {
     /// `r = K^-1 t`; the preconditioned gap `z` before it.
     r: &'a mut Vec<f64>,
     spec: &'a mut Vec<Complex64>,
-    /// The load scale that makes `mean(scale p) = p0`.
-    scale: f64,
-    /// The rigid shift `gbar = mean_Ic (scale u - h)`.
-    gbar: f64,
+    /// The load scale that makes `mean(scale p) = p0`, and the rigid shift
+    /// `gbar = mean_Ic (scale u - h)`.
+    frame: Frame,
     /// The number of points in contact, `|Ic|`.
     n_c: f64,
     /// `G` of the last direction.
@@ -276,53 +229,41 @@ impl<'a> Solve<'a> {
         start: Start,
         tol: f64,
     ) -> Result<Self> {
-        let timer = Instant::now();
-        let model = problem.model;
-        let n2 = model.grid.points();
+        let record = Record::begin(ConstrainedCg::NAME, matches!(start, Start::Warm(_)));
+        let grid = &problem.model.grid;
+        let n2 = grid.points();
         let p0 = problem.p0;
-        ensure_len(&mut cg.p, n2);
-        ensure_len(&mut cg.u, n2);
-        ensure_len(&mut cg.t, n2);
-        ensure_len(&mut cg.r, n2);
-        ensure_len(&mut cg.spec, model.grid.modes());
-
-        let warm = matches!(start, Start::Warm(_));
-        match start {
-            Start::Cold => {
-                cg.p.fill(p0);
-                cg.u.fill(0.0);
+        let prev = warm_start(start, grid)?;
+        let (spec, [p, u, t, r]) = cg.work.on(grid);
+        match prev {
+            None => {
+                p.fill(p0);
+                u.fill(0.0);
             }
-            Start::Warm(prev) => {
-                if prev.pressure.len() != n2 {
-                    return Err(Error::invalid(
-                        "warm start",
-                        format!("{} points", prev.pressure.len()),
-                        format!("a solution on the same grid ({n2} points)"),
-                    ));
-                }
-                cg.p.par_iter_mut()
+            Some(prev) => {
+                p.par_iter_mut()
                     .zip(&prev.pressure)
                     .for_each(|(p, &q)| *p = q.max(0.0));
-                let mean = crate::engine::field::mean(&cg.p);
+                let mean = crate::engine::field::mean(p);
                 if !(mean > 0.0 && mean.is_finite()) {
-                    cg.p.fill(p0);
+                    p.fill(p0);
                 }
             }
         }
         let mut solve = Solve {
             problem,
             refresh_every: cg.refresh_every,
-            warm,
-            timer,
-            // The load scale that makes mean(p) = p0.
-            scale: p0 / crate::engine::field::mean(&cg.p),
-            p: &mut cg.p,
-            u: &mut cg.u,
-            t: &mut cg.t,
-            r: &mut cg.r,
-            spec: &mut cg.spec,
-            // Set below.
-            gbar: f64::NAN,
+            record,
+            // The load scale that makes mean(p) = p0; the rigid shift is set below.
+            frame: Frame {
+                scale: p0 / crate::engine::field::mean(p),
+                gbar: f64::NAN,
+            },
+            p,
+            u,
+            t,
+            r,
+            spec,
             n_c: 0.0,
             rho_old: 1.0,
             conjugate: false,
@@ -334,10 +275,10 @@ impl<'a> Solve<'a> {
         };
         // Points in contact, and the rigid shift. A uniform pressure displaces nothing (the
         // compliance has no q = 0 mode): a cold start needs no transform.
-        if warm {
+        if prev.is_some() {
             solve.exact_displacement();
         } else {
-            solve.gbar = -crate::engine::field::mean(problem.heights);
+            solve.frame.gbar = -crate::engine::field::mean(problem.heights);
             solve.n_c = n2 as f64;
         }
         solve.t.fill(0.0);
@@ -348,19 +289,13 @@ impl<'a> Solve<'a> {
     /// gap `z = K g` (in `r`; `z = g` without preconditioning), and
     /// `G = sum_Ic g z` (`sum_Ic g^2` without preconditioning) and `sum_Ic z`.
     fn gap(&mut self, it: usize) -> Result<Gap> {
-        if !self.gbar.is_finite() || !self.scale.is_finite() {
-            return Err(non_finite("gap", it));
+        if !self.frame.gbar.is_finite() || !self.frame.scale.is_finite() {
+            return Err(self.record.non_finite("gap", it));
         }
         let problem = self.problem;
         let model = problem.model;
         let n = model.grid.n();
-        let view = View::new(
-            &self.p[..],
-            &self.u[..],
-            problem.heights,
-            self.scale,
-            self.gbar,
-        );
+        let view = View::new(&self.p[..], &self.u[..], problem.heights, self.frame);
         let (sums, sz, rho) = if self.precond {
             let (rows, outs) = model.fft.convolve(
                 &model.stiffness,
@@ -372,12 +307,12 @@ impl<'a> Solve<'a> {
                 &mut self.r[..],
                 |i, z, _| {
                     let (p, u, h) = view.row(i, n);
-                    let (s, gbar) = (view.scale, view.gbar);
+                    let frame = view.frame;
                     let (mut sz, mut gz) = (0.0, 0.0);
                     for (((&zk, &pk), &uk), &hk) in z.iter().zip(p).zip(u).zip(h) {
                         let zm = if pk > 0.0 { zk } else { 0.0 };
                         sz += zm;
-                        gz += (s * uk - hk - gbar) * zm;
+                        gz += frame.gap(uk, hk) * zm;
                     }
                     [sz, gz]
                 },
@@ -390,7 +325,7 @@ impl<'a> Solve<'a> {
             (sums, 0.0, sums.gg)
         };
         if !(sums.gg.is_finite() && rho.is_finite()) {
-            return Err(non_finite("gap", it));
+            return Err(self.record.non_finite("gap", it));
         }
         Ok(Gap {
             sums,
@@ -398,54 +333,6 @@ impl<'a> Solve<'a> {
             rho,
             estimate: sums.estimate(problem.length_scale),
         })
-    }
-
-    /// The safeguard of "Stopping": when the estimate stops improving, a preconditioned
-    /// solve goes on with plain Polonsky-Keer, which always converges (slowly); an
-    /// unpreconditioned one whose full residual has already failed has stalled (true).
-    fn stalled(&mut self, it: usize, estimate: f64) -> bool {
-        if !self.stopping.stagnant(it, estimate) {
-            return false;
-        }
-        if self.precond {
-            self.precond = false;
-            self.conjugate = false;
-            self.stopping.best_at = it;
-            false
-        } else {
-            self.stopping.target < self.stopping.tol
-        }
-    }
-
-    /// The convergence check of "Stopping": when the estimate is below its target, `u`
-    /// is made exact and, if the estimate still holds, the full residual is evaluated;
-    /// if that fails, the target is lowered and the iteration goes on.
-    fn check(&mut self, it: usize, estimate: f64) -> Check {
-        if estimate <= self.stopping.target {
-            if !self.exact {
-                self.exact_displacement();
-                // The estimate of the exact state, without the preconditioner's
-                // transforms: if it still holds, the solve is done.
-                let view = View::new(
-                    &self.p[..],
-                    &self.u[..],
-                    self.problem.heights,
-                    self.scale,
-                    self.gbar,
-                );
-                if view.gap_sums().estimate(self.problem.length_scale) > self.stopping.target {
-                    return Check::Retry;
-                }
-            }
-            let solution = self.finish(it);
-            if solution.stats.residual.value() <= self.stopping.tol {
-                return Check::Converged(solution);
-            }
-            self.stopping.reached = self.stopping.reached.min(solution.stats.residual.value());
-            self.stopping.target *= 0.25;
-            self.resume(solution);
-        }
-        Check::Iterate
     }
 
     /// Step 2: the search direction `t = (z - zbar) + delta (G / G_old) t` on `Ic`, 0
@@ -464,20 +351,14 @@ impl<'a> Solve<'a> {
             0.0
         };
         self.rho_old = gap.rho;
-        let view = View::new(
-            &self.p[..],
-            &self.u[..],
-            problem.heights,
-            self.scale,
-            self.gbar,
-        );
+        let view = View::new(&self.p[..], &self.u[..], problem.heights, self.frame);
         let (_, outs) = model.fft.convolve(
             &model.compliance,
             &mut self.spec[..],
             Some(&mut self.t[..]),
             |i, row, t, z| {
                 let (p, u, h) = view.row(i, n);
-                let (s, gbar) = (view.scale, view.gbar);
+                let frame = view.frame;
                 if precond {
                     for (((x, tk), &zk), &pk) in row.iter_mut().zip(t.iter_mut()).zip(z).zip(p) {
                         let d = zk - zbar + beta * *tk;
@@ -488,7 +369,7 @@ impl<'a> Solve<'a> {
                     for ((((x, tk), &pk), &uk), &hk) in
                         row.iter_mut().zip(t.iter_mut()).zip(p).zip(u).zip(h)
                     {
-                        let d = s * uk - hk - gbar + beta * *tk;
+                        let d = frame.gap(uk, hk) + beta * *tk;
                         *tk = if pk > 0.0 { d } else { 0.0 };
                         *x = *tk;
                     }
@@ -497,13 +378,13 @@ impl<'a> Solve<'a> {
             &mut self.r[..],
             |i, r, t| {
                 let (p, u, h) = view.row(i, n);
-                let (s, gbar) = (view.scale, view.gbar);
+                let frame = view.frame;
                 let (mut sr, mut st, mut gt, mut rt) = (0.0, 0.0, 0.0, 0.0);
                 // t = 0 outside contact: only the sum of r needs a mask.
                 for ((((&rk, &tk), &pk), &uk), &hk) in r.iter().zip(t).zip(p).zip(u).zip(h) {
                     sr += if pk > 0.0 { rk } else { 0.0 };
                     st += tk;
-                    gt += (s * uk - hk - gbar) * tk;
+                    gt += frame.gap(uk, hk) * tk;
                     rt += rk * tk;
                 }
                 [sr, st, gt, rt]
@@ -529,7 +410,7 @@ impl<'a> Solve<'a> {
             // point), so t = 0 and the step length is 0/0: the contact set is at rest
             // and only penetrating points can move the solve on. They enter with the
             // pressure that would lift a lone point by its penetration.
-            (0.0, 1.0 / point_compliance(self.problem.model))
+            (0.0, 1.0 / self.problem.model.point_compliance())
         } else {
             let denom = dir.rt - dir.sum_r / self.n_c * dir.sum_t;
             let tau = dir.gt / denom;
@@ -538,7 +419,7 @@ impl<'a> Solve<'a> {
                     self.conjugate = false;
                     return Ok(None);
                 }
-                return Err(non_finite("step length", it));
+                return Err(self.record.non_finite("step length", it));
             }
             // Gap-to-pressure conversion for entering points: the stiffness the
             // preconditioner applied (the Rayleigh quotient g.z / g.g), or 1.
@@ -550,275 +431,9 @@ impl<'a> Solve<'a> {
             (tau, tau * stiffness)
         };
         Ok(Some(Step {
-            scale: self.scale,
-            gbar: self.gbar,
+            frame: self.frame,
             tau,
             admit,
         }))
-    }
-
-    /// Step 4: `p <- max(p - tau t, 0)` on `Ic`, `p <- -admit g` where `p = 0` and
-    /// `g < 0`, counting the points clipped and entered, with the sums the next rigid
-    /// shift needs (`sum_Ic u`, `sum_Ic h` and `|Ic|` of the new contact set). Conjugacy
-    /// survives when few points entered (see [`KEEP_CONJUGACY`]), and never a step
-    /// without a direction (`G = 0` would make the next `beta` `0/0`).
-    ///
-    /// When the last update changed the contact set, this one most likely will too
-    /// (points enter or leave at nearly every iteration of a warm solve): the update then
-    /// generates the new pressure as the input of the convolution `u = K^-1 p`
-    /// ([`Self::update_fused`]); otherwise `u` is updated incrementally
-    /// ([`Self::update_incremental`]).
-    fn update(&mut self, step: Step) -> Update {
-        let update = if self.set_changed {
-            self.update_fused(step)
-        } else {
-            self.update_incremental(step)
-        };
-        self.conjugate = step.tau != 0.0 && update.entered <= KEEP_CONJUGACY * update.cnt;
-        update
-    }
-
-    /// Step 4 as the input pass of `u = K^-1 p` (of the stored, unscaled pressure).
-    fn update_fused(&mut self, step: Step) -> Update {
-        let problem = self.problem;
-        let model = problem.model;
-        let n = model.grid.n();
-        let h = problem.heights;
-        let t = &self.t[..];
-        let (rows, outs) = model.fft.convolve(
-            &model.compliance,
-            &mut self.spec[..],
-            Some(&mut self.p[..]),
-            |i, row, pr, ur| {
-                let rg = i * n..(i + 1) * n;
-                let mut acc = [0.0; 3];
-                for ((((x, pk), &uk), &tk), &hk) in row
-                    .iter_mut()
-                    .zip(pr.iter_mut())
-                    .zip(ur)
-                    .zip(&t[rg.clone()])
-                    .zip(&h[rg])
-                {
-                    let (q, clip, enter) = step.point(*pk, uk, hk, tk);
-                    *pk = q;
-                    *x = q;
-                    acc[0] += q;
-                    acc[1] += clip;
-                    acc[2] += enter;
-                }
-                acc
-            },
-            &mut self.u[..],
-            |i, u, p| contact_sums(u, p, &h[i * n..(i + 1) * n]),
-        );
-        let [sum_p, clipped, entered] = add_all(rows);
-        let [su, sh, cnt] = add_all(outs);
-        Update {
-            sum_p,
-            clipped,
-            entered,
-            su,
-            sh,
-            cnt,
-        }
-    }
-
-    /// Step 4 in one sweep with the incremental update of the displacement,
-    /// `u <- scale u - tau r` (exact while no point is clipped or enters).
-    fn update_incremental(&mut self, step: Step) -> Update {
-        let h = self.problem.heights;
-        let (t, r) = (&self.t[..], &self.r[..]);
-        let (scale, tau) = (step.scale, step.tau);
-        let parts: Vec<[f64; 6]> = self
-            .p
-            .par_chunks_mut(CHUNK)
-            .zip(self.u.par_chunks_mut(CHUNK))
-            .enumerate()
-            .map(|(c, (pc, uc))| {
-                let range = c * CHUNK..c * CHUNK + pc.len();
-                let (t, r, h) = (&t[range.clone()], &r[range.clone()], &h[range]);
-                let mut acc = [0.0; 6];
-                for ((((pk, uk), &tk), &rk), &hk) in
-                    pc.iter_mut().zip(uc.iter_mut()).zip(t).zip(r).zip(h)
-                {
-                    let (q, clip, enter) = step.point(*pk, *uk, hk, tk);
-                    let u_new = scale * *uk - tau * rk;
-                    *pk = q;
-                    *uk = u_new;
-                    let w = if q > 0.0 { 1.0 } else { 0.0 };
-                    acc[0] += q;
-                    acc[1] += clip;
-                    acc[2] += enter;
-                    acc[3] += w * u_new;
-                    acc[4] += w * hk;
-                    acc[5] += w;
-                }
-                acc
-            })
-            .collect();
-        let [sum_p, clipped, entered, su, sh, cnt] = add_all(parts);
-        Update {
-            sum_p,
-            clipped,
-            entered,
-            su,
-            sh,
-            cnt,
-        }
-    }
-
-    /// Step 5: the load, `p <- p p0 / mean(p)`, applied lazily as the load scale.
-    fn restore_load(&mut self, it: usize, update: &Update) -> Result<()> {
-        let problem = self.problem;
-        self.scale = problem.p0 * problem.model.grid.points() as f64 / update.sum_p;
-        if !self.scale.is_finite() || update.cnt == 0.0 {
-            return Err(non_finite("pressure", it));
-        }
-        Ok(())
-    }
-
-    /// Step 6: the displacement and the rigid shift `gbar = mean_Ic (u - h)` of the new
-    /// pressure. After a fused update `u = K^-1 p` is exact already; after an
-    /// incremental one it is recomputed when the contact set changed or every
-    /// [`ConstrainedCg::refresh_every`] iterations, and otherwise kept.
-    fn refresh(&mut self, update: &Update) {
-        let Update { su, sh, cnt, .. } = *update;
-        self.since_refresh += 1;
-        self.n_c = cnt;
-        let fused = self.set_changed;
-        self.set_changed = update.clipped + update.entered > 0.0;
-        if fused {
-            // u = K^-1 p of the stored (unscaled) pressure: the scale applies to both.
-            self.gbar = (self.scale * su - sh) / cnt;
-            self.exact = true;
-            self.since_refresh = 0;
-        } else if self.set_changed || self.since_refresh >= self.refresh_every {
-            self.exact_displacement();
-        } else {
-            self.gbar = (self.scale * su - sh) / cnt;
-            self.exact = false;
-        }
-    }
-
-    /// Applies the load scale to `p` (leaving `scale = 1`), recomputes `u = K^-1 p`, the
-    /// rigid shift `gbar = mean_Ic (u - h)` and the number of points in contact: the
-    /// state is exact.
-    fn exact_displacement(&mut self) {
-        let problem = self.problem;
-        let model = problem.model;
-        let n = model.grid.n();
-        let h = problem.heights;
-        let s = self.scale;
-        let (_, outs) = model.fft.convolve(
-            &model.compliance,
-            &mut self.spec[..],
-            Some(&mut self.p[..]),
-            |_, row, p, _| {
-                for (x, pj) in row.iter_mut().zip(p.iter_mut()) {
-                    *pj *= s;
-                    *x = *pj;
-                }
-            },
-            &mut self.u[..],
-            |i, u, p| contact_sums(u, p, &h[i * n..(i + 1) * n]),
-        );
-        self.scale = 1.0;
-        let [su, sh, cnt] = add_all(outs);
-        self.gbar = if cnt > 0.0 { (su - sh) / cnt } else { f64::NAN };
-        self.n_c = cnt;
-        self.exact = true;
-        self.since_refresh = 0;
-    }
-
-    /// Packs the current state into a solution with its residual, moving `p` and `u`
-    /// into it.
-    fn finish(&mut self, iterations: usize) -> ContactSolution {
-        let problem = self.problem;
-        let (scale, gbar) = (self.scale, self.gbar);
-        // The solution takes the solver's buffers rather than copying them (16 bytes per
-        // point at the peak); `resume` hands them back when the solve must go on.
-        let mut pressure = std::mem::take(&mut *self.p);
-        let mut displacement = std::mem::take(&mut *self.u);
-        pressure.par_iter_mut().for_each(|p| *p *= scale);
-        displacement
-            .par_iter_mut()
-            .for_each(|u| *u = scale * *u - gbar);
-        let residual = Residual::evaluate(
-            problem,
-            &pressure,
-            &displacement,
-            &mut *self.spec,
-            &mut *self.r,
-        );
-        ContactSolution {
-            pressure,
-            displacement,
-            p0: problem.p0,
-            stats: SolveStats {
-                solver: NAME,
-                iterations,
-                residual,
-                wall_s: self.timer.elapsed().as_secs_f64(),
-                warm: self.warm,
-            },
-        }
-    }
-
-    /// Takes back the buffers of a [`Self::finish`]ed state to iterate on (the load scale
-    /// is then 1, and the rigid shift the one it was packed with).
-    fn resume(&mut self, solution: ContactSolution) {
-        *self.p = solution.pressure;
-        *self.u = solution.displacement;
-        let gbar = self.gbar;
-        self.u.par_iter_mut().for_each(|u| *u += gbar);
-        self.scale = 1.0;
-    }
-
-    /// The end of a solve whose loop ended at iteration `spent` for `reason` (budget
-    /// exhausted or stalled): the last step may have converged; if not, the error reports
-    /// the smallest residual reached, the exact state's or an earlier one's.
-    fn conclude(mut self, (spent, reason): (usize, Termination)) -> Result<ContactSolution> {
-        self.exact_displacement();
-        let solution = self.finish(spent);
-        let residual = solution.stats.residual.value();
-        if residual <= self.stopping.tol {
-            return Ok(solution);
-        }
-        Err(Error::NotConverged {
-            solver: NAME,
-            reason,
-            iterations: spent,
-            residual: residual.min(self.stopping.reached),
-            tol: self.stopping.tol,
-        })
-    }
-}
-
-/// The displacement of a point under unit pressure on that point alone,
-/// `N^-2 sum_q 2 / (q E*)` (the diagonal of the compliance in real space).
-fn point_compliance(model: &crate::engine::contact::Model) -> f64 {
-    let grid = &model.grid;
-    let sum: f64 = model
-        .halfspace
-        .compliance()
-        .enumerate()
-        .map(|(s, c)| grid.weight_of(s) * c)
-        .sum();
-    sum / grid.points() as f64
-}
-
-impl Solver for ConstrainedCg {
-    fn name(&self) -> &'static str {
-        NAME
-    }
-
-    fn solve_monitored(
-        &mut self,
-        problem: &ContactProblem,
-        start: Start,
-        opts: &SolveOptions,
-        monitor: &mut dyn FnMut(Progress),
-    ) -> Result<ContactSolution> {
-        self.run(problem, start, opts, monitor)
     }
 }

@@ -1,11 +1,34 @@
 //! The sums one CG iteration takes over its fields, row by row as the transforms read and
 //! write them: the gap's sums, the direction's, the update's, the update of one point, and
-//! a view of the fields.
+//! a view of the fields with the frame they are read in.
 
-use super::*;
+use crate::engine::contact::{gap, Residual};
+use crate::engine::field::fold_chunks;
+
+/// How the stored fields read: the true pressure is `scale p` and the gap
+/// `g = (scale u - h) - gbar`, the load scale applied lazily and `gbar` the rigid shift.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Frame {
+    pub(super) scale: f64,
+    pub(super) gbar: f64,
+}
+
+impl Frame {
+    /// The true pressure of the stored `p`.
+    #[inline]
+    pub(super) fn pressure(&self, p: f64) -> f64 {
+        self.scale * p
+    }
+
+    /// The gap ([`gap`]) of the stored displacement `u` over the height `h`.
+    #[inline]
+    pub(super) fn gap(&self, u: f64, h: f64) -> f64 {
+        gap(self.scale * u, h) - self.gbar
+    }
+}
 
 /// Sums over the gap: `sum_Ic g^2`, `sum_Ic p |g|`, `sum_Ic p`, and the largest
-/// penetration `max(-g)`.
+/// penetration `max(-g)` (0 when nothing penetrates).
 #[derive(Debug, Clone, Copy, Default)]
 pub(super) struct GapSums {
     pub(super) gg: f64,
@@ -15,9 +38,11 @@ pub(super) struct GapSums {
 }
 
 impl GapSums {
-    /// The residual estimate the iteration watches: complementarity and penetration.
+    /// The residual estimate the iteration watches: the complementarity and penetration
+    /// components of the [`Residual`].
     pub(super) fn estimate(&self, ell: f64) -> f64 {
-        (self.pg / (ell * self.sp)).max(self.pen / ell)
+        Residual::complementarity_of(self.pg, self.sp, ell)
+            .max(Residual::penetration_of(self.pen, ell))
     }
 
     pub(super) fn add(self, o: Self) -> Self {
@@ -32,7 +57,7 @@ impl GapSums {
 
 /// What step 1 ([`super::Solve::gap`]) found.
 #[derive(Debug, Clone, Copy)]
-pub(super) struct Gap {
+pub struct Gap {
     /// The gap's sums.
     pub(super) sums: GapSums,
     /// `sum_Ic z` (0 without preconditioning).
@@ -71,11 +96,25 @@ pub(super) struct Update {
     pub(super) cnt: f64,
 }
 
-/// The update of one point (step 4), read with the lazy load scale.
+impl Update {
+    /// The update from its sums over the pressure (`sum p`, points clipped, points
+    /// entered) and over the new contact set (`sum_Ic u`, `sum_Ic h`, `|Ic|`).
+    pub(super) fn new([sum_p, clipped, entered]: [f64; 3], [su, sh, cnt]: [f64; 3]) -> Self {
+        Self {
+            sum_p,
+            clipped,
+            entered,
+            su,
+            sh,
+            cnt,
+        }
+    }
+}
+
+/// The update of one point (step 4), read in the frame of the fields.
 #[derive(Clone, Copy)]
 pub(super) struct Step {
-    pub(super) scale: f64,
-    pub(super) gbar: f64,
+    pub(super) frame: Frame,
     pub(super) tau: f64,
     /// Pressure per unit penetration given to points entering contact.
     pub(super) admit: f64,
@@ -87,8 +126,8 @@ impl Step {
     /// (as 0 or 1).
     #[inline]
     pub(super) fn point(&self, p: f64, u: f64, h: f64, t: f64) -> (f64, f64, f64) {
-        let p_true = self.scale * p;
-        let g = self.scale * u - h - self.gbar;
+        let p_true = self.frame.pressure(p);
+        let g = self.frame.gap(u, h);
         let stepped = p_true - self.tau * t;
         let was_in = p_true > 0.0;
         let q = if was_in {
@@ -119,37 +158,18 @@ pub(super) fn contact_sums(u: &[f64], p: &[f64], h: &[f64]) -> [f64; 3] {
     acc
 }
 
-/// Adds `K`-vectors of partial sums in order.
-pub(super) fn add_all<const K: usize>(parts: impl IntoIterator<Item = [f64; K]>) -> [f64; K] {
-    let mut acc = [0.0; K];
-    for part in parts {
-        for (a, v) in acc.iter_mut().zip(part) {
-            *a += v;
-        }
-    }
-    acc
-}
-
-/// The fields of the iteration, read with the lazy load scale: true `p = scale p_s` and
-/// `u = scale u_s`.
+/// The fields of the iteration with the heights, read in their [`Frame`].
 #[derive(Clone, Copy)]
 pub(super) struct View<'a> {
     pub(super) p: &'a [f64],
     pub(super) u: &'a [f64],
     pub(super) h: &'a [f64],
-    pub(super) scale: f64,
-    pub(super) gbar: f64,
+    pub(super) frame: Frame,
 }
 
 impl<'a> View<'a> {
-    pub(super) fn new(p: &'a [f64], u: &'a [f64], h: &'a [f64], scale: f64, gbar: f64) -> Self {
-        Self {
-            p,
-            u,
-            h,
-            scale,
-            gbar,
-        }
+    pub(super) fn new(p: &'a [f64], u: &'a [f64], h: &'a [f64], frame: Frame) -> Self {
+        Self { p, u, h, frame }
     }
 
     /// Row `i` (of length `n`) of `p`, `u` and `h`.
@@ -166,7 +186,7 @@ impl<'a> View<'a> {
         range: std::ops::Range<usize>,
         out: Option<&mut [f64]>,
     ) -> GapSums {
-        let (s, gbar) = (self.scale, self.gbar);
+        let frame = self.frame;
         let (p, u, h) = (
             &self.p[range.clone()],
             &self.u[range.clone()],
@@ -175,8 +195,8 @@ impl<'a> View<'a> {
         let mut acc = [0.0f64; 3];
         let mut pen = f64::NEG_INFINITY;
         let mut step = |pk: f64, uk: f64, hk: f64| -> f64 {
-            let g = s * uk - hk - gbar;
-            let pk = s * pk;
+            let g = frame.gap(uk, hk);
+            let pk = frame.pressure(pk);
             let contact = pk > 0.0;
             let gm = if contact { g } else { 0.0 };
             acc[0] += gm * gm;

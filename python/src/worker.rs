@@ -1,0 +1,246 @@
+//! The cancellable worker: long computations run on a worker thread with the GIL
+//! released, while the calling thread waits for it and checks for signals every
+//! [`POLL`]. On Ctrl-C (or an exception from a progress callback) it raises a flag that
+//! the solver's per-iteration monitor sees ([`Hooked`]), and the worker stops at its next
+//! iteration by unwinding with [`Cancelled`] out of the solver's loop; the exception is
+//! raised once the worker has stopped.
+
+use std::panic::{catch_unwind, resume_unwind, AssertUnwindSafe};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc::{self, Receiver, RecvTimeoutError, Sender};
+use std::sync::{Arc, Mutex};
+use std::time::Duration;
+
+use pyo3::exceptions::PyRuntimeError;
+use pyo3::prelude::*;
+
+use persson_check::engine::contact::{ContactProblem, ContactSolution};
+use persson_check::engine::solver::{Progress, SolveOptions, Solver, Start};
+use persson_check::error::Error;
+use persson_check::tasks::parse::{self, MAX_THREADS};
+use persson_check::tasks::sweep::SweepStep;
+use persson_check::tasks::Keywords;
+
+use crate::errors::{internal, interrupted, to_py};
+
+/// The payload a cancelled solve unwinds with (never printed: `resume_unwind` skips the
+/// panic hook).
+pub struct Cancelled;
+
+/// How often the waiting thread looks for signals.
+pub const POLL: Duration = Duration::from_millis(20);
+
+/// Iterations between two progress reports.
+const PROGRESS_EVERY: usize = 16;
+
+/// What a worker tells the thread that waits for it.
+pub enum Event {
+    /// Every [`PROGRESS_EVERY`]th iteration of a solve (only when a callback wants it).
+    Progress(Progress),
+    /// The worker of [`run_blocking`] has finished.
+    Done,
+    /// A step of a sweep.
+    Step(Box<Result<SweepStep, Failure>>),
+}
+
+/// What a worker shares with the thread that waits for it.
+#[derive(Clone)]
+pub struct Hook {
+    /// Raised to stop the worker.
+    pub cancel: Arc<AtomicBool>,
+    /// Where progress goes, when a callback wants it.
+    pub progress: Option<Sender<Event>>,
+}
+
+impl Hook {
+    /// `solver`, stopped by the cancel flag and reporting its progress.
+    pub fn wrap(&self, solver: Box<dyn Solver + Send>) -> Box<dyn Solver + Send> {
+        Box::new(Hooked {
+            inner: solver,
+            hook: self.clone(),
+        })
+    }
+
+    /// Whether the worker is to stop.
+    pub fn cancelled(&self) -> bool {
+        self.cancel.load(Ordering::Relaxed)
+    }
+
+    /// Stops the worker here (by unwinding) when it is to stop.
+    pub fn stop_if_cancelled(&self) {
+        if self.cancelled() {
+            resume_unwind(Box::new(Cancelled));
+        }
+    }
+}
+
+/// A solver whose monitor stops the solve when the cancel flag is raised (the one point
+/// where every solver hands control back) and forwards its progress.
+struct Hooked {
+    inner: Box<dyn Solver + Send>,
+    hook: Hook,
+}
+
+impl Solver for Hooked {
+    fn name(&self) -> &'static str {
+        self.inner.name()
+    }
+
+    fn solve_monitored(
+        &mut self,
+        problem: &ContactProblem,
+        start: Start,
+        opts: &SolveOptions,
+        monitor: &mut dyn FnMut(Progress),
+    ) -> persson_check::Result<ContactSolution> {
+        self.hook.stop_if_cancelled();
+        let hook = &self.hook;
+        self.inner.solve_monitored(problem, start, opts, &mut |p| {
+            hook.stop_if_cancelled();
+            if p.iteration % PROGRESS_EVERY == 0 {
+                if let Some(tx) = &hook.progress {
+                    let _ = tx.send(Event::Progress(p));
+                }
+            }
+            monitor(p);
+        })
+    }
+}
+
+/// Why a worker produced no value.
+pub enum Failure {
+    /// The library's error.
+    Lib(Error),
+    /// Stopped by the cancel flag.
+    Cancelled,
+    /// A panic, with its message.
+    Panic(String),
+}
+
+impl Failure {
+    /// The failure of a worker that unwound with `payload`.
+    pub fn from_panic(payload: Box<dyn std::any::Any + Send>) -> Self {
+        if payload.is::<Cancelled>() {
+            return Failure::Cancelled;
+        }
+        let text = payload
+            .downcast_ref::<String>()
+            .cloned()
+            .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
+            .unwrap_or_else(|| "a panic without a message".to_string());
+        Failure::Panic(text)
+    }
+
+    /// The Python exception: the library's, `KeyboardInterrupt`, or an internal error.
+    pub fn into_py(self) -> PyErr {
+        match self {
+            Failure::Lib(e) => to_py(e),
+            Failure::Cancelled => interrupted(),
+            Failure::Panic(text) => internal(&text),
+        }
+    }
+
+    /// Whether the worker has stopped for good (a cancel or a panic, not an error of one
+    /// step).
+    pub fn ends_worker(&self) -> bool {
+        !matches!(self, Failure::Lib(_))
+    }
+}
+
+/// A rayon pool of `threads` workers, or `None` for the global pool (all cores).
+pub fn pool(threads: Option<i64>) -> PyResult<Option<rayon::ThreadPool>> {
+    let Some(threads) = threads else {
+        return Ok(None);
+    };
+    let threads = parse::integer("threads", threads, 1, MAX_THREADS, &Keywords).map_err(to_py)?;
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads as usize)
+        .build()
+        .map(Some)
+        .map_err(|e| PyRuntimeError::new_err(format!("threads: {e}")))
+}
+
+/// Waits for the worker's events with the GIL released, [`POLL`] at a time: hands
+/// progress to `progress`, checks for signals, and returns the first event that `take`
+/// keeps (`None` once the worker has gone). Ctrl-C or an exception from `progress` raises
+/// `cancel` and is returned beside the event; the wait goes on until the worker answers.
+pub fn wait<T>(
+    py: Python<'_>,
+    events: &Mutex<Receiver<Event>>,
+    cancel: &AtomicBool,
+    progress: Option<&Bound<'_, PyAny>>,
+    mut take: impl FnMut(Event) -> Option<T>,
+) -> (Option<T>, Option<PyErr>) {
+    let mut raised: Option<PyErr> = None;
+    let raise = |e: PyErr, raised: &mut Option<PyErr>| {
+        cancel.store(true, Ordering::Relaxed);
+        *raised = Some(e);
+    };
+    loop {
+        let next = py.detach(|| events.lock().expect("not poisoned").recv_timeout(POLL));
+        match next {
+            Ok(Event::Progress(p)) => {
+                if let (None, Some(cb)) = (&raised, progress) {
+                    if let Err(e) = cb.call1((p.iteration, p.residual)) {
+                        raise(e, &mut raised);
+                    }
+                }
+            }
+            Ok(event) => {
+                if let Some(value) = take(event) {
+                    return (Some(value), raised);
+                }
+            }
+            Err(RecvTimeoutError::Timeout) => {}
+            Err(RecvTimeoutError::Disconnected) => return (None, raised),
+        }
+        if raised.is_none() {
+            if let Err(e) = py.check_signals() {
+                raise(e, &mut raised);
+            }
+        }
+    }
+}
+
+/// Runs `work` on a worker thread (inside a pool of `threads` if given) with the GIL
+/// released; meanwhile checks for signals and forwards progress to `progress`. Ctrl-C or
+/// an exception from `progress` stops the worker and, once it has stopped, is raised
+/// here.
+pub fn run_blocking<T: Send>(
+    py: Python<'_>,
+    threads: Option<i64>,
+    progress: Option<&Bound<'_, PyAny>>,
+    work: impl FnOnce(&Hook) -> persson_check::Result<T> + Send,
+) -> PyResult<T> {
+    let pool = pool(threads)?;
+    let (tx, rx) = mpsc::channel();
+    let hook = Hook {
+        cancel: Arc::new(AtomicBool::new(false)),
+        progress: progress.map(|_| tx.clone()),
+    };
+    // A Receiver is not Sync: it enters the GIL-free waits through a Mutex.
+    let rx = Mutex::new(rx);
+    let cancel = hook.cancel.clone();
+    std::thread::scope(|scope| {
+        let worker = scope.spawn(move || {
+            let run = move || work(&hook);
+            let result = catch_unwind(AssertUnwindSafe(|| match &pool {
+                Some(pool) => pool.install(run),
+                None => run(),
+            }));
+            let _ = tx.send(Event::Done);
+            result
+        });
+        let (_, raised) = wait(py, &rx, &cancel, progress, |e| {
+            matches!(e, Event::Done).then_some(())
+        });
+        let result = py.detach(|| worker.join()).unwrap_or_else(Err);
+        if let Some(e) = raised {
+            return Err(e);
+        }
+        match result {
+            Ok(r) => r.map_err(to_py),
+            Err(payload) => Err(Failure::from_panic(payload).into_py()),
+        }
+    })
+}

@@ -1,0 +1,102 @@
+//! The executor: one loop that runs any hard-wall method, after argmin's executor (a
+//! solver's `init`, `next_iter` and `terminate`, with an explicit termination reason).
+//!
+//! A [`Method`] keeps its settings and work space between solves; [`Method::init`] starts
+//! one solve from a problem and a start, and the solve ([`Iteration`]) is the state that
+//! [`run`] iterates. Iteration `it` is
+//!
+//! 1. [`Iteration::measure`]: the part of the step that yields the residual estimate the
+//!    method watches (CG: the gap; GFMD: the stress), which the monitor sees;
+//! 2. [`Iteration::judge`]: whether the solve ends here, converged (its full
+//!    [`Residual`](crate::engine::contact::Residual) below the tolerance) or stopped (a
+//!    [`Termination`]), measures again, or goes on;
+//! 3. [`Iteration::step`]: the rest of the step, after which the method may stop (GFMD's
+//!    step control).
+//!
+//! A stop, or the end of the budget, hands the state to [`Iteration::terminate`] with the
+//! number of iterations completed and the reason: it returns the final state if its full
+//! residual meets the tolerance after all, and the error otherwise.
+
+use crate::engine::contact::{ContactProblem, ContactSolution};
+use crate::engine::solver::{Progress, SolveOptions, Start};
+use crate::error::{Result, Termination};
+
+/// What [`Iteration::judge`] decided.
+pub enum Verdict {
+    /// The full residual is below the tolerance: the solve returns this solution.
+    Converged(ContactSolution),
+    /// The solve stops for this reason before the step (see [`Iteration::terminate`]).
+    Stopped(Termination),
+    /// The state changed in judging (CG made `u` exact): measure it again, as the next
+    /// iteration.
+    Remeasure,
+    /// Go on with the step.
+    Go,
+}
+
+/// A hard-wall method: its settings and work space, kept from solve to solve.
+pub trait Method {
+    /// Short name (`"gfmd"`, `"cg"`).
+    const NAME: &'static str;
+    /// One solve's state, borrowing the method's work space.
+    type Solve<'a>: Iteration
+    where
+        Self: 'a;
+
+    /// The state at `start` for `problem`, or an error when the start does not fit the
+    /// problem. `opts` has been validated.
+    fn init<'a>(
+        &'a mut self,
+        problem: &'a ContactProblem<'a>,
+        start: Start,
+        opts: &SolveOptions,
+    ) -> Result<Self::Solve<'a>>;
+}
+
+/// One solve's state and its iteration (see the module docs).
+pub trait Iteration: Sized {
+    /// What [`Iteration::measure`] found, handed on to [`Iteration::judge`] and
+    /// [`Iteration::step`].
+    type Measure;
+
+    /// The first part of iteration `it`, up to the residual estimate.
+    fn measure(&mut self, it: usize) -> Result<Self::Measure>;
+
+    /// The residual estimate in `measured`, for the monitor.
+    fn estimate(measured: &Self::Measure) -> f64;
+
+    /// Whether the solve ends, measures again or goes on at iteration `it`.
+    fn judge(&mut self, it: usize, measured: &Self::Measure) -> Verdict;
+
+    /// The rest of iteration `it`; a reason to stop ends the solve after it.
+    fn step(&mut self, it: usize, measured: Self::Measure) -> Result<Option<Termination>>;
+
+    /// The end of a solve stopped after `iterations` iterations for `reason`: the final
+    /// state if its full residual meets the tolerance, the error otherwise.
+    fn terminate(self, iterations: usize, reason: Termination) -> Result<ContactSolution>;
+}
+
+/// Runs `solve` for at most `max_iter` iterations; `monitor` sees every estimate.
+pub fn run<S: Iteration>(
+    mut solve: S,
+    max_iter: usize,
+    monitor: &mut dyn FnMut(Progress),
+) -> Result<ContactSolution> {
+    for it in 0..max_iter {
+        let measured = solve.measure(it)?;
+        monitor(Progress {
+            iteration: it,
+            residual: S::estimate(&measured),
+        });
+        match solve.judge(it, &measured) {
+            Verdict::Converged(solution) => return Ok(solution),
+            Verdict::Stopped(reason) => return solve.terminate(it, reason),
+            Verdict::Remeasure => continue,
+            Verdict::Go => {}
+        }
+        if let Some(reason) = solve.step(it, measured)? {
+            return solve.terminate(it + 1, reason);
+        }
+    }
+    solve.terminate(max_iter, Termination::BudgetExhausted)
+}

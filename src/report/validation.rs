@@ -1,0 +1,277 @@
+//! The section of each validation: what it tests and what it found, its account and
+//! notes, the sensitivity study, the secondary statistics, the checks of the paper's
+//! finding, its figures and tables, and the scene as run.
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+use super::format::{duration, md, num, or_dash, pm, prose, push_table, sig};
+use super::golden::GoldenMatch;
+use super::outcomes::{grid_cell, seeds_cell, Loaded};
+use super::table::headline;
+use super::{anchor, reproduced_cell, verdict_cell, Scorecard};
+use crate::stats::Estimate;
+use crate::validation::{Check, Outcome};
+
+impl Scorecard<'_> {
+    pub(super) fn validation(&self, s: &mut String, l: &Loaded, g: &GoldenMatch) {
+        let o = &l.outcome;
+        let _ = writeln!(s, "<a id=\"{}\"></a>\n", anchor(&o.name));
+        let _ = writeln!(s, "## {}: {}\n", md(&o.name), md(&o.title));
+        push_table(s, &["", ""], &facts(o, g));
+        account(s, o);
+        sensitivity(s, o);
+        details(s, o);
+        checks(s, o);
+        self.files(s, o);
+        scene(s, o);
+    }
+
+    /// Figures (PNG shown, SVG linked) and tables of an outcome; missing files are named.
+    fn files(&self, s: &mut String, o: &Outcome) {
+        let from = &self.opts.from;
+        let mut figures = Vec::new();
+        let mut others = Vec::new();
+        let mut missing = Vec::new();
+        for f in &o.files {
+            let path = from.join(f);
+            if !path.exists() {
+                missing.push(f.clone());
+                continue;
+            }
+            match path.extension().and_then(|e| e.to_str()) {
+                Some("png") => figures.push(path),
+                Some("svg") if path.with_extension("png").exists() => {}
+                _ => others.push(path),
+            }
+        }
+        self.figures(s, &figures);
+        if !others.is_empty() {
+            let links: Vec<String> = others
+                .iter()
+                .map(|p| {
+                    let label = p.strip_prefix(from).unwrap_or(p).display().to_string();
+                    format!("[{}]({})", md(&label), self.link_to(p))
+                })
+                .collect();
+            let _ = writeln!(s, "**Tables**: {}\n", links.join(", "));
+        }
+        if !missing.is_empty() {
+            let _ = writeln!(
+                s,
+                "**Missing files** (listed in the outcome, not found in `{}`): {}\n",
+                from.display(),
+                missing.iter().map(|m| md(m)).collect::<Vec<_>>().join(", ")
+            );
+        }
+    }
+
+    /// Each figure shown as its PNG, with a link to its SVG where there is one.
+    fn figures(&self, s: &mut String, pngs: &[PathBuf]) {
+        if pngs.is_empty() {
+            return;
+        }
+        let _ = writeln!(s, "**Figures**\n");
+        for png in pngs {
+            let stem = png
+                .file_stem()
+                .map(|x| x.to_string_lossy().to_string())
+                .unwrap_or_default();
+            let svg = png.with_extension("svg");
+            let svg_link = if svg.exists() {
+                format!(" ([SVG]({}))", self.link_to(&svg))
+            } else {
+                String::new()
+            };
+            let _ = writeln!(s, "![{}]({}){svg_link}\n", md(&stem), self.link_to(png));
+        }
+    }
+}
+
+/// The section's opening table: the assumption, the predictions, the measurement, the
+/// verdict, the golden values and the run.
+fn facts(o: &Outcome, g: &GoldenMatch) -> Vec<Vec<String>> {
+    let fact = |name: &str, text: String| vec![name.to_string(), text];
+    vec![
+        fact("Assumption", md(&o.assumption)),
+        fact("Statistic", md(&o.statistic)),
+        fact(
+            "Persson predicts",
+            format!("{} (value {})", md(&o.persson_text), num(o.persson)),
+        ),
+        fact(
+            "The paper finds",
+            format!(
+                "{} (value {}; the paper's verdict: {})",
+                md(&o.paper),
+                o.paper_value.map_or_else(|| "not stated".into(), num),
+                o.paper_verdict
+            ),
+        ),
+        fact(
+            "Measured",
+            format!("{} ({} scene)", headline(o.value, o.std_error), o.scale),
+        ),
+        fact(
+            "Verdict",
+            format!(
+                "{} (z = {}, resolution {})",
+                verdict_cell(o.verdict),
+                sig(o.rule.significance, 3),
+                sig(o.rule.resolution, 3)
+            ),
+        ),
+        fact(
+            "The paper's finding reproduced",
+            reproduced_cell(o.reproduced),
+        ),
+        fact("Golden values", md(&golden_text(g))),
+        fact(
+            "Run",
+            format!(
+                "grid {}, seeds {}, {} threads, {}, largest solver residual {}",
+                grid_cell(&o.scene),
+                seeds_cell(&o.scene),
+                o.threads,
+                duration(o.wall_s),
+                num(o.max_residual)
+            ),
+        ),
+    ]
+}
+
+/// How the golden values compare with the snapshot, in words.
+fn golden_text(g: &GoldenMatch) -> String {
+    match g {
+        GoldenMatch::Yes(k, path) => format!("yes: {k} values match {}", path.display()),
+        GoldenMatch::Differ(d, path) => format!(
+            "**no**: {} differ from {}: {}",
+            d.len(),
+            path.display(),
+            d.join("; ")
+        ),
+        GoldenMatch::FullScene => "n/a: full scenes have no snapshot".into(),
+        GoldenMatch::NotChecked(why) => format!("not checked ({why})"),
+    }
+}
+
+/// The account generated from the numbers, then the notes drawn from a study.
+fn account(s: &mut String, o: &Outcome) {
+    if !o.account.trim().is_empty() {
+        let _ = writeln!(s, "{}\n", prose(o.account.trim()));
+    }
+    for note in &o.notes {
+        let _ = writeln!(s, "{}\n", prose(note));
+    }
+}
+
+/// The sensitivity study's rows (`c_flux`), in % of the nominal and of the true contact
+/// area.
+fn sensitivity(s: &mut String, o: &Outcome) {
+    if o.sensitivity.is_empty() {
+        return;
+    }
+    let _ = writeln!(
+        s,
+        "**Sensitivity of the one-step flux** (one setting moved at a time; % of the \
+         nominal area A0 and of the true contact area Ac at zeta; the step taken as the \
+         height variance its modes add, % of the variance at zeta, and their count; \
+         net/gross = |out - in| / mean one-way; zero bin: % of the non-contact that enters)\n"
+    );
+    let pct = |e: Estimate| pm(100.0 * e.value, 100.0 * e.std_error);
+    let opt = |e: Option<Estimate>, scale: f64| {
+        e.map_or_else(|| "—".into(), |e| pm(scale * e.value, scale * e.std_error))
+    };
+    let rows: Vec<Vec<String>> = o
+        .sensitivity
+        .iter()
+        .map(|r| {
+            vec![
+                md(&r.parameter),
+                md(&r.label),
+                format!("{}x{}, {}", r.config.n, r.config.n, r.config.solver.name()),
+                pct(r.flux_in),
+                pct(r.flux_out),
+                pct(r.flux_in_of_contact),
+                pct(r.flux_out_of_contact),
+                opt(r.net_over_gross, 1.0),
+                opt(r.zero_bin, 100.0),
+                match (r.variance_added, r.modes_added) {
+                    (Some(v), Some(m)) => {
+                        format!("{}, {m:.0}", pm(100.0 * v.value, 100.0 * v.std_error))
+                    }
+                    _ => "—".into(),
+                },
+            ]
+        })
+        .collect();
+    let header = [
+        "setting",
+        "value",
+        "grid, solver",
+        "in, % A0",
+        "out, % A0",
+        "in, % Ac",
+        "out, % Ac",
+        "net/gross",
+        "zero bin, %",
+        "step: variance %, modes",
+    ];
+    push_table(s, &header, &rows);
+}
+
+/// The secondary statistics with Persson's and the paper's values.
+fn details(s: &mut String, o: &Outcome) {
+    if o.details.is_empty() {
+        return;
+    }
+    let _ = writeln!(s, "**Secondary statistics**\n");
+    let rows: Vec<Vec<String>> = o
+        .details
+        .iter()
+        .map(|d| {
+            vec![
+                prose(&d.name),
+                pm(d.value.value, d.value.std_error),
+                or_dash(d.persson, num),
+                or_dash(d.paper, num),
+                or_dash(d.grid, |n| n.to_string()),
+            ]
+        })
+        .collect();
+    let header = ["statistic", "measured ± error", "Persson", "paper", "grid"];
+    push_table(s, &header, &rows);
+}
+
+/// The checks of the paper's finding and the numbers behind each.
+fn checks(s: &mut String, o: &Outcome) {
+    if o.checks.is_empty() {
+        return;
+    }
+    let _ = writeln!(s, "**Checks of the paper's finding**\n");
+    let rows: Vec<Vec<String>> = o
+        .checks
+        .iter()
+        .map(|c| vec![prose(&c.name), check_result(c).into(), prose(&c.detail)])
+        .collect();
+    push_table(s, &["check", "result", "numbers"], &rows);
+}
+
+fn check_result(c: &Check) -> &'static str {
+    if !c.decided {
+        "not decided (1 realization)"
+    } else if c.passed {
+        "passed"
+    } else {
+        "**FAILED**"
+    }
+}
+
+/// The scene as run, folded.
+fn scene(s: &mut String, o: &Outcome) {
+    let scene = serde_json::to_string_pretty(&o.scene).unwrap_or_default();
+    let _ = writeln!(
+        s,
+        "<details><summary>Scene as run</summary>\n\n```json\n{scene}\n```\n\n</details>\n"
+    );
+}

@@ -1,0 +1,233 @@
+//! The parsers of what a user gives: solver and theory names, the load (a mean pressure
+//! `p0` or a target contact area), and the ranges checked before any work (a
+//! magnification's lower bound before the surface gives its upper one, tolerances,
+//! integer counts). Errors name the parameter through the front end's [`Spelling`].
+
+use crate::engine::solver::{SolveOptions, SolverKind};
+use crate::error::{check_open, check_positive, Error, Result};
+use crate::persson::Correction;
+
+use super::Spelling;
+
+/// The solvers by name, in the order messages list them.
+const SOLVERS: [SolverKind; 2] = [SolverKind::Cg, SolverKind::Gfmd];
+
+/// Most worker threads a front end starts.
+pub const MAX_THREADS: u64 = 1024;
+
+/// Most shares a run of the validations is split into.
+pub const MAX_SHARDS: u64 = 100_000;
+
+/// The solver named `name` (`"cg"`, `"gfmd"`).
+pub fn solver(name: &str) -> Result<SolverKind> {
+    SOLVERS
+        .into_iter()
+        .find(|k| k.name() == name)
+        .ok_or_else(|| {
+            let names: Vec<String> = SOLVERS.iter().map(|k| format!("{:?}", k.name())).collect();
+            Error::invalid("solver", format!("{name:?}"), names.join(" or "))
+        })
+}
+
+/// The variant of Persson's theory named `name`: `"original"` (no correction),
+/// `"yang_persson"` or `"corrected"` (gamma = 0.42), `"wang_mueser"` (gamma = 5/9).
+pub fn theory_variant(name: &str) -> Result<Option<Correction>> {
+    match name {
+        "original" => Ok(None),
+        "yang_persson" | "corrected" => Ok(Some(Correction::yang_persson())),
+        "wang_mueser" => Ok(Some(Correction::wang_mueser())),
+        other => Err(Error::invalid(
+            "variant",
+            format!("{other:?}"),
+            "\"original\", \"yang_persson\" or \"wang_mueser\"",
+        )),
+    }
+}
+
+/// The load of a solve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Load {
+    /// A mean pressure `p0` (units of `E*`).
+    Pressure(f64),
+    /// A target relative contact area, in (0, 1): `p0` is found by root finding.
+    Area(f64),
+}
+
+/// Checks the ranges of the loads given: `p0 > 0`, `0 < contact_area < 1`.
+pub fn check_load(p0: Option<f64>, contact_area: Option<f64>, s: &dyn Spelling) -> Result<()> {
+    if let Some(p0) = p0 {
+        check_positive(&s.name("p0"), p0)?;
+    }
+    if let Some(a) = contact_area {
+        check_open(&s.name("contact_area"), a, 0.0, 1.0)?;
+    }
+    Ok(())
+}
+
+/// The load: `p0` or `contact_area`, exactly one of them; when neither is given, the
+/// scene's (`scene` is `Some` where a scene file may give the load, already checked when
+/// it was read). The values given are checked after the choice.
+pub fn load(
+    p0: Option<f64>,
+    contact_area: Option<f64>,
+    scene: Option<(Option<f64>, Option<f64>)>,
+    s: &dyn Spelling,
+) -> Result<Load> {
+    let chosen = if p0.is_some() || contact_area.is_some() {
+        (p0, contact_area)
+    } else {
+        scene.unwrap_or((None, None))
+    };
+    let load = match chosen {
+        (Some(p0), None) => Load::Pressure(p0),
+        (None, Some(a)) => Load::Area(a),
+        (Some(_), Some(_)) => {
+            return Err(Error::invalid(
+                "load",
+                "both p0 and contact_area",
+                format!("one of {} or {}", s.name("p0"), s.name("contact_area")),
+            ))
+        }
+        (None, None) => {
+            let elsewhere = match scene {
+                Some(_) => " (or in the scene's [solve] table)",
+                None => "",
+            };
+            return Err(Error::invalid(
+                "load",
+                "missing",
+                format!(
+                    "{} or {}{elsewhere}",
+                    s.given("p0", "P"),
+                    s.given("contact_area", "A")
+                ),
+            ));
+        }
+    };
+    check_load(p0, contact_area, s)?;
+    Ok(load)
+}
+
+/// Checks a magnification given before the surface is known: finite and at least 1 (its
+/// upper bound, `zeta_max`, comes with the surface).
+pub fn check_zeta_floor(zeta: Option<f64>, s: &dyn Spelling) -> Result<()> {
+    match zeta {
+        Some(z) if !(z.is_finite() && z >= 1.0) => Err(Error::invalid(
+            &s.name("zeta"),
+            z,
+            "in [1, zeta_max = lambda_l / lambda_s]",
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// Checks the wavelength `lambda_l` that defines `zeta = |q| / q_l` for given heights:
+/// finite and positive (its upper bound, the box, comes with the heights).
+pub fn check_lambda_l(lambda_l: Option<f64>, s: &dyn Spelling) -> Result<()> {
+    match lambda_l {
+        Some(l) => check_positive(&s.name("lambda_l"), l),
+        None => Ok(()),
+    }
+}
+
+/// The solver options, checked: `tol` in [1e-14, 1), `max_iter >= 1`.
+pub fn solve_options(tol: f64, max_iter: usize, s: &dyn Spelling) -> Result<SolveOptions> {
+    let opts = SolveOptions { tol, max_iter };
+    opts.validate().map_err(|e| s.rename(e))?;
+    Ok(opts)
+}
+
+/// An integer given as a signed number, checked against `[lo, hi]`.
+pub fn integer(key: &str, value: i64, lo: u64, hi: u64, s: &dyn Spelling) -> Result<u64> {
+    match u64::try_from(value) {
+        Ok(v) if (lo..=hi).contains(&v) => Ok(v),
+        _ => Err(Error::invalid(
+            &s.name(key),
+            value,
+            format!("an integer in [{lo}, {hi}]"),
+        )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{Flags, Keywords};
+    use super::*;
+
+    #[test]
+    fn solvers_by_name() {
+        assert_eq!(solver("cg").unwrap(), SolverKind::Cg);
+        assert_eq!(solver("gfmd").unwrap(), SolverKind::Gfmd);
+        assert_eq!(
+            solver("fem").unwrap_err().to_string(),
+            "invalid solver = \"fem\": must be \"cg\" or \"gfmd\""
+        );
+    }
+
+    #[test]
+    fn one_load_of_two_named_as_each_front_end_writes_it() {
+        assert_eq!(
+            load(Some(0.1), None, None, &Keywords).unwrap(),
+            Load::Pressure(0.1)
+        );
+        // A load given replaces the scene's.
+        assert_eq!(
+            load(None, Some(0.2), Some((Some(0.1), None)), &Flags::default()).unwrap(),
+            Load::Area(0.2)
+        );
+        assert_eq!(
+            load(None, None, Some((Some(0.1), None)), &Flags::default()).unwrap(),
+            Load::Pressure(0.1)
+        );
+        assert_eq!(
+            load(None, None, None, &Keywords).unwrap_err().to_string(),
+            "invalid load = missing: must be p0=P or contact_area=A"
+        );
+        assert_eq!(
+            load(None, None, Some((None, None)), &Flags::default())
+                .unwrap_err()
+                .to_string(),
+            "invalid load = missing: must be --p0 P or --contact-area A (or in the scene's \
+             [solve] table)"
+        );
+        assert_eq!(
+            load(Some(-1.0), Some(0.1), None, &Keywords)
+                .unwrap_err()
+                .to_string(),
+            "invalid load = both p0 and contact_area: must be one of p0 or contact_area"
+        );
+        assert_eq!(
+            load(Some(-1.0), None, None, &Flags::default())
+                .unwrap_err()
+                .to_string(),
+            "invalid --p0 = -1: must be a finite number > 0"
+        );
+    }
+
+    #[test]
+    fn ranges() {
+        assert!(check_zeta_floor(Some(1.0), &Keywords).is_ok());
+        assert_eq!(
+            check_zeta_floor(Some(0.5), &Flags::default())
+                .unwrap_err()
+                .to_string(),
+            "invalid --zeta = 0.5: must be in [1, zeta_max = lambda_l / lambda_s]"
+        );
+        assert_eq!(integer("shards", 3, 1, MAX_SHARDS, &Keywords).unwrap(), 3);
+        assert_eq!(
+            integer("max_iter", -1, 0, u64::MAX, &Keywords)
+                .unwrap_err()
+                .to_string(),
+            format!(
+                "invalid max_iter = -1: must be an integer in [0, {}]",
+                u64::MAX
+            )
+        );
+        assert_eq!(
+            solve_options(1e-20, 10, &Flags::default())
+                .unwrap_err()
+                .to_string(),
+            "invalid --tol = 0.00000000000000000001: must be in [1e-14, 1)"
+        );
+    }
+}
