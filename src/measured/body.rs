@@ -1,0 +1,277 @@
+//! A scan as a contact problem, and its load curve: the rigid scan pressed onto an elastic
+//! half-space (`E* = 1`, lengths in pixels), periodic or with a free boundary
+//! ([`crate::engine::boussinesq`]), solved at increasing loads, each solve warm-started
+//! from the last.
+//!
+//! What a solve gives the check, all over the scan's own window: the relative contact
+//! area (points with `p > 0`), the elastic energy per unit area and, at one load, the
+//! window's pressures. The elastic energy is `(1/2) mean_window(p u_el)` with `u_el` the
+//! elastic displacement: for a periodic scan `(1/2) mean[(p - p0) u]`
+//! ([`crate::engine::elastic`]); for a free boundary the Boussinesq displacement
+//! `u_el = G * p` including its mean (no periodic image, no free rigid shift), so that it
+//! is the work done by the contact pressure on the half-space.
+
+use std::time::Instant;
+
+use rustfft::num_complex::Complex64;
+use serde::{Deserialize, Serialize};
+
+use super::psd::{Boundary, ScanSpectrum};
+use super::theory::E_STAR;
+use crate::engine::contact::{ContactProblem, ContactSolution, Model};
+use crate::engine::grid::Grid;
+use crate::engine::solver::{Progress, SolveOptions, Solver, SolverKind, Start};
+use crate::error::{Error, Result};
+
+/// One scan as a contact problem.
+pub struct Body {
+    /// The elastic model (the doubled grid for a free boundary).
+    pub model: Model,
+    /// The heights on the model's grid (pixels), padded for a free boundary.
+    pub heights: Vec<f64>,
+    /// The scan's side (pixels).
+    pub n: usize,
+    /// For a free boundary: the half spectrum of `M^2 G`, the Boussinesq response on the
+    /// doubled grid, for the elastic displacement with its mean.
+    response: Option<Vec<Complex64>>,
+}
+
+impl Body {
+    /// The contact problem of `spectrum`'s heights (detrended for a free boundary).
+    pub fn new(spectrum: &ScanSpectrum, n: usize) -> Result<Self> {
+        match spectrum.boundary {
+            Boundary::Periodic => Ok(Self {
+                model: Model::new(Grid::new(n, 1.0)?, E_STAR)?,
+                heights: spectrum.heights.clone(),
+                n,
+                response: None,
+            }),
+            Boundary::Free => {
+                let model = Model::free_boundary(n, E_STAR)?;
+                let heights = model.pad_heights(&spectrum.heights)?;
+                let m = model.grid.n();
+                let g = crate::engine::boussinesq::padded_response(m, 1.0, E_STAR);
+                let mut spec = model.fft.new_spectrum();
+                model.fft.forward(&g, &mut spec);
+                let scale = (m * m) as f64;
+                spec.iter_mut().for_each(|v| *v *= scale);
+                Ok(Self {
+                    model,
+                    heights,
+                    n,
+                    response: Some(spec),
+                })
+            }
+        }
+    }
+
+    /// The window's share of the model's grid (1 for a periodic scan).
+    fn window_share(&self) -> f64 {
+        (self.n * self.n) as f64 / self.model.grid.points() as f64
+    }
+
+    /// The window's values of a field on the model's grid, row-major.
+    pub fn window(&self, field: &[f64]) -> Vec<f64> {
+        let m = self.model.grid.n();
+        field
+            .chunks(m)
+            .take(self.n)
+            .flat_map(|row| &row[..self.n])
+            .copied()
+            .collect()
+    }
+
+    /// The elastic energy per unit area of the window under `solution` (see the module
+    /// docs).
+    pub fn elastic_energy(&self, solution: &ContactSolution) -> f64 {
+        let Some(response) = &self.response else {
+            return solution.elastic_energy();
+        };
+        let fft = &self.model.fft;
+        let mut spec = fft.new_spectrum();
+        fft.forward(&solution.pressure, &mut spec);
+        spec.iter_mut().zip(response).for_each(|(p, g)| *p *= g.re);
+        let mut u = vec![0.0; self.model.grid.points()];
+        fft.inverse(&spec, &mut u, &mut Vec::new());
+        let work: f64 = solution.pressure.iter().zip(&u).map(|(p, u)| p * u).sum();
+        0.5 * work / (self.n * self.n) as f64
+    }
+}
+
+/// One load of a curve as one solver found it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Solved {
+    /// The load, `p0 / E*` over the window.
+    pub p0: f64,
+    /// Relative contact area of the window.
+    pub contact_area: f64,
+    /// Elastic energy per unit area (`E*` times pixels).
+    pub energy: f64,
+    /// Iterations of the solve.
+    pub iterations: usize,
+    /// Its residual.
+    pub residual: f64,
+    /// Its wall time, seconds.
+    pub wall_s: f64,
+}
+
+/// A load curve: every load's numbers, and the window's pressures at one load.
+#[derive(Debug, Clone)]
+pub struct Curve {
+    /// The solver.
+    pub solver: SolverKind,
+    /// One entry per load, in the order of the loads.
+    pub points: Vec<Solved>,
+    /// The window's pressures over the load at the load `kept` (`p / p0`).
+    pub pressures: Vec<f64>,
+    /// Wall time of the whole curve, seconds.
+    pub wall_s: f64,
+}
+
+/// Solves `body` at `loads` (increasing) with `solver` to `tol`, warm-starting each load
+/// from the last; keeps the pressures at load index `kept`. `monitor` sees every
+/// iteration.
+pub fn solve_curve(
+    body: &Body,
+    loads: &[f64],
+    solver: SolverKind,
+    tol: f64,
+    kept: usize,
+    monitor: &mut dyn FnMut(usize, Progress),
+) -> Result<Curve> {
+    let timer = Instant::now();
+    let opts = SolveOptions::with_tol(tol);
+    let mut engine: Box<dyn Solver + Send> = solver.build();
+    let mut last: Option<ContactSolution> = None;
+    let mut points = Vec::with_capacity(loads.len());
+    let mut pressures = Vec::new();
+    for (i, &p0) in loads.iter().enumerate() {
+        let problem = ContactProblem::new(&body.model, &body.heights, p0 * body.window_share())?;
+        let start = last.as_ref().map_or(Start::Cold, Start::Warm);
+        let solution = engine
+            .solve_monitored(&problem, start, &opts, &mut |p| monitor(i, p))
+            .map_err(|e| at_load(e, p0))?;
+        let window = body.window(&solution.pressure);
+        let touched = (0..solution.pressure.len())
+            .filter(|&k| !body.model.under_wall(k))
+            .any(|k| solution.pressure[k] > 0.0);
+        if touched {
+            return Err(Error::invalid(
+                "loads",
+                p0,
+                "loads under which the surface stays clear of the floor outside the scan",
+            ));
+        }
+        let contact = window.iter().filter(|&&p| p > 0.0).count();
+        points.push(Solved {
+            p0,
+            contact_area: contact as f64 / window.len() as f64,
+            energy: body.elastic_energy(&solution),
+            iterations: solution.stats.iterations,
+            residual: solution.stats.residual.value(),
+            wall_s: solution.stats.wall_s,
+        });
+        if i == kept {
+            pressures = window.iter().map(|p| p / p0).collect();
+        }
+        last = Some(solution);
+    }
+    Ok(Curve {
+        solver,
+        points,
+        pressures,
+        wall_s: timer.elapsed().as_secs_f64(),
+    })
+}
+
+/// A solve's error with the load it failed at.
+fn at_load(e: Error, p0: f64) -> Error {
+    match e {
+        Error::InvalidInput { .. } | Error::BadFile { .. } | Error::Io { .. } => e,
+        other => Error::invalid(
+            "loads",
+            p0,
+            format!("a load the solver converges at ({other})"),
+        ),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::engine::surface::{Surface, SurfaceParams};
+
+    fn scan(n: usize, boundary: Boundary) -> ScanSpectrum {
+        let s = Surface::generate(&SurfaceParams::new(n, 0.8, n as f64, 4.0, 3)).unwrap();
+        let fft = crate::engine::fft::Fft2::new(s.grid());
+        ScanSpectrum::new(&s.heights_at(f64::INFINITY, &fft), n, 1.0, boundary).unwrap()
+    }
+
+    #[test]
+    fn the_free_boundary_energy_is_the_direct_sum_of_the_work() {
+        let n = 8;
+        let body = Body::new(&scan(n, Boundary::Free), n).unwrap();
+        let m = body.model.grid.n();
+        let mut p = vec![0.0; m * m];
+        for i in 0..n {
+            for j in 0..n {
+                p[i * m + j] = ((i * 3 + j * 5) % 7) as f64 * 0.01;
+            }
+        }
+        let solution = ContactSolution {
+            pressure: p.clone(),
+            displacement: vec![0.0; m * m],
+            p0: crate::engine::field::mean(&p),
+            stats: crate::engine::contact::SolveStats {
+                solver: "none",
+                iterations: 0,
+                residual: Default::default(),
+                wall_s: 0.0,
+                warm: false,
+            },
+        };
+        let mut work = 0.0;
+        for a in 0..n * n {
+            for b in 0..n * n {
+                let (ia, ja, ib, jb) = (a / n, a % n, b / n, b % n);
+                let g = crate::engine::boussinesq::pixel_displacement(
+                    ja as f64 - jb as f64,
+                    ia as f64 - ib as f64,
+                    1.0,
+                    1.0,
+                );
+                work += p[ia * m + ja] * g * p[ib * m + jb];
+            }
+        }
+        let direct = 0.5 * work / (n * n) as f64;
+        let e = body.elastic_energy(&solution);
+        assert!((e / direct - 1.0).abs() < 1e-12, "{e} vs {direct}");
+    }
+
+    #[test]
+    fn a_curve_rises_with_the_load_on_both_boundaries() {
+        for boundary in [Boundary::Periodic, Boundary::Free] {
+            let body = Body::new(&scan(32, boundary), 32).unwrap();
+            let curve = solve_curve(
+                &body,
+                &[0.02, 0.05, 0.1],
+                SolverKind::Cg,
+                1e-8,
+                1,
+                &mut |_, _| {},
+            )
+            .unwrap();
+            let areas: Vec<f64> = curve.points.iter().map(|s| s.contact_area).collect();
+            assert!(
+                areas.windows(2).all(|w| w[0] < w[1]),
+                "{boundary:?}: {areas:?}"
+            );
+            assert_eq!(curve.pressures.len(), 32 * 32);
+            let mean = curve.pressures.iter().sum::<f64>() / curve.pressures.len() as f64;
+            assert!(
+                (mean - 1.0).abs() < 1e-6,
+                "{boundary:?}: mean p/p0 = {mean}"
+            );
+        }
+    }
+}
