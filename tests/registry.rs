@@ -5,10 +5,8 @@
 use serde::{Deserialize, Serialize};
 
 use persson_check::error::Result;
-use persson_check::experiments::{
-    Check, Conclusion, Criteria, Detail, Experiment, JobContext, Work,
-};
-use persson_check::stats::Estimate;
+use persson_check::experiments::{Check, Detail, Experiment, JobContext, Jobs, Run, Work};
+use persson_check::stats::{decide, Claim, Estimate};
 use persson_check::validation::{Registry, RunOptions, Scale, Source, Verdict};
 
 /// The scene: realizations, and the value each one "measures" around.
@@ -22,53 +20,72 @@ struct CoinScene {
 /// Measures `centre + (seed mod 3 - 1) / 100` for each seed.
 struct Coin;
 
-impl Experiment for Coin {
+impl Jobs for CoinScene {
     const FAMILY: &'static str = "coin";
-    type Scene = CoinScene;
     type Job = u64;
     type JobResult = f64;
 
-    fn validate(scene: &CoinScene) -> Result<()> {
-        persson_check::error::check_seeds(&scene.seeds)
+    fn validate(&self) -> Result<()> {
+        persson_check::error::check_seeds(&self.seeds)
     }
 
-    fn jobs(scene: &CoinScene) -> Vec<u64> {
-        scene.seeds.clone()
+    fn jobs(&self) -> Vec<u64> {
+        self.seeds.clone()
     }
 
-    fn work(_scene: &CoinScene, _seed: &u64) -> Work {
+    fn work(&self, _seed: &u64) -> Work {
         // No solves: a coin costs nothing.
         Work::default()
     }
 
-    fn run_job(scene: &CoinScene, seed: &u64, _ctx: &JobContext) -> Result<f64> {
-        Ok(scene.centre + ((seed % 3) as f64 - 1.0) / 100.0)
+    fn run_job(&self, seed: &u64, _ctx: &JobContext) -> Result<f64> {
+        Ok(self.centre + ((seed % 3) as f64 - 1.0) / 100.0)
     }
 
-    fn conclude(
-        criteria: &Criteria,
-        _scene: &CoinScene,
-        results: &[(u64, f64)],
-    ) -> Result<Conclusion> {
-        let values: Vec<f64> = results.iter().map(|r| r.1).collect();
-        let m = Estimate::mean_of(&values);
-        Ok(Conclusion {
-            measured: Some(m),
-            persson: 0.5,
-            details: vec![Detail::new(
-                "count",
-                "realizations",
-                Estimate::new(values.len() as f64, 0.0),
-            )],
-            checks: vec![Check::new(
-                "above_half",
-                "the mean is above one half",
-                m.value > 0.5,
-                format!("{} ({})", m.value, criteria.name),
-            )],
-            account: "A coin.".into(),
-            ..Default::default()
+    fn residual(_result: &f64) -> f64 {
+        // No solves.
+        0.0
+    }
+}
+
+/// What a coin's run gives: the mean and the number of realizations.
+struct CoinStats {
+    mean: Estimate,
+    count: usize,
+}
+
+impl Experiment for Coin {
+    type Scene = CoinScene;
+    type Stats = CoinStats;
+
+    fn stats(run: &Run<Self>) -> Result<CoinStats> {
+        let values: Vec<f64> = run.results.iter().map(|r| r.1).collect();
+        Ok(CoinStats {
+            mean: Estimate::mean_of(&values),
+            count: values.len(),
         })
+    }
+
+    fn headline(_run: &Run<Self>, s: &CoinStats) -> (Estimate, f64) {
+        (s.mean, 0.5)
+    }
+
+    fn details(_run: &Run<Self>, s: &CoinStats) -> Vec<Detail> {
+        let count = Estimate::new(s.count as f64, 0.0);
+        vec![Detail::new("count", "realizations", count)]
+    }
+
+    fn checks(run: &Run<Self>, s: &CoinStats) -> Vec<Check> {
+        vec![Check::new(
+            "above_half",
+            "the mean is above one half",
+            decide(s.mean, Claim::Above(0.5), 0.0),
+            format!("{} ({})", s.mean.value, run.criteria.name),
+        )]
+    }
+
+    fn account(_run: &Run<Self>, _s: &CoinStats) -> String {
+        "A coin.".into()
     }
 }
 

@@ -85,6 +85,19 @@ struct Progress {
     recorder: serde_json::Value,
 }
 
+/// Checks the steps per octave of a [`ladder`]: an integer in `[1, 64]`.
+pub fn check_steps_per_octave(steps_per_octave: usize) -> Result<()> {
+    if (1..=64).contains(&steps_per_octave) {
+        Ok(())
+    } else {
+        Err(Error::invalid(
+            "steps_per_octave",
+            steps_per_octave,
+            "an integer in [1, 64]",
+        ))
+    }
+}
+
 /// Magnification steps: `per_octave` log-spaced steps from `start` to `end` (both
 /// included), merged with the `extra` points that lie in `[start, end]`, sorted, with
 /// points closer than a relative `1e-9` merged.

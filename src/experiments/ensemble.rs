@@ -49,8 +49,10 @@ pub fn check_contact_areas(contact_areas: &[f64]) -> Result<()> {
     Ok(())
 }
 
-/// Checks that the headline load is one of the scene's loads.
+/// Checks the scene's loads ([`check_contact_areas`]) and that the headline load is one
+/// of them.
 pub fn check_headline(headline: f64, contact_areas: &[f64]) -> Result<()> {
+    check_contact_areas(contact_areas)?;
     if contact_areas.contains(&headline) {
         Ok(())
     } else {

@@ -4,12 +4,20 @@
 //! [`crate::plot`] (figure descriptions, rendered elsewhere) and [`crate::io`]; nothing
 //! above it (validations, report, commands).
 //!
-//! An [`Experiment`] splits its scene into independent jobs (one realization, or one
-//! realization at one load), runs one job at a time ([`Experiment::run_job`]), and reduces
-//! the jobs' results to a [`Conclusion`]: the headline statistic with its standard error,
-//! Persson's value for it, secondary statistics ([`Detail`]), checks of the paper's
-//! finding ([`Check`]), tables and figures. Each module keeps its statistics in pure
-//! functions, unit-tested on their own, apart from the code that builds the conclusion.
+//! An [`Experiment`]'s scene splits into independent jobs (one realization, or one
+//! realization at one load, [`Jobs`]), run one at a time ([`Jobs::run_job`]); the
+//! experiment reduces the jobs' results to a [`Conclusion`] in three steps, the same in
+//! every experiment ([`Experiment`]): statistics first (pure functions, unit-tested on their
+//! own, in a module of statistics), then the findings as data (the headline statistic with
+//! its standard error and Persson's value for it, secondary statistics ([`Detail`]), checks
+//! of the paper's finding ([`Check`]) and golden values), then a thin builder of the
+//! account, tables and figures.
+//!
+//! Every check is decided by one rule, [`crate::stats::decide`] ([`Check::claim`]): a
+//! claim about the interval `value +- z std_error`, not decided without an error bar (one
+//! realization). An undecided check says so in its detail and leaves the reproduction
+//! undecided; texts print "(no error bar with one realization)" where an error bar would
+//! stand.
 //!
 //! * [`contact_area`]: the contact-area law, `a_r` against `p~0`;
 //! * [`transitions`]: assumptions (a) pressure-independent diffusion and (b) no drift;
@@ -39,9 +47,10 @@ use std::path::{Path, PathBuf};
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 
+use self::flux::sensitivity::SensitivityRow;
 use crate::error::{Error, Result};
-use crate::plot::{Figure, Raster};
-use crate::stats::Estimate;
+use crate::plot::{Axis, Figure, Raster, Waterfall};
+use crate::stats::{Decision, Estimate};
 
 /// What a conclusion is judged by: the validation's name, its verdict rule's significance
 /// and resolution, and the paper's value of the headline statistic.
@@ -136,43 +145,31 @@ fn is_decided(decided: &bool) -> bool {
 }
 
 impl Check {
-    /// A check.
+    /// A check decided by `decision`, from the one rule of [`crate::stats::decide`]:
+    /// passed, failed, or not decided, which the detail says first.
     pub fn new(
         key: impl Into<String>,
         name: impl Into<String>,
-        passed: bool,
+        decision: Decision,
         detail: impl Into<String>,
     ) -> Self {
+        let detail = detail.into();
         Self {
             key: key.into(),
             name: name.into(),
-            passed,
-            detail: detail.into(),
-            decided: true,
+            passed: decision.passed(),
+            decided: decision.is_decided(),
+            detail: if decision.is_decided() {
+                detail
+            } else {
+                format!("{UNDECIDED}: {detail}")
+            },
         }
-    }
-
-    /// A check that needs an error bar, against `estimate`: decided by `passed` when the
-    /// estimate has one, otherwise not decided ("not decided with 1 realization").
-    pub fn with_error_bar(
-        key: impl Into<String>,
-        name: impl Into<String>,
-        estimate: Estimate,
-        passed: bool,
-        detail: impl Into<String>,
-    ) -> Self {
-        let mut c = Self::new(key, name, passed, detail);
-        if !estimate.has_error() {
-            c.passed = false;
-            c.decided = false;
-            c.detail = format!(
-                "not decided with 1 realization (no error bar): {}",
-                c.detail
-            );
-        }
-        c
     }
 }
+
+/// What the detail of a check the data do not decide starts with.
+pub const UNDECIDED: &str = "not decided with 1 realization (no error bar)";
 
 /// A table of numbers, written as CSV.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -207,13 +204,23 @@ impl Table {
         let to_io = |e: csv::Error| Error::io(path, std::io::Error::other(e));
         w.write_record(&self.columns).map_err(to_io)?;
         for row in &self.rows {
-            w.write_record(row.iter().map(|v| format!("{v}")))
+            w.write_record(row.iter().map(|&v| cell(v)))
                 .map_err(to_io)?;
         }
         let bytes = w
             .into_inner()
             .map_err(|e| Error::io(path, std::io::Error::other(e.to_string())))?;
         crate::io::write_atomic(path, &bytes)
+    }
+}
+
+/// A CSV cell: the number, or nothing where there is none (NaN: no error bar from one
+/// realization, no walkers in a bin).
+fn cell(v: f64) -> String {
+    if v.is_nan() {
+        String::new()
+    } else {
+        format!("{v}")
     }
 }
 
@@ -242,14 +249,25 @@ pub struct Conclusion {
     /// Largest solver residual over all solves.
     pub max_residual: f64,
     /// Rows of a sensitivity study (the one-step flux against its settings).
-    pub sensitivity: Vec<flux::sensitivity::SensitivityRow>,
+    pub sensitivity: Vec<SensitivityRow>,
     /// Statements drawn from a study, shown after the account.
     pub notes: Vec<String>,
     /// Waterfalls of cross sections.
-    pub waterfalls: Vec<crate::plot::Waterfall>,
+    pub waterfalls: Vec<Waterfall>,
 }
 
 impl Conclusion {
+    /// A conclusion with the headline `measured`, Persson's value of it and the largest
+    /// residual of the solves; the rest is added by the experiment.
+    pub fn new(measured: Estimate, persson: f64, max_residual: f64) -> Self {
+        Self {
+            measured: Some(measured),
+            persson,
+            max_residual,
+            ..Default::default()
+        }
+    }
+
     /// The detail with key `key`, if any.
     pub fn detail(&self, key: &str) -> Option<&Detail> {
         self.details.iter().find(|d| d.key == key)
@@ -258,6 +276,18 @@ impl Conclusion {
     /// The check with key `key`, if any.
     pub fn check(&self, key: &str) -> Option<&Check> {
         self.checks.iter().find(|c| c.key == key)
+    }
+}
+
+/// A figure with its axes and no series yet (no right axis).
+pub fn figure(name: &str, title: impl Into<String>, x: Axis, y: Axis) -> Figure {
+    Figure {
+        name: name.into(),
+        title: title.into(),
+        x,
+        y,
+        y2: None,
+        series: Vec::new(),
     }
 }
 
@@ -301,24 +331,22 @@ impl Work {
     }
 }
 
-/// The code behind a family of validations.
-pub trait Experiment {
-    /// Name of the job family: experiments that share a family share job results (two
-    /// validations that draw different statistics from the same runs).
+/// A scene and its jobs: how a scene splits into independent jobs, what one costs, and how
+/// one runs. Validations that draw different statistics from the same runs share their
+/// scene type, and so their jobs and, through [`Jobs::FAMILY`], their stored results.
+pub trait Jobs: Serialize + DeserializeOwned + Sync + fmt::Debug {
+    /// Name of the job family (the folder of the stored results).
     const FAMILY: &'static str;
-
-    /// The scene (the `reduced` and `full` tables of a definition).
-    type Scene: Serialize + DeserializeOwned + Sync + fmt::Debug;
     /// One independent unit of work (usually one realization).
     type Job: Serialize + DeserializeOwned + Clone + Send + Sync + fmt::Debug;
     /// A job's result (kept on disk for resuming).
     type JobResult: Serialize + DeserializeOwned + Send;
 
     /// Checks the scene's ranges; errors name the field.
-    fn validate(scene: &Self::Scene) -> Result<()>;
+    fn validate(&self) -> Result<()>;
 
-    /// The jobs of a scene.
-    fn jobs(scene: &Self::Scene) -> Vec<Self::Job>;
+    /// The jobs of the scene.
+    fn jobs(&self) -> Vec<Self::Job>;
 
     /// Whether a job runs with the headline solver only (a study whose solver is part of
     /// the job, or a figure): the runner does not repeat it for the cross-check.
@@ -328,22 +356,144 @@ pub trait Experiment {
 
     /// What one job costs (its grid and its solves), for splitting a run into shares
     /// before anything runs.
-    fn work(scene: &Self::Scene, job: &Self::Job) -> Work;
+    fn work(&self, job: &Self::Job) -> Work;
 
     /// Runs one job.
-    fn run_job(scene: &Self::Scene, job: &Self::Job, ctx: &JobContext) -> Result<Self::JobResult>;
+    fn run_job(&self, job: &Self::Job, ctx: &JobContext) -> Result<Self::JobResult>;
 
-    /// Reduces all jobs' results (in job order) to a conclusion.
+    /// The largest solver residual of a job's solves (0 for a job that keeps none).
+    fn residual(result: &Self::JobResult) -> f64;
+}
+
+/// A job of experiment `E`.
+pub type JobOf<E> = <<E as Experiment>::Scene as Jobs>::Job;
+/// A job's result of experiment `E`.
+pub type ResultOf<E> = <<E as Experiment>::Scene as Jobs>::JobResult;
+
+/// The results of one solver's run of an experiment on a scene, with what they are judged
+/// by: what every step of a conclusion reads.
+pub struct Run<'a, E: Experiment + ?Sized> {
+    /// The validation's name, significance, resolution and the paper's value.
+    pub criteria: &'a Criteria,
+    /// The scene run.
+    pub scene: &'a E::Scene,
+    /// Every job with its result, in job order.
+    pub results: &'a [(JobOf<E>, ResultOf<E>)],
+}
+
+/// The code behind a validation: the scene it runs (and so its jobs) and what it concludes
+/// from the jobs' results, in three steps that every experiment follows:
+///
+/// 1. **statistics** ([`Experiment::stats`]): the numbers, from pure functions of the
+///    results, unit-tested on their own;
+/// 2. **findings as data**: the headline with Persson's value ([`Experiment::headline`]),
+///    secondary statistics ([`Experiment::details`]), checks of the paper's finding, each
+///    decided by the one rule of [`crate::stats::decide`] ([`Experiment::checks`]), and
+///    golden values ([`Experiment::golden`]);
+/// 3. **a thin builder** of what a reader sees: the account, tables and figures.
+///
+/// [`Experiment::conclude`] runs the three steps; an experiment implements the steps only.
+pub trait Experiment {
+    /// The scene (the `reduced` and `full` tables of a definition), which knows its jobs.
+    type Scene: Jobs;
+    /// The statistics an experiment draws from a run's results.
+    type Stats;
+
+    /// Checks the scene's ranges for this experiment: the scene's own checks
+    /// ([`Jobs::validate`]), and any this experiment adds.
+    fn validate(scene: &Self::Scene) -> Result<()> {
+        scene.validate()
+    }
+
+    /// The statistics of a run (errors: results that do not fit together).
+    fn stats(run: &Run<Self>) -> Result<Self::Stats>;
+
+    /// The headline statistic and Persson's prediction of it.
+    fn headline(run: &Run<Self>, stats: &Self::Stats) -> (Estimate, f64);
+
+    /// Secondary statistics, with stable keys.
+    fn details(_run: &Run<Self>, _stats: &Self::Stats) -> Vec<Detail> {
+        Vec::new()
+    }
+
+    /// Checks of the paper's finding beyond the headline's verdict.
+    fn checks(_run: &Run<Self>, _stats: &Self::Stats) -> Vec<Check> {
+        Vec::new()
+    }
+
+    /// Values kept as golden snapshots, rounded.
+    fn golden(_run: &Run<Self>, _stats: &Self::Stats) -> BTreeMap<String, f64> {
+        BTreeMap::new()
+    }
+
+    /// Rows of a sensitivity study.
+    fn sensitivity(_run: &Run<Self>, _stats: &Self::Stats) -> Vec<SensitivityRow> {
+        Vec::new()
+    }
+
+    /// The account, from the numbers (nothing that depends on the machine).
+    fn account(run: &Run<Self>, stats: &Self::Stats) -> String;
+
+    /// Statements drawn from a study, shown after the account.
+    fn notes(_run: &Run<Self>, _stats: &Self::Stats) -> Vec<String> {
+        Vec::new()
+    }
+
+    /// Tables; the first is written as `<name>.csv`.
+    fn tables(_run: &Run<Self>, _stats: &Self::Stats) -> Vec<Table> {
+        Vec::new()
+    }
+
+    /// Figures.
+    fn figures(_run: &Run<Self>, _stats: &Self::Stats) -> Vec<Figure> {
+        Vec::new()
+    }
+
+    /// Raster images (contact maps).
+    fn rasters(_run: &Run<Self>, _stats: &Self::Stats) -> Vec<Raster> {
+        Vec::new()
+    }
+
+    /// Waterfalls of cross sections.
+    fn waterfalls(_run: &Run<Self>, _stats: &Self::Stats) -> Vec<Waterfall> {
+        Vec::new()
+    }
+
+    /// Reduces all jobs' results (in job order) to a conclusion: the three steps above,
+    /// and the largest residual of the jobs ([`Jobs::residual`]).
     fn conclude(
         criteria: &Criteria,
         scene: &Self::Scene,
-        results: &[(Self::Job, Self::JobResult)],
-    ) -> Result<Conclusion>;
-}
-
-/// Largest of the results' residuals.
-pub fn max_residual<J, R>(results: &[(J, R)], residual: impl Fn(&R) -> f64) -> f64 {
-    results.iter().map(|(_, r)| residual(r)).fold(0.0, f64::max)
+        results: &[(JobOf<Self>, ResultOf<Self>)],
+    ) -> Result<Conclusion>
+    where
+        Self: Sized,
+    {
+        let run = Run {
+            criteria,
+            scene,
+            results,
+        };
+        let stats = Self::stats(&run)?;
+        let (measured, persson) = Self::headline(&run, &stats);
+        let max_residual = results
+            .iter()
+            .map(|(_, r)| Self::Scene::residual(r))
+            .fold(0.0, f64::max);
+        Ok(Conclusion {
+            details: Self::details(&run, &stats),
+            checks: Self::checks(&run, &stats),
+            golden: Self::golden(&run, &stats),
+            sensitivity: Self::sensitivity(&run, &stats),
+            account: Self::account(&run, &stats),
+            notes: Self::notes(&run, &stats),
+            tables: Self::tables(&run, &stats),
+            figures: Self::figures(&run, &stats),
+            rasters: Self::rasters(&run, &stats),
+            waterfalls: Self::waterfalls(&run, &stats),
+            ..Conclusion::new(measured, persson, max_residual)
+        })
+    }
 }
 
 /// The reduced scene of a shipped definition (`validations/<name>.toml`), for the unit
@@ -371,4 +521,24 @@ pub(crate) fn shipped_scenes<S: DeserializeOwned>(name: &str) -> (S, S, Criteria
         paper_value: table["paper"].get("value").and_then(|v| v.as_float()),
     };
     (reduced, full, criteria)
+}
+
+/// The shipped scenes of `name`, both checked for experiment `E` (the test fails
+/// otherwise): the reduced and the full scene.
+#[cfg(test)]
+pub(crate) fn shipped_valid<E: Experiment>(name: &str) -> (E::Scene, E::Scene) {
+    let (reduced, full, _) = shipped_scenes::<E::Scene>(name);
+    for (scale, scene) in [("reduced", &reduced), ("full", &full)] {
+        E::validate(scene).unwrap_or_else(|e| panic!("{name} [{scale}]: {e}"));
+    }
+    (reduced, full)
+}
+
+/// Asserts that `scene` is refused for experiment `E` with an error that names `field`.
+#[cfg(test)]
+pub(crate) fn assert_refused<E: Experiment>(scene: &E::Scene, field: &str) {
+    let e = E::validate(scene)
+        .expect_err("an invalid scene")
+        .to_string();
+    assert!(e.contains(field), "{e}");
 }

@@ -21,12 +21,14 @@
 //! the struct rather than flattened with `#[serde(flatten)]`: flattening loses the
 //! position of a bad value in the file and the name of its key in the error message.)
 
-use crate::engine::contact::Model;
+use crate::engine::contact::{ContactSolution, Model};
 use crate::engine::grid::Grid;
+use crate::engine::scene::check_zeta;
 use crate::engine::solver::{SolveOptions, SolverKind};
 use crate::engine::surface::{Surface, SurfaceParams};
 use crate::engine::sweep::Sweep;
-use crate::error::Result;
+use crate::error::{check_open, check_positive, Error, Result};
+use crate::stats::realizations;
 
 /// The common part of a scene, borrowed from it.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -108,6 +110,52 @@ impl Base<'_> {
         self.solve_options().validate()
     }
 
+    /// Checks the scene's fields ([`Base::validate`]) and one step of magnification at
+    /// fixed load: the contact area that sets the load in (0, 1), `zeta` in
+    /// `[1, zeta_max]`, `dzeta > 0` with `zeta + dzeta <= zeta_max`; errors name the field.
+    pub fn validate_step(&self, contact_area: f64, zeta: f64, dzeta: f64) -> Result<()> {
+        self.validate()?;
+        check_open("contact_area", contact_area, 0.0, 1.0)?;
+        let zeta_max = self.zeta_max();
+        check_zeta(zeta, zeta_max)?;
+        check_positive("dzeta", dzeta)?;
+        check_zeta(zeta + dzeta, zeta_max).map_err(|_| {
+            Error::invalid(
+                "dzeta",
+                dzeta,
+                format!("with zeta + dzeta <= zeta_max = {zeta_max}"),
+            )
+        })
+    }
+
+    /// The runs in words, as the accounts open: `"Over 8 realizations (H = 0.8, 256x256
+    /// grid, lambda_l = 128, lambda_s = 4)"`.
+    pub fn over(&self) -> String {
+        format!(
+            "Over {} (H = {}, {}x{} grid, lambda_l = {}, lambda_s = {})",
+            realizations(self.seeds.len()),
+            self.hurst,
+            self.n,
+            self.n,
+            self.lambda_l,
+            self.lambda_s
+        )
+    }
+
+    /// The runs in words, grid first: `"8 realizations (256x256, H = 0.8, lambda_l = 128,
+    /// lambda_s = 4)"`.
+    pub fn runs(&self) -> String {
+        format!(
+            "{} ({}x{}, H = {}, lambda_l = {}, lambda_s = {})",
+            realizations(self.seeds.len()),
+            self.n,
+            self.n,
+            self.hurst,
+            self.lambda_l,
+            self.lambda_s
+        )
+    }
+
     /// The realization `seed` on its model.
     pub fn realization(&self, seed: u64) -> Result<Realization> {
         let surface = Surface::generate(&self.params(seed))?;
@@ -118,6 +166,55 @@ impl Base<'_> {
     /// A magnification sweep of `r` with `solver` at this scene's tolerance.
     pub fn sweep<'r>(&self, r: &'r Realization, solver: SolverKind) -> Sweep<'r> {
         Sweep::new(&r.surface, &r.model, solver, self.solve_options())
+    }
+
+    /// One step of magnification at fixed load: `r` solved at `zeta` at the load that
+    /// gives `contact_area` there, then at `zeta + dzeta` at the same load, warm-started.
+    pub fn step(
+        &self,
+        r: &Realization,
+        solver: SolverKind,
+        zeta: f64,
+        dzeta: f64,
+        contact_area: f64,
+    ) -> Result<Step> {
+        let mut sweep = self.sweep(r, solver);
+        let p0 = sweep.find_load(zeta, contact_area)?;
+        let before = sweep
+            .solution()
+            .expect("find_load keeps its solution")
+            .clone();
+        let after = sweep.solve_at(zeta + dzeta, p0)?.clone();
+        Ok(Step { p0, before, after })
+    }
+}
+
+/// The two solutions of one step of magnification at fixed load ([`Base::step`]).
+pub struct Step {
+    /// The load.
+    pub p0: f64,
+    /// The solution before the step.
+    pub before: ContactSolution,
+    /// The solution after it.
+    pub after: ContactSolution,
+}
+
+/// Whether `list` is non-empty and strictly increasing.
+pub fn increasing<T: PartialOrd>(list: &[T]) -> bool {
+    !list.is_empty() && list.windows(2).all(|w| w[1] > w[0])
+}
+
+/// The error of a list field `field` that is not what `allowed` says.
+pub fn list_error<T: std::fmt::Debug>(field: &str, list: &[T], allowed: &str) -> Error {
+    Error::invalid(field, format!("{list:?}"), allowed)
+}
+
+/// Checks that the list field `field` is non-empty and strictly increasing.
+pub fn check_increasing<T: PartialOrd + std::fmt::Debug>(field: &str, list: &[T]) -> Result<()> {
+    if increasing(list) {
+        Ok(())
+    } else {
+        Err(list_error(field, list, "a non-empty increasing list"))
     }
 }
 

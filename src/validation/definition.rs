@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::experiments::Criteria;
-use crate::stats::Estimate;
+use crate::stats::{decide, Claim, Decision, Estimate};
 
 /// The verdict on an assumption.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -53,19 +53,44 @@ pub struct VerdictRule {
 }
 
 impl VerdictRule {
-    /// The verdict for `measured` against Persson's `persson`.
+    /// The verdict for `measured` against Persson's `persson`, by the rule of
+    /// [`decide`]: violated when the interval `measured +- z error` does not come near
+    /// Persson's value, holds when it lies within the resolution of it; inconclusive
+    /// otherwise, and without an error bar (one realization).
     pub fn judge(&self, measured: Estimate, persson: f64) -> Verdict {
-        let half = self.significance * measured.std_error;
-        if !(measured.value.is_finite() && half.is_finite()) {
-            return Verdict::Inconclusive;
+        let z = self.significance;
+        let near = Claim::Near {
+            target: persson,
+            tolerance: 0.0,
+        };
+        let within = Claim::Within {
+            target: persson,
+            resolution: self.resolution,
+        };
+        match decide(measured, near, z) {
+            Decision::Undecided => Verdict::Inconclusive,
+            Decision::Failed => Verdict::Violated,
+            Decision::Passed if decide(measured, within, z).passed() => Verdict::Holds,
+            Decision::Passed => Verdict::Inconclusive,
         }
-        let dev = (measured.value - persson).abs();
-        if dev > half {
-            Verdict::Violated
-        } else if dev + half <= self.resolution {
-            Verdict::Holds
-        } else {
-            Verdict::Inconclusive
+    }
+
+    /// Whether two estimates of one statistic agree (the two solvers' on the same
+    /// realizations): their difference comes within the significance times their
+    /// combined standard error of zero. Without an error bar (one realization) the
+    /// difference is taken as exact, and they agree when it is within the resolution:
+    /// both solvers measured the same surfaces, so what remains is solver error.
+    pub fn agree(&self, a: Estimate, b: Estimate) -> bool {
+        let zero = |tolerance| Claim::Near {
+            target: 0.0,
+            tolerance,
+        };
+        let diff = Estimate::difference(a, b);
+        match decide(diff, zero(0.0), self.significance) {
+            Decision::Undecided => {
+                decide(Estimate::new(diff.value, 0.0), zero(self.resolution), 0.0).passed()
+            }
+            d => d.passed(),
         }
     }
 

@@ -1,4 +1,9 @@
 //! The outcome of a validation run: `<name>.json`.
+//!
+//! A number that is not known is NaN in memory and `null` in the file (serde_json writes
+//! NaN as `null`): the standard error of one realization, a detail without an error bar.
+//! Every float field that can be NaN reads `null` back as NaN, so an outcome written from
+//! one realization (or by an earlier version) reads back as it was written.
 
 use std::collections::BTreeMap;
 
@@ -8,6 +13,7 @@ use super::definition::{Scale, Verdict, VerdictRule};
 use super::store::JobRun;
 use crate::experiments::flux::sensitivity::SensitivityRow;
 use crate::experiments::{Check, Detail};
+use crate::stats::{null_as_nan, null_as_nan_values};
 
 /// The record of one validation run: `<name>.json` ([`crate::conventions`], section 7).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -21,10 +27,13 @@ pub struct Outcome {
     /// The headline statistic in words.
     pub statistic: String,
     /// The measured headline statistic.
+    #[serde(deserialize_with = "null_as_nan")]
     pub value: f64,
     /// Its standard error.
+    #[serde(deserialize_with = "null_as_nan")]
     pub std_error: f64,
     /// Persson's prediction of the statistic.
+    #[serde(deserialize_with = "null_as_nan")]
     pub persson: f64,
     /// Persson's prediction in words.
     pub persson_text: String,
@@ -47,8 +56,10 @@ pub struct Outcome {
     /// Hash of the definition file (SHA-256, hex).
     pub definition_sha256: String,
     /// Wall time of the whole validation, seconds.
+    #[serde(deserialize_with = "null_as_nan")]
     pub wall_s: f64,
     /// Largest solver residual over all solves.
+    #[serde(deserialize_with = "null_as_nan")]
     pub max_residual: f64,
     /// Secondary statistics.
     pub details: Vec<Detail>,
@@ -57,6 +68,7 @@ pub struct Outcome {
     /// Account generated from the numbers.
     pub account: String,
     /// Golden values.
+    #[serde(deserialize_with = "null_as_nan_values")]
     pub golden: BTreeMap<String, f64>,
     /// Rows of a sensitivity study (`c_flux`: the one-step flux against its settings).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -149,10 +161,12 @@ pub struct CrossCheck {
     /// The solver.
     pub solver: String,
     /// Its value of the statistic.
+    #[serde(deserialize_with = "null_as_nan")]
     pub value: f64,
     /// Its standard error.
+    #[serde(deserialize_with = "null_as_nan")]
     pub std_error: f64,
     /// Whether the two solvers agree within their combined error (see
-    /// [`super::runner::agree`]).
+    /// [`super::VerdictRule::agree`]).
     pub agrees: bool,
 }

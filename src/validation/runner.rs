@@ -14,7 +14,7 @@ use std::time::{Instant, SystemTime, UNIX_EPOCH};
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 
-use super::definition::{Definition, Scale, Verdict, VerdictRule};
+use super::definition::{Definition, Scale, Verdict};
 use super::outcome::{CrossCheck, MergeRecord, Outcome, ShardRecord};
 use super::plan::{estimate_seconds, PlannedUnit};
 use super::shard::Shard;
@@ -24,8 +24,8 @@ use super::store::{
 };
 use crate::engine::solver::SolverKind;
 use crate::error::{Error, Result};
-use crate::experiments::{Experiment, JobContext, Work};
-use crate::stats::Estimate;
+use crate::experiments::{Check, Conclusion, Experiment, JobContext, JobOf, Jobs, ResultOf, Work};
+use crate::stats::{decide, Claim, Decision, Estimate};
 
 /// How to run validations.
 #[derive(Debug, Clone)]
@@ -100,7 +100,7 @@ impl RunOptions {
 }
 
 /// The jobs of one solver with their results, in job order.
-type Results<E> = Vec<(<E as Experiment>::Job, <E as Experiment>::JobResult)>;
+type Results<E> = Vec<(JobOf<E>, ResultOf<E>)>;
 
 /// One job of one solver, and where its result and checkpoints live.
 pub(crate) struct Unit<J> {
@@ -120,7 +120,7 @@ pub(crate) struct Unit<J> {
 pub(crate) struct Prepared<E: Experiment> {
     pub def: Definition<E::Scene>,
     pub scene_json: serde_json::Value,
-    pub units: Vec<Unit<E::Job>>,
+    pub units: Vec<Unit<JobOf<E>>>,
 }
 
 impl<E: Experiment> Prepared<E> {
@@ -138,11 +138,11 @@ pub(crate) fn prepare<E: Experiment>(source: &Source, opts: &RunOptions) -> Resu
     let def = source.parse::<E::Scene>()?;
     let (scene, jobs) = checked_scene::<E>(source, &def, opts.scale)?;
     let scene_json = serde_json::to_value(scene).expect("scenes serialise");
-    let state = jobs_dir(&opts.out, E::FAMILY, opts.scale);
+    let state = jobs_dir(&opts.out, <E::Scene as Jobs>::FAMILY, opts.scale);
     let mut units = Vec::new();
     for (k, &solver) in opts.solvers.iter().enumerate() {
         for job in &jobs {
-            if k > 0 && E::headline_only(job) {
+            if k > 0 && <E::Scene as Jobs>::headline_only(job) {
                 continue;
             }
             let job_json = serde_json::to_string(job).expect("jobs serialise");
@@ -153,7 +153,7 @@ pub(crate) fn prepare<E: Experiment>(source: &Source, opts: &RunOptions) -> Resu
                 job_json,
                 path: state.join(format!("{key}.json")),
                 state_dir: state.join(format!("{key}.checkpoint")),
-                work: E::work(scene, job),
+                work: scene.work(job),
             });
         }
     }
@@ -189,15 +189,15 @@ fn execute<E: Experiment>(
     source: &Source,
     name: &str,
     scene: &E::Scene,
-    unit: &Unit<E::Job>,
+    unit: &Unit<JobOf<E>>,
     opts: &RunOptions,
-) -> Result<E::JobResult> {
+) -> Result<ResultOf<E>> {
     let ctx = JobContext {
         solver: unit.solver,
         state_dir: unit.state_dir.clone(),
     };
     if opts.reuses_results() || written_here(&unit.path) {
-        if let Some(stored) = store::load::<E::Job, E::JobResult>(&unit.path) {
+        if let Some(stored) = store::load::<JobOf<E>, ResultOf<E>>(&unit.path) {
             // Checkpoints of a run killed after storing this result are spent.
             remove_state(&ctx.state_dir).ok();
             return Ok(stored.result);
@@ -216,7 +216,7 @@ fn execute<E: Experiment>(
     }
     let started = SystemTime::now();
     let timer = Instant::now();
-    let result = E::run_job(scene, &unit.job, &ctx).map_err(|e| {
+    let result = scene.run_job(&unit.job, &ctx).map_err(|e| {
         Error::bad_file(
             &source.path,
             format!(
@@ -269,7 +269,7 @@ pub fn run_experiment<E: Experiment>(
     let timer = Instant::now();
     let prepared = prepare::<E>(source, opts)?;
     let scene = prepared.scene(opts.scale);
-    let selected: Vec<&Unit<E::Job>> = match &opts.mode {
+    let selected: Vec<&Unit<JobOf<E>>> = match &opts.mode {
         Mode::Share { jobs, .. } => prepared
             .units
             .iter()
@@ -278,7 +278,7 @@ pub fn run_experiment<E: Experiment>(
         _ => prepared.units.iter().collect(),
     };
     let bar = progress_bar(opts.progress, &prepared.def.name, selected.len());
-    let results: Vec<E::JobResult> = selected
+    let results: Vec<ResultOf<E>> = selected
         .par_iter()
         .map(|unit| {
             let r = execute::<E>(source, &prepared.def.name, scene, unit, opts);
@@ -318,30 +318,13 @@ pub fn run_experiment<E: Experiment>(
 pub(crate) fn conclude<E: Experiment>(
     source: &Source,
     prepared: &Prepared<E>,
-    results: Vec<E::JobResult>,
+    results: Vec<ResultOf<E>>,
     opts: &RunOptions,
     wall_s: f64,
     merge: Option<MergeRecord>,
 ) -> Result<Outcome> {
     let def = &prepared.def;
-    let scene = prepared.scene(opts.scale);
-    let criteria = def.criteria();
-    let mut by_solver: Vec<(SolverKind, Results<E>)> = Vec::new();
-    for (unit, result) in prepared.units.iter().zip(results) {
-        match by_solver.iter_mut().find(|(s, _)| *s == unit.solver) {
-            Some((_, v)) => v.push((unit.job.clone(), result)),
-            None => by_solver.push((unit.solver, vec![(unit.job.clone(), result)])),
-        }
-    }
-    let mut conclusions = Vec::new();
-    for (solver, results) in &by_solver {
-        let c = E::conclude(&criteria, scene, results)
-            .map_err(|e| Error::bad_file(&source.path, format!("[{}] {e}", solver.name())))?;
-        let measured = c
-            .measured
-            .ok_or_else(|| Error::bad_file(&source.path, "the experiment measured nothing"))?;
-        conclusions.push((*solver, c, measured));
-    }
+    let conclusions = conclude_by_solver::<E>(source, prepared, results, opts.scale)?;
     let max_residual = conclusions
         .iter()
         .map(|(_, c, _)| c.max_residual)
@@ -352,56 +335,11 @@ pub(crate) fn conclude<E: Experiment>(
         solver: s.name().to_string(),
         value: m.value,
         std_error: m.std_error,
-        agrees: agree(measured, m, &def.verdict),
+        agrees: def.verdict.agree(measured, m),
     });
-
     let verdict = def.verdict.judge(measured, conclusion.persson);
-    let in_range = def.paper.range.is_none_or(|(lo, hi)| {
-        // The measurement's interval overlaps the paper's range.
-        let half = def.verdict.significance * measured.std_error;
-        measured.value + half >= lo && measured.value - half <= hi
-    });
-    let reproduced = match verdict {
-        Verdict::Inconclusive => None,
-        v => {
-            let checks = &conclusion.checks;
-            let agrees = v == def.paper.verdict
-                && in_range
-                && checks.iter().filter(|c| c.decided).all(|c| c.passed);
-            // A check the data cannot decide (one realization) leaves a reproduction that
-            // would otherwise stand undecided.
-            let undecided = checks.iter().any(|c| !c.decided);
-            (!agrees || !undecided).then_some(agrees)
-        }
-    };
-
-    let dir = opts.out.join(&def.name);
-    let mut files = Vec::new();
-    for (k, table) in conclusion.tables.iter().enumerate() {
-        let path = if k == 0 {
-            opts.out.join(format!("{}.csv", def.name))
-        } else {
-            dir.join(format!("{}.csv", table.name))
-        };
-        table.write_csv(&path)?;
-        files.push(relative(&opts.out, &path));
-    }
-    for figure in &conclusion.figures {
-        for path in crate::plot::render(figure, &dir)? {
-            files.push(relative(&opts.out, &path));
-        }
-    }
-    for waterfall in &conclusion.waterfalls {
-        for path in crate::plot::render_waterfall(waterfall, &dir)? {
-            files.push(relative(&opts.out, &path));
-        }
-    }
-    for raster in &conclusion.rasters {
-        for path in crate::plot::render_raster(raster, &dir)? {
-            files.push(relative(&opts.out, &path));
-        }
-    }
-
+    let reproduced = reproduced(def, verdict, measured, &conclusion.checks);
+    let files = write_files(&opts.out, &def.name, &conclusion)?;
     let outcome = Outcome {
         name: def.name.clone(),
         title: def.title.clone(),
@@ -439,17 +377,88 @@ pub(crate) fn conclude<E: Experiment>(
     Ok(outcome)
 }
 
-/// Whether two solvers' estimates of one statistic agree: their difference within the
-/// verdict's significance times their combined standard error. Without an error bar (one
-/// realization) they agree when they differ by less than the verdict's resolution.
-pub fn agree(a: Estimate, b: Estimate, rule: &VerdictRule) -> bool {
-    let diff = (a.value - b.value).abs();
-    let combined = a.std_error.hypot(b.std_error);
-    if combined.is_finite() {
-        diff <= rule.significance * combined
-    } else {
-        diff <= rule.resolution
+/// The experiment's conclusion from each solver's results (the units' results in unit
+/// order), headline solver first, with its headline estimate.
+fn conclude_by_solver<E: Experiment>(
+    source: &Source,
+    prepared: &Prepared<E>,
+    results: Vec<ResultOf<E>>,
+    scale: Scale,
+) -> Result<Vec<(SolverKind, Conclusion, Estimate)>> {
+    let mut by_solver: Vec<(SolverKind, Results<E>)> = Vec::new();
+    for (unit, result) in prepared.units.iter().zip(results) {
+        match by_solver.iter_mut().find(|(s, _)| *s == unit.solver) {
+            Some((_, v)) => v.push((unit.job.clone(), result)),
+            None => by_solver.push((unit.solver, vec![(unit.job.clone(), result)])),
+        }
     }
+    let criteria = prepared.def.criteria();
+    let scene = prepared.scene(scale);
+    by_solver
+        .iter()
+        .map(|(solver, results)| {
+            let c = E::conclude(&criteria, scene, results)
+                .map_err(|e| Error::bad_file(&source.path, format!("[{}] {e}", solver.name())))?;
+            let measured = c
+                .measured
+                .ok_or_else(|| Error::bad_file(&source.path, "the experiment measured nothing"))?;
+            Ok((*solver, c, measured))
+        })
+        .collect()
+}
+
+/// Whether the run reproduces the paper's finding: the paper's verdict, its range (the
+/// interval `measured +- z error` overlaps it) and every check, in the three-valued logic
+/// of [`Decision::all`]. `None` when the verdict is inconclusive, or when a check the data
+/// do not decide (one realization) is all that stands in the way.
+fn reproduced<S>(
+    def: &Definition<S>,
+    verdict: Verdict,
+    measured: Estimate,
+    checks: &[Check],
+) -> Option<bool> {
+    if verdict == Verdict::Inconclusive {
+        return None;
+    }
+    let same_verdict = Decision::from_bool(verdict == def.paper.verdict);
+    let in_range = match def.paper.range {
+        Some((lo, hi)) => decide(measured, Claim::Overlaps(lo, hi), def.verdict.significance),
+        None => Decision::Passed,
+    };
+    let checks = checks.iter().map(|c| match (c.decided, c.passed) {
+        (false, _) => Decision::Undecided,
+        (true, passed) => Decision::from_bool(passed),
+    });
+    match Decision::all([same_verdict, in_range].into_iter().chain(checks)) {
+        Decision::Undecided => None,
+        d => Some(d.passed()),
+    }
+}
+
+/// Writes the conclusion's tables (the first as `<out>/<name>.csv`, the others and the
+/// figures under `<out>/<name>/`); the files written, relative to `out`.
+fn write_files(out: &Path, name: &str, conclusion: &Conclusion) -> Result<Vec<String>> {
+    let dir = out.join(name);
+    let mut files = Vec::new();
+    for (k, table) in conclusion.tables.iter().enumerate() {
+        let path = if k == 0 {
+            out.join(format!("{name}.csv"))
+        } else {
+            dir.join(format!("{}.csv", table.name))
+        };
+        table.write_csv(&path)?;
+        files.push(path);
+    }
+    for figure in &conclusion.figures {
+        files.extend(crate::plot::render(figure, &dir)?);
+    }
+    for waterfall in &conclusion.waterfalls {
+        files.extend(crate::plot::render_waterfall(waterfall, &dir)?);
+    }
+    for raster in &conclusion.rasters {
+        files.extend(crate::plot::render_raster(raster, &dir)?);
+    }
+    Ok(files.iter().map(|p| relative(out, p)).collect())
 }
 
 /// Parses `source` as a definition of experiment `E` and checks both of its scenes,
@@ -468,10 +477,10 @@ fn checked_scene<'a, E: Experiment>(
     source: &Source,
     def: &'a Definition<E::Scene>,
     scale: Scale,
-) -> Result<(&'a E::Scene, Vec<E::Job>)> {
+) -> Result<(&'a E::Scene, Vec<JobOf<E>>)> {
     let scene = def.scene(scale);
     E::validate(scene).map_err(|e| Error::bad_file(&source.path, format!("[{scale}] {e}")))?;
-    let jobs = E::jobs(scene);
+    let jobs = scene.jobs();
     if jobs.is_empty() {
         return Err(Error::bad_file(
             &source.path,

@@ -1,7 +1,7 @@
 //! Shares of the work for runs over many machines ([`crate::conventions`], section 8).
 //!
 //! A run of several validations is a list of jobs, each with an estimated cost
-//! ([`crate::experiments::Experiment::work`], [`super::plan::estimate_seconds`]).
+//! ([`crate::experiments::Jobs::work`], [`super::plan::estimate_seconds`]).
 //! [`assign`] splits the list into `N` disjoint shares by the longest-processing-time
 //! rule: jobs in decreasing cost, each to
 //! the share with the least estimated cost so far (ties to the lower index, equal costs in

@@ -19,7 +19,7 @@
 //! contact. Error bars are standard errors over realizations.
 //!
 //! Two studies ride along, each run once, with the headline solver's jobs
-//! ([`Experiment::headline_only`]): the [`sensitivity`] of the flux to the solver, the step,
+//! ([`Jobs::headline_only`]): the [`sensitivity`] of the flux to the solver, the step,
 //! the discretisation and the control (what sets its magnitude, [`reading`]), and the
 //! cross-section [`waterfall`] of the paper's figure "reentry_waterfall".
 //!
@@ -28,20 +28,22 @@
 
 pub mod reading;
 pub mod sensitivity;
+mod steps;
 pub mod waterfall;
 
 use serde::{Deserialize, Serialize};
 
-use self::sensitivity::{SensitivityPlan, StudyJob, StudyResult};
+use std::collections::BTreeMap;
+
+use self::sensitivity::{SensitivityPlan, SensitivityRow, StudyJob, StudyResult};
+use self::steps::StepStats;
 use self::waterfall::{WaterfallPlan, WaterfallResult};
-use super::reentry::history::{pack_categories, unpack_categories};
-use super::reentry::net_over_gross;
-use super::scene::scene;
-use super::{max_residual, Check, Conclusion, Criteria, Detail, Experiment, JobContext, Work};
-use crate::engine::scene::check_zeta;
-use crate::error::{check_open, check_positive, Error, Result};
-use crate::plot::Raster;
-use crate::stats::{realizations, round_sig, Estimate};
+use super::reentry::history::pack_categories;
+use super::scene::{scene, Step};
+use super::{Check, Detail, Experiment, JobContext, Jobs, Work};
+use crate::error::{Error, Result};
+use crate::plot::{Figure, Raster, Waterfall};
+use crate::stats::Estimate;
 
 /// The paper's flux into contact from zeta = 128 to 129.5, fraction of the nominal area.
 pub const PAPER_IN: f64 = 0.00675;
@@ -137,32 +139,29 @@ pub fn fluxes(categories: &[u8]) -> (f64, f64) {
     (count(ENTERED), count(LEFT))
 }
 
-impl Experiment for Flux {
+impl Jobs for FluxScene {
     const FAMILY: &'static str = "flux";
-    type Scene = FluxScene;
     type Job = FluxJob;
     type JobResult = FluxOutput;
 
-    fn validate(scene: &FluxScene) -> Result<()> {
-        scene.base().validate()?;
-        check_open("contact_area", scene.contact_area, 0.0, 1.0)?;
-        check_positive("dzeta", scene.dzeta)?;
-        check_zeta(scene.zeta + scene.dzeta, scene.base().zeta_max())?;
-        if let Some(plan) = &scene.sensitivity {
-            plan.validate(scene.hurst)?;
+    fn validate(&self) -> Result<()> {
+        self.base()
+            .validate_step(self.contact_area, self.zeta, self.dzeta)?;
+        if let Some(plan) = &self.sensitivity {
+            plan.validate(self.hurst)?;
         }
-        if let Some(plan) = &scene.waterfall {
-            plan.validate(scene.base().zeta_max())?;
+        if let Some(plan) = &self.waterfall {
+            plan.validate(self.base().zeta_max())?;
         }
         Ok(())
     }
 
-    fn jobs(scene: &FluxScene) -> Vec<FluxJob> {
-        let mut jobs: Vec<FluxJob> = scene.seeds.iter().map(|&s| FluxJob::Step(s)).collect();
-        if let Some(plan) = &scene.sensitivity {
+    fn jobs(&self) -> Vec<FluxJob> {
+        let mut jobs: Vec<FluxJob> = self.seeds.iter().map(|&s| FluxJob::Step(s)).collect();
+        if let Some(plan) = &self.sensitivity {
             jobs.extend(plan.jobs().into_iter().map(FluxJob::Study));
         }
-        if scene.waterfall.is_some() {
+        if self.waterfall.is_some() {
             jobs.push(FluxJob::Waterfall);
         }
         jobs
@@ -172,103 +171,175 @@ impl Experiment for Flux {
         !matches!(job, FluxJob::Step(_))
     }
 
-    fn work(scene: &FluxScene, job: &FluxJob) -> Work {
+    fn work(&self, job: &FluxJob) -> Work {
         match job {
-            FluxJob::Step(_) => Work::climb(scene.n, 1, 0),
+            FluxJob::Step(_) => Work::climb(self.n, 1, 0),
             FluxJob::Study(j) => Work::climb(j.config.n, 1, 0),
             FluxJob::Waterfall => {
-                let panels = scene.waterfall.as_ref().map_or(0, |w| w.zetas.len());
-                Work::climb(scene.n, panels, 0)
+                let panels = self.waterfall.as_ref().map_or(0, |w| w.zetas.len());
+                Work::climb(self.n, panels, 0)
             }
         }
     }
 
-    fn run_job(scene: &FluxScene, job: &FluxJob, ctx: &JobContext) -> Result<FluxOutput> {
+    fn run_job(&self, job: &FluxJob, ctx: &JobContext) -> Result<FluxOutput> {
         match job {
-            FluxJob::Step(seed) => step(scene, *seed, ctx).map(FluxOutput::Step),
-            FluxJob::Study(j) => sensitivity::run(scene.hurst, j).map(FluxOutput::Study),
+            FluxJob::Step(seed) => step(self, *seed, ctx).map(FluxOutput::Step),
+            FluxJob::Study(j) => sensitivity::run(self.hurst, j).map(FluxOutput::Study),
             FluxJob::Waterfall => {
-                let plan = scene
+                let plan = self
                     .waterfall
                     .as_ref()
                     .ok_or_else(|| Error::invalid("waterfall", "none", "a waterfall plan"))?;
-                waterfall::run(scene, plan).map(FluxOutput::Waterfall)
+                waterfall::run(self, plan).map(FluxOutput::Waterfall)
             }
         }
     }
 
-    fn conclude(
-        criteria: &Criteria,
-        scene: &FluxScene,
-        results: &[(FluxJob, FluxOutput)],
-    ) -> Result<Conclusion> {
-        let steps: Vec<(u64, FluxResult)> = results
+    /// The steps' and the study's residuals; the waterfall keeps none.
+    fn residual(result: &FluxOutput) -> f64 {
+        match result {
+            FluxOutput::Step(r) => r.max_residual,
+            FluxOutput::Study(r) => r.max_residual,
+            FluxOutput::Waterfall(_) => 0.0,
+        }
+    }
+}
+
+/// The statistics of the one-step flux: the headline steps', and the sensitivity study's
+/// rows.
+#[derive(Debug, Clone)]
+pub struct FluxStats {
+    /// The steps of the scene's realizations.
+    pub steps: StepStats,
+    /// The steps' results, by seed.
+    pub results: Vec<(u64, FluxResult)>,
+    /// The rows of the sensitivity study (none without one).
+    pub rows: Vec<SensitivityRow>,
+}
+
+impl FluxStats {
+    /// The statistics of every job's output.
+    pub fn of(scene: &FluxScene, outputs: &[(FluxJob, FluxOutput)]) -> Self {
+        let results: Vec<(u64, FluxResult)> = outputs
             .iter()
             .filter_map(|(j, r)| match (j, r) {
                 (FluxJob::Step(s), FluxOutput::Step(r)) => Some((*s, r.clone())),
                 _ => None,
             })
             .collect();
-        let mut c = conclude_steps(criteria, scene, &steps)?;
-        if let Some(plan) = &scene.sensitivity {
-            let study: Vec<(&StudyJob, &StudyResult)> = results
-                .iter()
-                .filter_map(|(j, r)| match (j, r) {
-                    (FluxJob::Study(j), FluxOutput::Study(r)) => Some((j, r)),
-                    _ => None,
-                })
-                .collect();
-            c.sensitivity = plan.conclude(&study);
-            if !c.sensitivity.is_empty() {
-                let value = |k: &str| c.detail(k).map(|d| d.value);
-                // The study's row of the headline's own step, where there is one.
-                let same_step = c.sensitivity.iter().position(|r| {
-                    let k = &r.config;
-                    r.parameter == "dzeta_over_zeta"
-                        && (k.n, k.lambda_l, k.lambda_s)
-                            == (scene.n, scene.lambda_l, scene.lambda_s)
-                        && (k.zeta, k.dzeta, k.contact_area)
-                            == (scene.zeta, scene.dzeta, scene.contact_area)
-                        && k.hurst.is_none()
-                        && !k.fixed_area
-                });
-                let headline = match (same_step, value("flux_in"), value("flux_out")) {
-                    (Some(row), Some(i), Some(o)) => Some((row, i, o)),
-                    _ => None,
-                };
-                let before = value("contact_area_before").map_or(f64::NAN, |e| e.value);
-                let after = value("contact_area_after").map_or(f64::NAN, |e| e.value);
-                c.notes = reading::notes(&c.sensitivity, before, after);
-                c.figures.push(reading::figure(&c.sensitivity, headline));
-                let max = study
-                    .iter()
-                    .map(|(_, r)| r.max_residual)
-                    .fold(0.0, f64::max);
-                c.max_residual = c.max_residual.max(max);
-            }
+        let study: Vec<(&StudyJob, &StudyResult)> = outputs
+            .iter()
+            .filter_map(|(j, r)| match (j, r) {
+                (FluxJob::Study(j), FluxOutput::Study(r)) => Some((j, r)),
+                _ => None,
+            })
+            .collect();
+        Self {
+            steps: StepStats::of(&results),
+            rows: scene
+                .sensitivity
+                .as_ref()
+                .map_or_else(Vec::new, |plan| plan.conclude(&study)),
+            results,
         }
-        if let Some(plan) = &scene.waterfall {
-            for (_, r) in results {
-                if let FluxOutput::Waterfall(w) = r {
-                    c.waterfalls.push(waterfall::figure(scene, plan, w));
-                }
-            }
-        }
-        Ok(c)
     }
+}
+
+type Run<'a> = super::Run<'a, Flux>;
+
+impl Experiment for Flux {
+    type Scene = FluxScene;
+    type Stats = FluxStats;
+
+    fn stats(run: &Run) -> Result<FluxStats> {
+        Ok(FluxStats::of(run.scene, run.results))
+    }
+
+    fn headline(_run: &Run, s: &FluxStats) -> (Estimate, f64) {
+        (s.steps.ratio, 0.0)
+    }
+
+    fn details(_run: &Run, s: &FluxStats) -> Vec<Detail> {
+        steps::details(&s.steps)
+    }
+
+    fn checks(run: &Run, s: &FluxStats) -> Vec<Check> {
+        vec![steps::check(run.criteria, &s.steps)]
+    }
+
+    fn golden(_run: &Run, s: &FluxStats) -> BTreeMap<String, f64> {
+        steps::golden(&s.steps)
+    }
+
+    fn sensitivity(_run: &Run, s: &FluxStats) -> Vec<SensitivityRow> {
+        s.rows.clone()
+    }
+
+    fn account(run: &Run, s: &FluxStats) -> String {
+        steps::account(run.scene, &s.steps)
+    }
+
+    /// The reading of the sensitivity study against the paper's flux.
+    fn notes(_run: &Run, s: &FluxStats) -> Vec<String> {
+        if s.rows.is_empty() {
+            return Vec::new();
+        }
+        let (before, after) = (s.steps.a_before.value, s.steps.a_after.value);
+        reading::notes(&s.rows, before, after)
+    }
+
+    /// The flux per step against the step, the study's rows beside the headline step
+    /// (placed at the study's row of the same step, where there is one).
+    fn figures(run: &Run, s: &FluxStats) -> Vec<Figure> {
+        if s.rows.is_empty() {
+            return Vec::new();
+        }
+        let headline =
+            same_step(run.scene, &s.rows).map(|row| (row, s.steps.flux_in, s.steps.flux_out));
+        vec![reading::figure(&s.rows, headline)]
+    }
+
+    fn rasters(run: &Run, s: &FluxStats) -> Vec<Raster> {
+        steps::flux_map(run.scene, &s.results).into_iter().collect()
+    }
+
+    fn waterfalls(run: &Run, _s: &FluxStats) -> Vec<Waterfall> {
+        let Some(plan) = &run.scene.waterfall else {
+            return Vec::new();
+        };
+        run.results
+            .iter()
+            .filter_map(|(_, r)| match r {
+                FluxOutput::Waterfall(w) => Some(waterfall::figure(run.scene, plan, w)),
+                _ => None,
+            })
+            .collect()
+    }
+}
+
+/// The study's row of the headline's own step, where there is one: a step row with the
+/// scene's grid, step, load, Hurst exponent and control.
+fn same_step(scene: &FluxScene, rows: &[SensitivityRow]) -> Option<usize> {
+    rows.iter().position(|r| {
+        let k = &r.config;
+        r.parameter == "dzeta_over_zeta"
+            && (k.n, k.lambda_l, k.lambda_s) == (scene.n, scene.lambda_l, scene.lambda_s)
+            && (k.zeta, k.dzeta, k.contact_area) == (scene.zeta, scene.dzeta, scene.contact_area)
+            && k.hurst.is_none()
+            && !k.fixed_area
+    })
 }
 
 /// One realization's step at the scene's settings.
 fn step(scene: &FluxScene, seed: u64, ctx: &JobContext) -> Result<FluxResult> {
     let base = scene.base();
     let r = base.realization(seed)?;
-    let mut sweep = base.sweep(&r, ctx.solver);
-    let p0 = sweep.find_load(scene.zeta, scene.contact_area)?;
-    let old = sweep
-        .solution()
-        .expect("find_load keeps its solution")
-        .clone();
-    let new = sweep.solve_at(scene.zeta + scene.dzeta, p0)?;
+    let Step {
+        p0,
+        before: old,
+        after: new,
+    } = base.step(&r, ctx.solver, scene.zeta, scene.dzeta, scene.contact_area)?;
     let categories: Vec<u8> = old
         .pressure
         .iter()
@@ -285,112 +356,6 @@ fn step(scene: &FluxScene, seed: u64, ctx: &JobContext) -> Result<FluxResult> {
         max_residual: old.stats.residual.value().max(new.stats.residual.value()),
         map: (seed == scene.seeds[0]).then(|| pack_categories(&categories)),
     })
-}
-
-/// The headline conclusion from the steps of every seed.
-fn conclude_steps(
-    criteria: &Criteria,
-    scene: &FluxScene,
-    results: &[(u64, FluxResult)],
-) -> Result<Conclusion> {
-    let over = |f: fn(&FluxResult) -> f64| {
-        Estimate::mean_of(&results.iter().map(|(_, r)| f(r)).collect::<Vec<_>>())
-    };
-    let flux_in = over(|r| r.flux_in);
-    let flux_out = over(|r| r.flux_out);
-    // Per realization, so that the error bar holds the realizations' spread.
-    let ratio = over(|r| r.flux_in / r.flux_out.max(f64::MIN_POSITIVE));
-    let net = over(|r| net_over_gross(r.flux_in, r.flux_out));
-    let a_old = over(|r| r.a_r_old);
-    let a_new = over(|r| r.a_r_new);
-    let mut c = Conclusion {
-        measured: Some(ratio),
-        persson: 0.0,
-        max_residual: max_residual(results, |r| r.max_residual),
-        ..Default::default()
-    };
-    c.details = vec![
-        Detail::new(
-            "flux_in",
-            "fraction of the nominal area entering contact",
-            flux_in,
-        )
-        .paper(Some(PAPER_IN)),
-        Detail::new(
-            "flux_out",
-            "fraction of the nominal area leaving contact",
-            flux_out,
-        )
-        .paper(Some(PAPER_OUT)),
-        Detail::new(
-            "net_over_gross",
-            "net flux over the mean one-way flux, |out - in| / ((out + in) / 2)",
-            net,
-        )
-        .paper(Some(net_over_gross(PAPER_IN, PAPER_OUT))),
-        Detail::new("contact_area_before", "a_r at zeta", a_old),
-        Detail::new("contact_area_after", "a_r at zeta + dzeta", a_new),
-    ];
-    for (key, e) in [
-        ("ratio", ratio),
-        ("flux_in", flux_in),
-        ("flux_out", flux_out),
-    ] {
-        c.golden.insert(key.into(), round_sig(e.value, 2));
-    }
-    c.checks.push(Check::with_error_bar(
-        "points_enter_contact",
-        format!(
-            "points enter contact in the step (flux in more than {} standard errors above 0)",
-            criteria.significance
-        ),
-        flux_in,
-        flux_in.value > criteria.significance * flux_in.std_error,
-        format!("flux in = {}", flux_in.text(1.0, 5, "")),
-    ));
-    c.account = format!(
-        "Over {} (H = {}, {}x{} grid, lambda_l = {}, lambda_s = {}), at the \
-             load that gives a_r = {:.3} at zeta = {}, the step to zeta = {} moves {:.3}% of \
-             the nominal area into contact and {:.3}% out of it: {} points \
-             enter per point that leaves, where Persson's absorbing boundary allows none. \
-             The net flux is {} of the mean one-way flux; a_r goes from {:.4} \
-             to {:.4}.",
-        realizations(results.len()),
-        scene.hurst,
-        scene.n,
-        scene.n,
-        scene.lambda_l,
-        scene.lambda_s,
-        a_old.value,
-        scene.zeta,
-        scene.zeta + scene.dzeta,
-        100.0 * flux_in.value,
-        100.0 * flux_out.value,
-        ratio.text(1.0, 3, ""),
-        net.text(1.0, 3, ""),
-        a_old.value,
-        a_new.value,
-    );
-    if let Some((seed, r)) = results.iter().find(|(_, r)| r.map.is_some()) {
-        c.rasters.push(Raster {
-            name: "flux_map".into(),
-            title: format!(
-                "Contact changes from zeta = {} to {} (seed {seed}, a_r = {:.3})",
-                scene.zeta,
-                scene.zeta + scene.dzeta,
-                r.a_r_old
-            ),
-            n: scene.n,
-            pixels: unpack_categories(r.map.as_deref().unwrap_or(""), scene.n * scene.n),
-            palette: vec![
-                ([150, 150, 150], "in contact at both".into()),
-                ([220, 40, 40], "entered contact".into()),
-                ([255, 255, 255], "out of contact at both".into()),
-                ([40, 80, 220], "left contact".into()),
-            ],
-        });
-    }
-    Ok(c)
 }
 
 #[cfg(test)]
@@ -412,9 +377,7 @@ mod tests {
 
     #[test]
     fn shipped_scenes_are_valid() {
-        let (reduced, full, _) = crate::experiments::shipped_scenes::<FluxScene>("c_flux");
-        Flux::validate(&reduced).unwrap();
-        Flux::validate(&full).unwrap();
+        let (_, full) = crate::experiments::shipped_valid::<Flux>("c_flux");
         assert_eq!(full.n, 4096);
     }
 }

@@ -68,25 +68,27 @@
 //!   partial-contact loads and targets are fitted to the paper's `K1 exp(-K2 x)` by a line
 //!   through `(x, ln E_inf)`.
 
+pub mod asymptote;
 mod band;
+mod figures;
 mod frozen;
 mod onset;
 
+pub use asymptote::{FrozenStats, PAPER_K_H03, PAPER_K_H08};
 pub use band::{band_energies, Band};
-pub use frozen::{ModeFrozen, PAPER_K_H03, PAPER_K_H08};
-pub use onset::ModeOnset;
+pub use frozen::ModeFrozen;
+pub use onset::{ModeOnset, OnsetStats};
 
 use serde::{Deserialize, Serialize};
 
-use super::climb::{climb, ladder, step_of, Recorder};
-use super::ensemble::{check_contact_areas, check_headline, LoadGroup, SeedLoad};
-use super::scene::scene;
-use super::Table;
+use super::climb::{check_steps_per_octave, climb, ladder, step_of, Recorder};
+use super::ensemble::{check_headline, seed_load_jobs, LoadGroup, SeedLoad};
+use super::scene::{check_increasing, scene};
+use super::{JobContext, Jobs, Work};
 use crate::engine::contact::{ContactSolution, Model};
 use crate::engine::solver::SolverKind;
 use crate::error::{check_open, check_positive, Error, Result};
 use crate::persson::Correction;
-use crate::plot::{Axis, Figure, Series, Style};
 use crate::stats::{round_sig, Estimate};
 
 scene! {
@@ -130,11 +132,16 @@ impl ModeScene {
             &extra,
         )
     }
+}
 
-    pub(super) fn validate(&self) -> Result<()> {
+impl Jobs for ModeScene {
+    const FAMILY: &'static str = "modes";
+    type Job = SeedLoad;
+    type JobResult = ModeResult;
+
+    fn validate(&self) -> Result<()> {
         let base = self.base();
         base.validate()?;
-        check_contact_areas(&self.contact_areas)?;
         check_headline(self.headline_contact_area, &self.contact_areas)?;
         check_open("band", self.band, 0.0, 0.5)?;
         check_positive("zeta_start", self.zeta_start)?;
@@ -149,13 +156,7 @@ impl ModeScene {
                 ),
             ));
         }
-        if !(1..=64).contains(&self.steps_per_octave) {
-            return Err(Error::invalid(
-                "steps_per_octave",
-                self.steps_per_octave,
-                "an integer in [1, 64]",
-            ));
-        }
+        check_steps_per_octave(self.steps_per_octave)?;
         check_open("onset_ratio", self.onset_ratio, 0.0, 1.0 - self.band)?;
         if !(self.frozen_from > 1.0 + self.band && self.frozen_from.is_finite()) {
             return Err(Error::invalid(
@@ -164,13 +165,7 @@ impl ModeScene {
                 format!("> 1 + band = {}", 1.0 + self.band),
             ));
         }
-        if self.targets.is_empty() || self.targets.windows(2).any(|w| w[1] <= w[0]) {
-            return Err(Error::invalid(
-                "targets",
-                format!("{:?}", self.targets),
-                "a non-empty increasing list",
-            ));
-        }
+        check_increasing("targets", &self.targets)?;
         for &t in &self.targets {
             if !(self.onset_ratio * t >= self.zeta_start && (1.0 + self.band) * t <= self.zeta_end)
             {
@@ -187,6 +182,22 @@ impl ModeScene {
             }
         }
         self.correction.validate()
+    }
+
+    fn jobs(&self) -> Vec<SeedLoad> {
+        seed_load_jobs(&self.contact_areas, &self.seeds)
+    }
+
+    fn work(&self, _job: &SeedLoad) -> Work {
+        Work::climb(self.n, self.steps().len(), 0)
+    }
+
+    fn run_job(&self, job: &SeedLoad, ctx: &JobContext) -> Result<ModeResult> {
+        run_sweep(self, job, ctx.solver)
+    }
+
+    fn residual(result: &ModeResult) -> f64 {
+        result.max_residual
     }
 }
 
@@ -308,98 +319,6 @@ impl ModeEnsemble for Load<'_> {
     }
 }
 
-/// The table of every ensemble `E_norm` (all loads, targets and steps).
-pub(super) fn curve_table(name: &str, scene: &ModeScene, loads: &[Load]) -> Table {
-    let steps = scene.steps();
-    let mut table = Table::new(
-        name,
-        &[
-            "contact_area_full",
-            "zeta_t",
-            "zeta",
-            "e_norm",
-            "std_error",
-            "persson_original",
-            "persson_corrected",
-            "contact_area",
-        ],
-    );
-    for load in loads {
-        for (t, &zt) in scene.targets.iter().enumerate() {
-            let s = scene
-                .correction
-                .factor(load.contact_area_at(step_of(&steps, zt)).value);
-            for (k, &z) in steps.iter().enumerate() {
-                let e = load.e_norm(t, zt, k);
-                let theta = if z >= zt { 1.0 } else { 0.0 };
-                table.push(vec![
-                    load.contact_area,
-                    zt,
-                    z,
-                    e.value,
-                    e.std_error,
-                    theta,
-                    s * theta,
-                    load.contact_area_at(k).value,
-                ]);
-            }
-        }
-    }
-    table
-}
-
-/// One figure per load: `E_norm` of every target against `zeta`, Persson's `S Theta` beside
-/// it, and the measured contact area on the right axis (the paper's figures 11 and 12).
-pub(super) fn curve_figures(prefix: &str, scene: &ModeScene, loads: &[Load]) -> Vec<Figure> {
-    let steps = scene.steps();
-    let mut figures = Vec::new();
-    for load in loads {
-        let mut fig = Figure {
-            name: format!("{prefix}_ar{}", load.contact_area),
-            title: format!(
-                "Normalised mode energy, H = {}, a_r = {} at full resolution",
-                scene.hurst, load.contact_area
-            ),
-            x: Axis::log("magnification zeta"),
-            y: Axis::linear("E_norm = E_exa / E_P (band around q_t)"),
-            y2: Some(Axis::linear("relative contact area a_r")),
-            series: Vec::new(),
-        };
-        for (t, &zt) in scene.targets.iter().enumerate() {
-            fig.series.push(Series::with_errors(
-                format!("simulation, zeta_t = {zt}"),
-                Style::LinePoints,
-                steps.iter().enumerate().map(|(k, &z)| {
-                    let e = load.e_norm(t, zt, k);
-                    (z, e.value, e.std_error)
-                }),
-            ));
-            let s = scene
-                .correction
-                .factor(load.contact_area_at(step_of(&steps, zt)).value);
-            let (z0, z1) = (steps[0], steps[steps.len() - 1]);
-            fig.series.push(Series::xy(
-                format!("Persson S Theta(zeta - {zt})"),
-                Style::Dashed,
-                [(z0, 0.0), (zt, 0.0), (zt, s), (z1, s)],
-            ));
-        }
-        fig.series.push(
-            Series::with_errors(
-                "contact area",
-                Style::Line,
-                steps.iter().enumerate().map(|(k, &z)| {
-                    let a = load.contact_area_at(k);
-                    (z, a.value, a.std_error)
-                }),
-            )
-            .on_right(),
-        );
-        figures.push(fig);
-    }
-    figures
-}
-
 /// A golden value of `E_norm`: two significant digits, and no digits below `1e-4` (an
 /// onset of a few `1e-6` near full contact is solver noise, not a result).
 pub(super) fn golden(x: f64) -> f64 {
@@ -408,10 +327,6 @@ pub(super) fn golden(x: f64) -> f64 {
     } else {
         round_sig(x, 2)
     }
-}
-
-pub(super) fn z_text(e: Estimate, reference: f64) -> String {
-    format!("{:.1}", e.z_score(reference))
 }
 
 #[cfg(test)]

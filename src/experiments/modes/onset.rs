@@ -1,15 +1,16 @@
-//! Assumption (d): a mode holds energy only once its roughness is resolved.
+//! Assumption (d): a mode holds energy only once its roughness is resolved. Statistics,
+//! then findings (details, checks, golden values), then the account.
 
-use super::{
-    curve_figures, curve_table, golden, run_sweep, z_text, ModeEnsemble, ModeResult, ModeScene,
-};
+use std::collections::BTreeMap;
+
+use super::figures::{curve_figures, curve_table};
+use super::{golden, Load, ModeEnsemble, ModeResult, ModeScene};
 use crate::error::Result;
 use crate::experiments::climb::step_of;
-use crate::experiments::ensemble::{by_load, group, load_range, seed_load_jobs, SeedLoad};
-use crate::experiments::{
-    max_residual, Check, Conclusion, Criteria, Detail, Experiment, JobContext, Work,
-};
-use crate::stats::round_sig;
+use crate::experiments::ensemble::{by_load, group, load_range};
+use crate::experiments::{Check, Detail, Experiment, Table};
+use crate::plot::Figure;
+use crate::stats::{decide, round_sig, Claim, Decision, Estimate};
 
 /// One realization's onset: the mean over targets of `E_norm` at `onset_ratio zeta_t`.
 pub fn mean_onset(scene: &ModeScene, run: &ModeResult) -> f64 {
@@ -26,152 +27,223 @@ pub fn mean_onset(scene: &ModeScene, run: &ModeResult) -> f64 {
 /// Assumption (d): a mode holds no energy before it is resolved.
 pub struct ModeOnset;
 
-impl Experiment for ModeOnset {
-    const FAMILY: &'static str = "modes";
-    type Scene = ModeScene;
-    type Job = SeedLoad;
-    type JobResult = ModeResult;
+/// A band at its onset point (`onset_ratio zeta_t`) at one load.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Onset {
+    /// The load, as the contact area at full resolution.
+    pub load: f64,
+    /// The target's index.
+    pub target: usize,
+    /// The step of the onset point.
+    pub step: usize,
+    /// `E_norm` there.
+    pub e_norm: Estimate,
+    /// The measured contact area there.
+    pub contact_area: Estimate,
+}
 
-    fn validate(scene: &ModeScene) -> Result<()> {
-        scene.validate()
-    }
+/// The statistics of assumption (d).
+#[derive(Debug, Clone)]
+pub struct OnsetStats {
+    /// Per realization the mean over targets at the headline load, over realizations.
+    pub headline: Estimate,
+    /// Every load and target at its onset point, loads outermost.
+    pub onsets: Vec<Onset>,
+    /// The lowest load.
+    pub lowest: f64,
+    /// The highest load.
+    pub highest: f64,
+}
 
-    fn jobs(scene: &ModeScene) -> Vec<SeedLoad> {
-        seed_load_jobs(&scene.contact_areas, &scene.seeds)
-    }
-
-    fn work(scene: &ModeScene, _job: &SeedLoad) -> Work {
-        Work::climb(scene.n, scene.steps().len(), 0)
-    }
-
-    fn run_job(scene: &ModeScene, job: &SeedLoad, ctx: &JobContext) -> Result<ModeResult> {
-        run_sweep(scene, job, ctx.solver)
-    }
-
-    fn conclude(
-        criteria: &Criteria,
-        scene: &ModeScene,
-        results: &[(SeedLoad, ModeResult)],
-    ) -> Result<Conclusion> {
+impl OnsetStats {
+    /// The statistics of the loads' sweeps.
+    pub fn of(scene: &ModeScene, loads: &[Load]) -> Self {
         let steps = scene.steps();
-        let loads = by_load(&scene.contact_areas, results);
-        let mut c = Conclusion {
-            persson: 0.0,
-            max_residual: max_residual(results, |r| r.max_residual),
-            ..Default::default()
+        let onset = |load: &Load, t: usize| {
+            let zt = scene.targets[t];
+            let step = step_of(&steps, scene.onset_ratio * zt);
+            Onset {
+                load: load.contact_area,
+                target: t,
+                step,
+                e_norm: load.e_norm(t, zt, step),
+                contact_area: load.contact_area_at(step),
+            }
         };
-        let onset_of = |zt: f64| step_of(&steps, scene.onset_ratio * zt);
-        // Headline: per realization, the mean over targets of E_norm at the onset point.
-        let measured = group(&loads, scene.headline_contact_area).mean(|r| mean_onset(scene, r));
-        c.measured = Some(measured);
-        c.golden
-            .insert("onset_headline".into(), round_sig(measured.value, 2));
-
-        // The paper's two-sided finding: near full contact Persson's step is essentially
-        // exact; as contact becomes partial, bands fill before they are resolved.
         let (lowest, highest) = load_range(&scene.contact_areas);
-        let z = criteria.significance;
-        let (mut negligible, mut grows) = (true, true);
-        let (mut high_text, mut grow_text) = (Vec::new(), Vec::new());
-        for (t, &zt) in scene.targets.iter().enumerate() {
-            let k = onset_of(zt);
-            let at = |a: f64| {
-                let load = group(&loads, a);
-                (load.e_norm(t, zt, k), load.contact_area_at(k))
-            };
-            let (high, a_high) = at(highest);
-            let (low, _) = at(lowest);
-            negligible &= high.value + z * high.std_error < criteria.resolution;
-            grows &= low.value - high.value > z * low.std_error.hypot(high.std_error);
-            high_text.push(format!(
-                "zeta_t = {zt}: {:.4} +- {:.4} (a_r = {:.3} at the onset point)",
-                high.value, high.std_error, a_high.value
-            ));
-            grow_text.push(format!(
-                "zeta_t = {zt}: {:.3} +- {:.3} against {:.4} +- {:.4}",
-                low.value, low.std_error, high.value, high.std_error
-            ));
+        Self {
+            headline: group(loads, scene.headline_contact_area).mean(|r| mean_onset(scene, r)),
+            onsets: loads
+                .iter()
+                .flat_map(|load| (0..scene.targets.len()).map(move |t| onset(load, t)))
+                .collect(),
+            lowest,
+            highest,
         }
-        for load in &loads {
-            for (t, &zt) in scene.targets.iter().enumerate() {
-                let k = onset_of(zt);
-                let e = load.e_norm(t, zt, k);
-                let a = load.contact_area_at(k);
-                c.details.push(Detail {
-                    key: format!("onset_ar{}_zt{zt}", load.contact_area),
-                    name: format!(
+    }
+
+    /// Target `t` at load `load`.
+    pub fn at(&self, load: f64, t: usize) -> &Onset {
+        self.onsets
+            .iter()
+            .find(|o| o.load == load && o.target == t)
+            .expect("every load and target")
+    }
+
+    /// The onsets of every target at the highest and at the lowest load.
+    fn extremes(&self, targets: usize) -> impl Iterator<Item = (&Onset, &Onset)> + '_ {
+        (0..targets).map(move |t| (self.at(self.highest, t), self.at(self.lowest, t)))
+    }
+}
+
+type Run<'a> = crate::experiments::Run<'a, ModeOnset>;
+
+impl Experiment for ModeOnset {
+    type Scene = ModeScene;
+    type Stats = OnsetStats;
+
+    fn stats(run: &Run) -> Result<OnsetStats> {
+        let loads = by_load(&run.scene.contact_areas, run.results);
+        Ok(OnsetStats::of(run.scene, &loads))
+    }
+
+    fn headline(_run: &Run, s: &OnsetStats) -> (Estimate, f64) {
+        (s.headline, 0.0)
+    }
+
+    /// `E_norm` at the onset point of every load and target.
+    fn details(run: &Run, s: &OnsetStats) -> Vec<Detail> {
+        let scene = run.scene;
+        let steps = scene.steps();
+        s.onsets
+            .iter()
+            .map(|o| {
+                let zt = scene.targets[o.target];
+                Detail::new(
+                    format!("onset_ar{}_zt{zt}", o.load),
+                    format!(
                         "E_norm at zeta = {:.3} (zeta_t = {zt}), a_r = {} at full resolution \
                          ({:.3} measured at that zeta)",
-                        steps[k], load.contact_area, a.value
+                        steps[o.step], o.load, o.contact_area.value
                     ),
-                    value: e,
-                    persson: Some(0.0),
-                    paper: None,
-                    grid: None,
-                });
-                c.golden.insert(
-                    format!("onset_ar{}_zt{zt}", load.contact_area),
-                    golden(e.value),
-                );
-            }
+                    o.e_norm,
+                )
+                .persson(0.0)
+            })
+            .collect()
+    }
+
+    /// The paper's two-sided finding: near full contact Persson's step is essentially exact;
+    /// as contact becomes partial, bands fill before they are resolved.
+    fn checks(run: &Run, s: &OnsetStats) -> Vec<Check> {
+        let (criteria, scene) = (run.criteria, run.scene);
+        let (lowest, highest) = (s.lowest, s.highest);
+        if highest <= lowest {
+            return Vec::new();
         }
-        if highest > lowest {
-            c.checks.push(Check {
-                decided: true,
-                key: "negligible_near_full_contact".into(),
-                name: format!(
+        let z = criteria.significance;
+        let negligible = Decision::all(
+            s.extremes(scene.targets.len())
+                .map(|(high, _)| decide(high.e_norm, Claim::Below(criteria.resolution), z)),
+        );
+        let grows = Decision::all(s.extremes(scene.targets.len()).map(|(high, low)| {
+            let growth = Estimate::difference(low.e_norm, high.e_norm);
+            decide(growth, Claim::Above(0.0), z)
+        }));
+        let (high_text, grow_text) = onset_texts(scene, s);
+        vec![
+            Check::new(
+                "negligible_near_full_contact",
+                format!(
                     "near full contact (a_r = {highest} at full resolution) the onset is \
                      negligible: E_norm + {z} standard errors below {}",
                     criteria.resolution
                 ),
-                passed: negligible,
-                detail: high_text.join("; "),
-            });
-            c.checks.push(Check {
-                decided: true,
-                key: "onset_grows_as_contact_becomes_partial".into(),
-                name: format!(
+                negligible,
+                high_text.join("; "),
+            ),
+            Check::new(
+                "onset_grows_as_contact_becomes_partial",
+                format!(
                     "the onset grows as contact becomes partial: E_norm at a_r = {lowest} \
                      exceeds that at a_r = {highest} by {z} combined standard errors"
                 ),
-                passed: grows,
-                detail: grow_text.join("; "),
-            });
+                grows,
+                grow_text.join("; "),
+            ),
+        ]
+    }
+
+    /// The golden values: the headline and every onset.
+    fn golden(run: &Run, s: &OnsetStats) -> BTreeMap<String, f64> {
+        let scene = run.scene;
+        let mut golden_values =
+            BTreeMap::from([("onset_headline".to_string(), round_sig(s.headline.value, 2))]);
+        for o in &s.onsets {
+            let key = format!("onset_ar{}_zt{}", o.load, scene.targets[o.target]);
+            golden_values.insert(key, golden(o.e_norm.value));
         }
-        c.account = format!(
-            "Over {} realizations (H = {}, {}x{} grid, lambda_l = {}, lambda_s = {}), at the \
-             load that gives a_r = {} at full resolution, bands of modes within {:.0}% of \
-             q_t = zeta_t q_l (zeta_t = {:?}) hold, at zeta = {} zeta_t (before any mode of the \
-             band is resolved), on average E_norm = {:.3} +- {:.3} of the energy Persson's \
-             theory assigns them once resolved (z = {} against Persson's 0). At the lowest \
-             load (a_r = {lowest}) the onset is {}; at the highest (a_r = {highest}) it is {}. \
-             A mode's energy is thus populated before its roughness is resolved once contact is \
-             partial, as the paper reports (the pressure of a partial contact has Fourier \
-             components at every wavevector), while near full contact Persson's step holds.",
-            scene.seeds.len(),
-            scene.hurst,
-            scene.n,
-            scene.n,
-            scene.lambda_l,
-            scene.lambda_s,
+        golden_values
+    }
+
+    /// The account, from the numbers.
+    fn account(run: &Run, s: &OnsetStats) -> String {
+        let scene = run.scene;
+        let (lowest, highest) = (s.lowest, s.highest);
+        let (high_text, grow_text) = onset_texts(scene, s);
+        let low: Vec<String> = grow_text
+            .iter()
+            .map(|t| t.split(" against ").next().unwrap_or_default().to_string())
+            .collect();
+        format!(
+            "{}, at the load that gives a_r = {} at full resolution, bands of modes within \
+             {:.0}% of q_t = zeta_t q_l (zeta_t = {:?}) hold, at zeta = {} zeta_t (before any \
+             mode of the band is resolved), on average E_norm = {} of the energy Persson's \
+             theory assigns them once resolved ({}). At the lowest load (a_r = {lowest}) the \
+             onset is {}; at the highest (a_r = {highest}) it is {}. A mode's energy is thus \
+             populated before its roughness is resolved once contact is partial, as the paper \
+             reports (the pressure of a partial contact has Fourier components at every \
+             wavevector), while near full contact Persson's step holds.",
+            scene.base().over(),
             scene.headline_contact_area,
             100.0 * scene.band,
             scene.targets,
             scene.onset_ratio,
-            measured.value,
-            measured.std_error,
-            z_text(measured, 0.0),
-            grow_text
-                .iter()
-                .map(|t| t.split(" against ").next().unwrap_or_default())
-                .collect::<Vec<_>>()
-                .join(", "),
+            s.headline.text(1.0, 3, ""),
+            s.headline.z_text(0.0, "Persson's 0"),
+            low.join(", "),
             high_text.join(", "),
-        );
-        c.tables.push(curve_table(&criteria.name, scene, &loads));
-        c.figures = curve_figures("e_norm", scene, &loads);
-        Ok(c)
+        )
     }
+
+    fn tables(run: &Run, _s: &OnsetStats) -> Vec<Table> {
+        let loads = by_load(&run.scene.contact_areas, run.results);
+        vec![curve_table(&run.criteria.name, run.scene, &loads)]
+    }
+
+    fn figures(run: &Run, _s: &OnsetStats) -> Vec<Figure> {
+        let loads = by_load(&run.scene.contact_areas, run.results);
+        curve_figures("e_norm", run.scene, &loads)
+    }
+}
+
+/// Per target, in words: the onset at the highest load with the contact area there, and
+/// the onset at the lowest load against that at the highest.
+fn onset_texts(scene: &ModeScene, s: &OnsetStats) -> (Vec<String>, Vec<String>) {
+    s.extremes(scene.targets.len())
+        .map(|(high, low)| {
+            let zt = scene.targets[high.target];
+            let at_high = high.e_norm.text(1.0, 4, "");
+            let a_high = high.contact_area.value;
+            (
+                format!("zeta_t = {zt}: {at_high} (a_r = {a_high:.3} at the onset point)"),
+                format!(
+                    "zeta_t = {zt}: {} against {at_high}",
+                    low.e_norm.text(1.0, 3, "")
+                ),
+            )
+        })
+        .unzip()
 }
 
 #[cfg(test)]
@@ -181,9 +253,7 @@ mod tests {
 
     #[test]
     fn shipped_scenes_are_valid_at_both_scales() {
-        let (reduced, full, _) = shipped("d_onset");
-        ModeOnset::validate(&reduced).unwrap();
-        ModeOnset::validate(&full).unwrap();
+        crate::experiments::shipped_valid::<ModeOnset>("d_onset");
     }
 
     #[test]

@@ -26,22 +26,27 @@
 //! (`--resume`) from the last checkpoint and ends with the same numbers as an
 //! uninterrupted run. A run without `--resume` starts every sweep afresh.
 
+mod figures;
 pub mod history;
+pub mod stats;
+
+use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-use self::history::{pack_categories, unpack_categories, History};
+pub use self::figures::step_palette;
+use self::figures::{maps, table};
+use self::history::{pack_categories, History};
+use self::stats::{ReentryStats, Share};
 use super::climb::{climb, Checkpointing};
-use super::ensemble::{by_load, check_contact_areas, seed_load_jobs, LoadGroup, SeedLoad};
+use super::ensemble::{by_load, check_contact_areas, seed_load_jobs, SeedLoad};
 use super::scene::scene;
-use super::{
-    max_residual, Check, Conclusion, Criteria, Detail, Experiment, JobContext, Table, Work,
-};
+use super::{Check, Detail, Experiment, JobContext, Jobs, Table, Work};
 use crate::engine::scene::check_zeta;
 use crate::engine::sweep::shell_steps;
 use crate::error::{check_positive, Error, Result};
 use crate::plot::Raster;
-use crate::stats::{realizations, round_sig, Estimate};
+use crate::stats::{decide, round_sig, Claim, Decision, Estimate};
 
 /// The paper's flux into contact from zeta = 128 to 129.5 (fraction of the nominal area).
 pub const PAPER_FLUX_IN: f64 = 0.00675;
@@ -184,101 +189,96 @@ fn run_history(
     })
 }
 
-impl Experiment for Reentry {
+impl Jobs for ReentryScene {
     const FAMILY: &'static str = "reentry";
-    type Scene = ReentryScene;
     type Job = SeedLoad;
     type JobResult = ReentryResult;
 
-    fn validate(scene: &ReentryScene) -> Result<()> {
-        scene.base().validate()?;
-        check_contact_areas(&scene.contact_areas)?;
-        if scene.paper_shares.len() != scene.contact_areas.len() {
+    fn validate(&self) -> Result<()> {
+        self.base().validate()?;
+        check_contact_areas(&self.contact_areas)?;
+        if self.paper_shares.len() != self.contact_areas.len() {
             return Err(Error::invalid(
                 "paper_shares",
-                format!("{} values", scene.paper_shares.len()),
-                format!("one per contact area ({})", scene.contact_areas.len()),
+                format!("{} values", self.paper_shares.len()),
+                format!("one per contact area ({})", self.contact_areas.len()),
             ));
         }
-        let zeta_max = scene.base().zeta_max();
-        check_zeta(scene.flux_zeta, zeta_max)?;
-        check_positive("flux_dzeta", scene.flux_dzeta)?;
-        if scene.flux_zeta + scene.flux_dzeta > zeta_max {
+        let zeta_max = self.base().zeta_max();
+        check_zeta(self.flux_zeta, zeta_max)?;
+        check_positive("flux_dzeta", self.flux_dzeta)?;
+        if self.flux_zeta + self.flux_dzeta > zeta_max {
             return Err(Error::invalid(
                 "flux_dzeta",
-                scene.flux_dzeta,
+                self.flux_dzeta,
                 format!("with flux_zeta + flux_dzeta <= zeta_max = {zeta_max}"),
             ));
         }
-        check_positive("checkpoint_seconds", scene.checkpoint_seconds)
+        check_positive("checkpoint_seconds", self.checkpoint_seconds)
     }
 
-    fn jobs(scene: &ReentryScene) -> Vec<SeedLoad> {
-        seed_load_jobs(&scene.contact_areas, &scene.seeds)
+    fn jobs(&self) -> Vec<SeedLoad> {
+        seed_load_jobs(&self.contact_areas, &self.seeds)
     }
 
-    fn work(scene: &ReentryScene, _job: &SeedLoad) -> Work {
+    fn work(&self, _job: &SeedLoad) -> Work {
         // The load at full resolution, then every shell from the first.
-        let base = scene.base();
-        Work::climb(scene.n, 0, base.shells(0.0, base.zeta_max()))
+        let base = self.base();
+        Work::climb(self.n, 0, base.shells(0.0, base.zeta_max()))
     }
 
-    fn run_job(scene: &ReentryScene, job: &SeedLoad, ctx: &JobContext) -> Result<ReentryResult> {
-        let keep_maps = job.seed == scene.seeds[0];
-        run_history(scene, job, ctx, keep_maps)
+    fn run_job(&self, job: &SeedLoad, ctx: &JobContext) -> Result<ReentryResult> {
+        let keep_maps = job.seed == self.seeds[0];
+        run_history(self, job, ctx, keep_maps)
     }
 
-    fn conclude(
-        criteria: &Criteria,
-        scene: &ReentryScene,
-        results: &[(SeedLoad, ReentryResult)],
-    ) -> Result<Conclusion> {
-        let loads = by_load(&scene.contact_areas, results);
-        let mut c = Conclusion {
-            persson: 0.0,
-            max_residual: max_residual(results, |r| r.max_residual),
-            ..Default::default()
-        };
-        let mut shares = Vec::new();
-        for (k, load) in loads.iter().enumerate() {
-            let target = load.contact_area;
-            let share = load.mean(ReentryResult::share);
-            let after = load.mean(ReentryResult::share_after_first);
-            if k == 0 {
-                c.measured = Some(share);
-            }
-            shares.push(share);
-            c.details.push(
+    fn residual(result: &ReentryResult) -> f64 {
+        result.max_residual
+    }
+}
+
+type Run<'a> = super::Run<'a, Reentry>;
+
+impl Experiment for Reentry {
+    type Scene = ReentryScene;
+    type Stats = ReentryStats;
+
+    fn stats(run: &Run) -> Result<ReentryStats> {
+        Ok(ReentryStats::of(&by_load(
+            &run.scene.contact_areas,
+            run.results,
+        )))
+    }
+
+    fn headline(_run: &Run, s: &ReentryStats) -> (Estimate, f64) {
+        (s.shares[0].share, 0.0)
+    }
+
+    /// The shares at every load, and the flux of the interval at the headline load.
+    fn details(run: &Run, s: &ReentryStats) -> Vec<Detail> {
+        let scene = run.scene;
+        let mut details = Vec::new();
+        for (share, &paper) in s.shares.iter().zip(&scene.paper_shares) {
+            let target = share.load;
+            details.push(
                 Detail::new(
                     format!("share_ar{target}"),
                     format!("re-entry share at a_r = {target}"),
-                    share,
+                    share.share,
                 )
                 .persson(0.0)
-                .paper(Some(scene.paper_shares[k])),
+                .paper(Some(paper)),
             );
-            c.details.push(
+            details.push(
                 Detail::new(
                     format!("share_after_first_ar{target}"),
                     format!("share that left after zeta = 1 and came back, a_r = {target}"),
-                    after,
+                    share.after_first,
                 )
                 .persson(0.0),
             );
-            c.golden
-                .insert(format!("share_{target}"), round_sig(share.value, 3));
-            c.golden.insert(
-                format!("share_after_first_{target}"),
-                round_sig(after.value, 3),
-            );
         }
-        // Flux statistics at the headline contact area.
-        let head = &loads[0];
-        let flux_in = head.mean(|r| r.flux_in);
-        let flux_out = head.mean(|r| r.flux_out);
-        let ratio = head.mean(ReentryResult::net_over_gross);
-        let zero = head.mean(|r| r.zero_bin_reentry);
-        for (key, name, e, paper) in [
+        let flux = [
             (
                 "flux_in",
                 format!(
@@ -286,194 +286,125 @@ impl Experiment for Reentry {
                     scene.flux_zeta,
                     scene.flux_zeta + scene.flux_dzeta
                 ),
-                flux_in,
+                s.flux_in,
                 PAPER_FLUX_IN,
             ),
             (
                 "flux_out",
                 "flux out of contact (fraction of A0)".to_string(),
-                flux_out,
+                s.flux_out,
                 PAPER_FLUX_OUT,
             ),
             (
                 "net_over_gross",
                 "net flux / mean one-way flux".to_string(),
-                ratio,
+                s.net_over_gross,
                 PAPER_NET_OVER_GROSS,
             ),
             (
                 "zero_bin_reentry",
                 "share of non-contact entering contact (transition out of p = 0)".to_string(),
-                zero,
+                s.zero_bin,
                 PAPER_ZERO_BIN,
             ),
-        ] {
-            c.details
-                .push(Detail::new(key, name, e).persson(0.0).paper(Some(paper)));
-        }
-        c.golden
-            .insert("flux_in".into(), round_sig(flux_in.value, 3));
-        c.golden
-            .insert("flux_out".into(), round_sig(flux_out.value, 3));
+        ];
+        details.extend(flux.into_iter().map(|(key, name, e, paper)| {
+            Detail::new(key, name, e).persson(0.0).paper(Some(paper))
+        }));
+        details
+    }
+
+    /// The paper's findings: points enter contact, and the share falls as the load grows.
+    fn checks(run: &Run, s: &ReentryStats) -> Vec<Check> {
+        let criteria = run.criteria;
         let z = criteria.significance;
-        c.checks.push(Check::with_error_bar(
-            "flux_in_positive",
-            format!("flux into contact above zero beyond {z} standard errors"),
-            flux_in,
-            flux_in.value > z * flux_in.std_error && flux_in.value > 0.0,
-            format!("{} of A0", flux_in.text(1.0, 5, "")),
-        ));
-        // The paper's ordering: lower load, more re-entry.
-        let mut order: Vec<(f64, Estimate)> = scene
-            .contact_areas
-            .iter()
-            .copied()
-            .zip(shares.iter().copied())
-            .collect();
-        order.sort_by(|a, b| a.0.total_cmp(&b.0));
-        c.checks.push(Check::new(
-            "share_falls_with_area",
-            "re-entry share falls as the contact area grows",
-            order.windows(2).all(|w| w[0].1.value >= w[1].1.value),
-            order
+        let mut order: Vec<&Share> = s.shares.iter().collect();
+        order.sort_by(|a, b| a.load.total_cmp(&b.load));
+        // No share below the next larger load's (compared as values: z = 0).
+        let falls = Decision::all(order.windows(2).map(|w| {
+            let step = Estimate::difference(w[0].share, w[1].share);
+            !decide(step, Claim::Below(0.0), 0.0)
+        }));
+        vec![
+            Check::new(
+                "flux_in_positive",
+                format!("flux into contact above zero beyond {z} standard errors"),
+                decide(s.flux_in, Claim::Above(0.0), z),
+                format!("{} of A0", s.flux_in.text(1.0, 5, "")),
+            ),
+            Check::new(
+                "share_falls_with_area",
+                "re-entry share falls as the contact area grows",
+                falls,
+                order
+                    .iter()
+                    .map(|s| format!("a_r {}: {:.3}", s.load, s.share.value))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            ),
+        ]
+    }
+
+    /// The golden values: every share and the flux of the interval.
+    fn golden(_run: &Run, s: &ReentryStats) -> BTreeMap<String, f64> {
+        let mut golden = BTreeMap::new();
+        for share in &s.shares {
+            let target = share.load;
+            golden.insert(format!("share_{target}"), round_sig(share.share.value, 3));
+            golden.insert(
+                format!("share_after_first_{target}"),
+                round_sig(share.after_first.value, 3),
+            );
+        }
+        golden.insert("flux_in".into(), round_sig(s.flux_in.value, 3));
+        golden.insert("flux_out".into(), round_sig(s.flux_out.value, 3));
+        golden
+    }
+
+    /// The account of the conclusion, from its numbers.
+    fn account(run: &Run, s: &ReentryStats) -> String {
+        let (scene, results) = (run.scene, run.results);
+        let shells = results.first().map_or(0, |r| r.1.shells);
+        let head = scene.contact_areas[0];
+        format!(
+            "{} were swept through all {} shells one at a time at fixed load, from the flat \
+             interface to zeta_max = {}. Of the points in contact at zeta_max, {} had been \
+             out of contact at a lower magnification (paper: {}). Between zeta = {} and {}, \
+             {:.3}% of the nominal area entered contact and {:.3}% left it, at a_r = \
+             {head}. A sweep took {} solver iterations on average.",
+            scene.base().runs(),
+            shells,
+            scene.lambda_l / scene.lambda_s,
+            s.shares
                 .iter()
-                .map(|(a, s)| format!("a_r {a}: {:.3}", s.value))
+                .map(|s| format!("{} at a_r = {}", s.share.text(100.0, 1, "%"), s.load))
                 .collect::<Vec<_>>()
                 .join(", "),
-        ));
-        c.account = account(scene, results, &shares, flux_in, flux_out);
-        c.rasters = maps(scene, head);
-        c.tables.push(table(&criteria.name, scene, results));
-        Ok(c)
+            scene
+                .contact_areas
+                .iter()
+                .zip(&scene.paper_shares)
+                .map(|(a, s)| format!("{:.0}% at {a}", 100.0 * s))
+                .collect::<Vec<_>>()
+                .join(", "),
+            scene.flux_zeta,
+            scene.flux_zeta + scene.flux_dzeta,
+            100.0 * s.flux_in.value,
+            100.0 * s.flux_out.value,
+            results.iter().map(|r| r.1.iterations).sum::<u64>() / results.len().max(1) as u64,
+        )
     }
-}
 
-/// The account of the conclusion, from its numbers.
-fn account(
-    scene: &ReentryScene,
-    results: &[(SeedLoad, ReentryResult)],
-    shares: &[Estimate],
-    flux_in: Estimate,
-    flux_out: Estimate,
-) -> String {
-    let shells = results.first().map_or(0, |r| r.1.shells);
-    let head = scene.contact_areas[0];
-    format!(
-        "{} ({}x{}, H = {}, lambda_l = {}, lambda_s = {}) were swept through all \
-         {} shells one at a time at fixed load, from the flat interface to zeta_max = {}. \
-         Of the points in contact at zeta_max, {} had been out of contact at a lower \
-         magnification (paper: {}). Between zeta = {} and {}, {:.3}% of the nominal area \
-         entered contact and {:.3}% left it, at a_r = {head}. A sweep took {} solver \
-         iterations on average.",
-        realizations(scene.seeds.len()),
-        scene.n,
-        scene.n,
-        scene.hurst,
-        scene.lambda_l,
-        scene.lambda_s,
-        shells,
-        scene.lambda_l / scene.lambda_s,
-        scene
-            .contact_areas
-            .iter()
-            .zip(shares)
-            .map(|(a, s)| format!("{} at a_r = {a}", s.text(100.0, 1, "%")))
-            .collect::<Vec<_>>()
-            .join(", "),
-        scene
-            .contact_areas
-            .iter()
-            .zip(&scene.paper_shares)
-            .map(|(a, s)| format!("{:.0}% at {a}", 100.0 * s))
-            .collect::<Vec<_>>()
-            .join(", "),
-        scene.flux_zeta,
-        scene.flux_zeta + scene.flux_dzeta,
-        100.0 * flux_in.value,
-        100.0 * flux_out.value,
-        results.iter().map(|r| r.1.iterations).sum::<u64>() / results.len().max(1) as u64,
-    )
-}
-
-/// One row per history.
-fn table(name: &str, scene: &ReentryScene, results: &[(SeedLoad, ReentryResult)]) -> Table {
-    let mut table = Table::new(
-        name,
-        &[
-            "contact_area_target",
-            "seed",
-            "a_r",
-            "share",
-            "share_after_first",
-            "flux_in",
-            "flux_out",
-            "zero_bin_reentry",
-            "shells",
-            "iterations",
-            "wall_s",
-        ],
-    );
-    for &target in &scene.contact_areas {
-        for (j, r) in results.iter().filter(|(j, _)| j.contact_area == target) {
-            table.push(vec![
-                target,
-                j.seed as f64,
-                r.a_r,
-                r.share(),
-                r.share_after_first(),
-                r.flux_in,
-                r.flux_out,
-                r.zero_bin_reentry,
-                r.shells as f64,
-                r.iterations as f64,
-                r.wall_s,
-            ]);
-        }
+    fn tables(run: &Run, _s: &ReentryStats) -> Vec<Table> {
+        vec![table(&run.criteria.name, run.scene, run.results)]
     }
-    table
-}
 
-/// The contact map at `zeta_max` and the map of the flux interval, coloured as the
-/// paper's figures, for the first seed at the headline load.
-fn maps(scene: &ReentryScene, head: &LoadGroup<ReentryResult>) -> Vec<Raster> {
-    let Some(r) = head.runs.iter().find(|r| r.map.is_some()) else {
-        return Vec::new();
-    };
-    let n2 = scene.n * scene.n;
-    let seed = scene.seeds[0];
-    vec![
-        Raster {
-            name: "reentry_map".into(),
-            title: format!(
-                "Contact at zeta_max, a_r = {:.3} (seed {seed}): history of every point",
-                r.a_r
-            ),
-            n: scene.n,
-            pixels: unpack_categories(r.map.as_deref().unwrap_or(""), n2),
-            palette: vec![
-                ([150, 150, 150], "in contact throughout".into()),
-                ([220, 40, 40], "in contact, re-entered".into()),
-                ([255, 255, 255], "out of contact, never back".into()),
-                ([40, 80, 220], "out of contact after re-entering".into()),
-            ],
-        },
-        Raster {
-            name: "flux_map".into(),
-            title: format!(
-                "Changes between zeta = {} and {} (seed {seed})",
-                scene.flux_zeta,
-                scene.flux_zeta + scene.flux_dzeta,
-            ),
-            n: scene.n,
-            pixels: unpack_categories(r.flux_map.as_deref().unwrap_or(""), n2),
-            palette: vec![
-                ([150, 150, 150], "in contact at both".into()),
-                ([220, 40, 40], "entered contact".into()),
-                ([255, 255, 255], "out of contact at both".into()),
-                ([40, 80, 220], "left contact".into()),
-            ],
-        },
-    ]
+    fn rasters(run: &Run, _s: &ReentryStats) -> Vec<Raster> {
+        maps(
+            run.scene,
+            &by_load(&run.scene.contact_areas, run.results)[0],
+        )
+    }
 }
 
 #[cfg(test)]
@@ -488,12 +419,9 @@ mod tests {
 
     #[test]
     fn shipped_scenes_are_valid() {
-        let (reduced, full, _) = crate::experiments::shipped_scenes::<ReentryScene>("c_reentry");
-        Reentry::validate(&reduced).unwrap();
-        Reentry::validate(&full).unwrap();
+        let (reduced, _) = crate::experiments::shipped_valid::<Reentry>("c_reentry");
         let mut bad = reduced.clone();
         bad.flux_dzeta = 100.0;
-        let e = Reentry::validate(&bad).unwrap_err().to_string();
-        assert!(e.contains("flux_dzeta"), "{e}");
+        crate::experiments::assert_refused::<Reentry>(&bad, "flux_dzeta");
     }
 }

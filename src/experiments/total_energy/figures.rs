@@ -3,7 +3,7 @@
 //! incremental correction factor `S~`.
 
 use super::stats::{corrected_area, measured_area, original_area, ratio, s_tilde, Load, Theory};
-use crate::experiments::Table;
+use crate::experiments::{figure, Table};
 use crate::persson::Correction;
 use crate::plot::{Axis, Figure, Series, Style};
 use crate::stats::round_sig;
@@ -90,36 +90,35 @@ pub fn figures(
     windows: &[Vec<usize>],
     correction: Correction,
 ) -> Vec<Figure> {
-    let end = zetas.len() - 1;
-    let mut vs_zeta = Figure {
-        name: "energy_vs_zeta".into(),
-        title: format!("Integrated normalised elastic energy against magnification, H = {hurst}"),
-        x: Axis::log("magnification zeta"),
-        y: Axis::linear("E_exa / E_P"),
-        y2: None,
-        series: Vec::new(),
-    };
-    let mut vs_area = Figure {
-        name: "energy_vs_area".into(),
-        title: format!(
-            "Integrated normalised elastic energy against contact area at zeta = {}, H = {}",
-            round_sig(zetas[end], 4),
-            hurst
-        ),
-        x: Axis::log("relative contact area a_r"),
-        y: Axis::linear("E_exa / E_P"),
-        y2: None,
-        series: Vec::new(),
-    };
-    let mut s_fig = Figure {
-        name: "s_tilde".into(),
-        title: format!("Incremental correction factor S~ (eq. S_q_numerical), H = {hurst}"),
-        x: Axis::log("magnification zeta"),
-        y: Axis::linear("S~"),
-        y2: None,
-        series: Vec::new(),
-    };
-    let (mut orig_pts, mut corr_pts) = (Vec::new(), Vec::new());
+    vec![
+        energy_vs_zeta(hurst, loads, zetas),
+        energy_vs_area(hurst, loads, zetas),
+        s_tilde_figure(hurst, loads, zetas, windows, correction),
+    ]
+}
+
+/// The line of exact agreement, `E_exa / E = 1`, across `[min(zeta_0, 1e-3), max(zeta_end,
+/// 1)]` (wide enough for both axes: magnification and contact area).
+fn exact_agreement(zetas: &[f64]) -> Series {
+    let lo = zetas[0].min(1e-3);
+    let hi = zetas[zetas.len() - 1].max(1.0);
+    Series::xy("exact agreement", Style::Line, [(lo, 1.0), (hi, 1.0)])
+}
+
+/// A figure of `y` against magnification (log axis).
+fn against_zeta(name: &str, title: String, y: &str) -> Figure {
+    figure(
+        name,
+        title,
+        Axis::log("magnification zeta"),
+        Axis::linear(y),
+    )
+}
+
+/// `E_exa / E` of both theories against magnification, every load.
+fn energy_vs_zeta(hurst: f64, loads: &[Load], zetas: &[f64]) -> Figure {
+    let title = format!("Integrated normalised elastic energy against magnification, H = {hurst}");
+    let mut fig = against_zeta("energy_vs_zeta", title, "E_exa / E_P");
     for load in loads {
         for (theory, label, style) in [
             (
@@ -133,7 +132,7 @@ pub fn figures(
                 Style::Dashed,
             ),
         ] {
-            vs_zeta.series.push(Series::with_errors(
+            fig.series.push(Series::with_errors(
                 label,
                 style,
                 zetas.iter().enumerate().map(|(k, &z)| {
@@ -142,12 +141,51 @@ pub fn figures(
                 }),
             ));
         }
-        let a = measured_area(load, end);
-        let o = ratio(load, end, Theory::Original);
-        let q = ratio(load, end, Theory::Corrected);
-        orig_pts.push((a.value, o.value, o.std_error));
-        corr_pts.push((a.value, q.value, q.std_error));
+    }
+    fig.series.push(exact_agreement(zetas));
+    fig
+}
 
+/// `E_exa / E` of both theories at full resolution against the measured contact area.
+fn energy_vs_area(hurst: f64, loads: &[Load], zetas: &[f64]) -> Figure {
+    let end = zetas.len() - 1;
+    let mut fig = figure(
+        "energy_vs_area",
+        format!(
+            "Integrated normalised elastic energy against contact area at zeta = {}, H = {}",
+            round_sig(zetas[end], 4),
+            hurst
+        ),
+        Axis::log("relative contact area a_r"),
+        Axis::linear("E_exa / E_P"),
+    );
+    for (theory, label) in [
+        (Theory::Original, "S = 1"),
+        (Theory::Corrected, "S of eq. (gamma)"),
+    ] {
+        let points = loads.iter().map(|load| {
+            let a = measured_area(load, end);
+            let e = ratio(load, end, theory);
+            (a.value, e.value, e.std_error)
+        });
+        fig.series
+            .push(Series::with_errors(label, Style::LinePoints, points));
+    }
+    fig.series.push(exact_agreement(zetas));
+    fig
+}
+
+/// `S~` of every single-shell increment beside `S(a_r)` of eq. (gamma), every load.
+fn s_tilde_figure(
+    hurst: f64,
+    loads: &[Load],
+    zetas: &[f64],
+    windows: &[Vec<usize>],
+    correction: Correction,
+) -> Figure {
+    let title = format!("Incremental correction factor S~ (eq. S_q_numerical), H = {hurst}");
+    let mut fig = against_zeta("s_tilde", title, "S~");
+    for load in loads {
         let mut pts = Vec::new();
         let mut theory = Vec::new();
         for window in windows {
@@ -158,33 +196,16 @@ pub fn figures(
                 theory.push((zetas[b], correction.factor(original_area(load, b).value)));
             }
         }
-        s_fig.series.push(Series::with_errors(
+        fig.series.push(Series::with_errors(
             format!("S~, a_r = {} at full resolution", load.contact_area),
             Style::Points,
             pts,
         ));
-        s_fig.series.push(Series::xy(
+        fig.series.push(Series::xy(
             format!("S(a_r) of eq. (gamma), a_r = {}", load.contact_area),
             Style::Dashed,
             theory,
         ));
     }
-    vs_area
-        .series
-        .push(Series::with_errors("S = 1", Style::LinePoints, orig_pts));
-    vs_area.series.push(Series::with_errors(
-        "S of eq. (gamma)",
-        Style::LinePoints,
-        corr_pts,
-    ));
-    for fig in [&mut vs_zeta, &mut vs_area] {
-        let lo = zetas[0].min(1e-3);
-        let hi = zetas[end].max(1.0);
-        fig.series.push(Series::xy(
-            "exact agreement",
-            Style::Line,
-            [(lo, 1.0), (hi, 1.0)],
-        ));
-    }
-    vec![vs_zeta, vs_area, s_fig]
+    fig
 }

@@ -40,27 +40,26 @@
 //! resolution and the headline load.
 
 mod figures;
+mod findings;
 pub mod stats;
+
+use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-use self::stats::{
-    corrected_drift, deviation_growth, measured_area, original_area, ratio, two_octaves_below_end,
-    window_mean, Load, Theory,
-};
-use super::climb::{climb, ladder, step_of, Recorder};
-use super::ensemble::{
-    by_load, check_contact_areas, check_headline, group, load_range, seed_load_jobs, SeedLoad,
-};
+use self::stats::{Headline, Load};
+use super::climb::{check_steps_per_octave, climb, ladder, step_of, Recorder};
+use super::ensemble::{by_load, check_headline, load_range, seed_load_jobs, SeedLoad};
 use super::scene::scene;
-use super::{max_residual, Check, Conclusion, Criteria, Detail, Experiment, JobContext, Work};
+use super::{Check, Detail, Experiment, JobContext, Jobs, Table, Work};
 use crate::engine::contact::{ContactSolution, Model};
 use crate::engine::solver::SolverKind;
 use crate::engine::surface::Surface;
 use crate::engine::sweep::shell_steps;
 use crate::error::{check_positive, Error, Result};
 use crate::persson::{Broadening, Correction, Prediction};
-use crate::stats::round_sig;
+use crate::plot::Figure;
+use crate::stats::Estimate;
 
 /// Below this measured contact area the paper finds that the corrected theory fails.
 pub const PAPER_FAILURE_AREA: f64 = 0.05;
@@ -213,292 +212,156 @@ fn run_sweep(scene: &EnergyScene, job: &SeedLoad, solver: SolverKind) -> Result<
 /// The integrated elastic energy against Persson's theory.
 pub struct TotalEnergy;
 
-impl Experiment for TotalEnergy {
+impl Jobs for EnergyScene {
     const FAMILY: &'static str = "total_energy";
-    type Scene = EnergyScene;
     type Job = SeedLoad;
     type JobResult = EnergyResult;
 
-    fn validate(scene: &EnergyScene) -> Result<()> {
-        let base = scene.base();
+    fn validate(&self) -> Result<()> {
+        let base = self.base();
         base.validate()?;
-        let all: Vec<u64> = scene
+        let all: Vec<u64> = self
             .seeds
             .iter()
-            .chain(&scene.low_load_seeds)
+            .chain(&self.low_load_seeds)
             .copied()
             .collect();
         crate::error::check_seeds(&all).map_err(|e| e.with_field("low_load_seeds"))?;
-        check_contact_areas(&scene.contact_areas)?;
-        check_headline(scene.headline_contact_area, &scene.contact_areas)?;
-        check_positive("zeta_start", scene.zeta_start)?;
-        if scene.zeta_start >= base.zeta_max() {
+        check_headline(self.headline_contact_area, &self.contact_areas)?;
+        check_positive("zeta_start", self.zeta_start)?;
+        if self.zeta_start >= base.zeta_max() {
             return Err(Error::invalid(
                 "zeta_start",
-                scene.zeta_start,
+                self.zeta_start,
                 format!("< lambda_l / lambda_s = {}", base.zeta_max()),
             ));
         }
-        if !(1..=64).contains(&scene.steps_per_octave) {
-            return Err(Error::invalid(
-                "steps_per_octave",
-                scene.steps_per_octave,
-                "an integer in [1, 64]",
-            ));
-        }
-        for &z in &scene.increments_at {
-            if !(z >= scene.zeta_start && z < base.zeta_max()) {
+        check_steps_per_octave(self.steps_per_octave)?;
+        for &z in &self.increments_at {
+            if !(z >= self.zeta_start && z < base.zeta_max()) {
                 return Err(Error::invalid(
                     "increments_at",
                     z,
                     format!(
                         "in [zeta_start = {}, lambda_l / lambda_s = {})",
-                        scene.zeta_start,
+                        self.zeta_start,
                         base.zeta_max()
                     ),
                 ));
             }
         }
-        if !(1..=1000).contains(&scene.increments) {
+        if !(1..=1000).contains(&self.increments) {
             return Err(Error::invalid(
                 "increments",
-                scene.increments,
+                self.increments,
                 "an integer in [1, 1000]",
             ));
         }
-        scene.correction.validate()
+        self.correction.validate()
     }
 
-    fn jobs(scene: &EnergyScene) -> Vec<SeedLoad> {
-        let (lowest, _) = load_range(&scene.contact_areas);
+    fn jobs(&self) -> Vec<SeedLoad> {
+        let (lowest, _) = load_range(&self.contact_areas);
         let mut jobs = Vec::new();
-        for &a in &scene.contact_areas {
-            jobs.extend(seed_load_jobs(&[a], &scene.seeds));
+        for &a in &self.contact_areas {
+            jobs.extend(seed_load_jobs(&[a], &self.seeds));
             if a == lowest && a < PAPER_FAILURE_AREA {
-                jobs.extend(seed_load_jobs(&[a], &scene.low_load_seeds));
+                jobs.extend(seed_load_jobs(&[a], &self.low_load_seeds));
             }
         }
         jobs
     }
 
-    fn work(scene: &EnergyScene, _job: &SeedLoad) -> Work {
+    fn work(&self, _job: &SeedLoad) -> Work {
         // The ladder's steps plus the windows of single-shell increments.
-        let zeta_max = scene.base().zeta_max();
-        let ladder = (zeta_max / scene.zeta_start).log2() * scene.steps_per_octave as f64;
-        let windows = scene.increments_at.len() * (scene.increments + 1);
-        Work::climb(scene.n, ladder.ceil() as usize + 1, windows)
+        let zeta_max = self.base().zeta_max();
+        let ladder = (zeta_max / self.zeta_start).log2() * self.steps_per_octave as f64;
+        let windows = self.increments_at.len() * (self.increments + 1);
+        Work::climb(self.n, ladder.ceil() as usize + 1, windows)
     }
 
-    fn run_job(scene: &EnergyScene, job: &SeedLoad, ctx: &JobContext) -> Result<EnergyResult> {
-        run_sweep(scene, job, ctx.solver)
+    fn run_job(&self, job: &SeedLoad, ctx: &JobContext) -> Result<EnergyResult> {
+        run_sweep(self, job, ctx.solver)
     }
 
-    fn conclude(
-        criteria: &Criteria,
-        scene: &EnergyScene,
-        results: &[(SeedLoad, EnergyResult)],
-    ) -> Result<Conclusion> {
-        let first = &results.first().expect("jobs ran").1;
-        let zetas = &first.zetas;
-        if results.iter().any(|(_, r)| r.zetas != *zetas) {
+    fn residual(result: &EnergyResult) -> f64 {
+        result.max_residual
+    }
+}
+
+/// The statistics of the total energy: the sweeps' steps and windows (the same in every
+/// job) and the headline and lowest loads.
+#[derive(Debug, Clone)]
+pub struct EnergyStats {
+    /// Magnifications of the sweeps.
+    pub zetas: Vec<f64>,
+    /// The increment windows, indices into `zetas`.
+    pub windows: Vec<Vec<usize>>,
+    /// The headline and the lowest load.
+    pub headline: Headline,
+}
+
+type Run<'a> = super::Run<'a, TotalEnergy>;
+
+/// The realizations of every load, in the scene's order.
+fn loads<'a>(run: &Run<'a>) -> Vec<Load<'a>> {
+    by_load(&run.scene.contact_areas, run.results)
+}
+
+impl Experiment for TotalEnergy {
+    type Scene = EnergyScene;
+    type Stats = EnergyStats;
+
+    /// Errors when the jobs' sweeps have different steps.
+    fn stats(run: &Run) -> Result<EnergyStats> {
+        let first = &run.results.first().expect("jobs ran").1;
+        if run.results.iter().any(|(_, r)| r.zetas != first.zetas) {
             return Err(Error::invalid(
                 "sweep steps",
                 "different between realizations",
                 "the same magnifications in every job",
             ));
         }
-        let end = zetas.len() - 1;
-        let loads = by_load(&scene.contact_areas, results);
-        let mut c = Conclusion {
-            persson: 1.0,
-            max_residual: max_residual(results, |r| r.max_residual),
-            ..Default::default()
-        };
-        for load in &loads {
-            load_details(&mut c, scene, load, zetas, &first.windows);
-        }
-
-        // Headline: E_exa / E_c at full resolution and the headline load.
-        let headline = group(&loads, scene.headline_contact_area);
-        let measured = ratio(headline, end, Theory::Corrected);
-        let original = ratio(headline, end, Theory::Original);
-        c.measured = Some(measured);
-        c.golden
-            .insert("corrected_headline".into(), round_sig(measured.value, 2));
-        let a_head = measured_area(headline, end);
-        // How the headline still moves with magnification: its change over the last two
-        // octaves (per realization).
-        let quarter = two_octaves_below_end(zetas);
-        let drift = corrected_drift(headline, quarter);
-        c.details.push(
-            Detail::new(
-                "corrected_headline_drift",
-                format!(
-                    "change of E_exa / E_c at the headline load from zeta = {:.3} to {:.3}",
-                    zetas[quarter], zetas[end]
-                ),
-                drift,
-            )
-            .persson(0.0),
-        );
-        c.golden
-            .insert("corrected_headline_drift".into(), round_sig(drift.value, 1));
-        c.checks.push(Check::new(
-            "correction_brings_energy_closer",
-            "the correction factor brings the total energy closer to the measurement than \
-             S = 1",
-            (measured.value - 1.0).abs() < (original.value - 1.0).abs(),
-            format!(
-                "E_exa / E_c = {:.3} +- {:.3}, E_exa / E_P = {:.3} +- {:.3} at a_r = {:.3}",
-                measured.value,
-                measured.std_error,
-                original.value,
-                original.std_error,
-                a_head.value
-            ),
-        ));
-        // The paper: below a_r ~ 0.05 the corrected theory's deviation from the measurement
-        // grows dramatically (its figure of the energy against a_r).
-        let lowest = loads
-            .iter()
-            .min_by(|a, b| a.contact_area.total_cmp(&b.contact_area))
-            .expect("validated non-empty");
-        let a_low = measured_area(lowest, end);
-        let low = ratio(lowest, end, Theory::Corrected);
-        let low_text = if a_low.value < PAPER_FAILURE_AREA {
-            let growth = deviation_growth(low, measured);
-            c.checks.push(Check::new(
-                "correction_fails_at_low_load",
-                format!(
-                    "below a_r = {PAPER_FAILURE_AREA} the corrected energy deviates from the \
-                     measurement more than at the headline load (by {} combined standard \
-                     errors)",
-                    criteria.significance
-                ),
-                growth.value > criteria.significance * growth.std_error,
-                format!(
-                    "E_exa / E_c = {:.3} +- {:.3} at a_r = {:.4} against {:.3} +- {:.3} at \
-                     a_r = {:.3}: |deviation| grows by {:.3} +- {:.3}",
-                    low.value,
-                    low.std_error,
-                    a_low.value,
-                    measured.value,
-                    measured.std_error,
-                    a_head.value,
-                    growth.value,
-                    growth.std_error
-                ),
-            ));
-            format!(
-                " At the lowest load (a_r = {:.4}, {} realizations) E_exa / E_c = {:.3} +- \
-                 {:.3}.",
-                a_low.value,
-                lowest.runs.len(),
-                low.value,
-                low.std_error
-            )
-        } else {
-            String::new()
-        };
-        c.account = format!(
-            "Over {} realizations (H = {}, {}x{} grid, lambda_l = {}, lambda_s = {}), at the \
-             load that gives a_r = {:.3} at full resolution (zeta = {}), the measured total \
-             elastic energy is {:.3} +- {:.3} of the corrected theory's E_c (eq. gamma) and \
-             {:.3} +- {:.3} of the original theory's E_P: the corrected theory's energy \
-             exceeds the measurement by {:+.1}% (z = {:.1} against Persson's 1), the original \
-             theory's by {:+.0}%.{} Each theory uses its own a_r(p0, zeta).",
-            scene.seeds.len(),
-            scene.hurst,
-            scene.n,
-            scene.n,
-            scene.lambda_l,
-            scene.lambda_s,
-            a_head.value,
-            round_sig(zetas[end], 4),
-            measured.value,
-            measured.std_error,
-            original.value,
-            original.std_error,
-            100.0 * (1.0 / measured.value - 1.0),
-            measured.z_score(1.0),
-            100.0 * (1.0 / original.value - 1.0),
-            low_text,
-        );
-        c.tables
-            .push(figures::curve_table(&criteria.name, &loads, zetas));
-        c.tables.push(figures::s_tilde_table(
-            &loads,
-            zetas,
-            &first.windows,
-            scene.correction,
-        ));
-        c.figures = figures::figures(scene.hurst, &loads, zetas, &first.windows, scene.correction);
-        Ok(c)
+        let headline = run.scene.headline_contact_area;
+        Ok(EnergyStats {
+            headline: Headline::of(&loads(run), headline, &first.zetas),
+            zetas: first.zetas.clone(),
+            windows: first.windows.clone(),
+        })
     }
-}
 
-/// The details of one load: both theories' ratios at full resolution, and `S~` averaged
-/// over each window of single-shell increments.
-fn load_details(
-    c: &mut Conclusion,
-    scene: &EnergyScene,
-    load: &Load,
-    zetas: &[f64],
-    windows: &[Vec<usize>],
-) {
-    let end = zetas.len() - 1;
-    let a = measured_area(load, end);
-    let o = ratio(load, end, Theory::Original);
-    let q = ratio(load, end, Theory::Corrected);
-    c.details.push(
-        Detail::new(
-            format!("original_ar{}", load.contact_area),
-            format!(
-                "E_exa / E_P (S = 1) at full resolution, a_r = {} ({:.4} measured)",
-                load.contact_area, a.value
-            ),
-            o,
-        )
-        .persson(1.0),
-    );
-    c.details.push(
-        Detail::new(
-            format!("corrected_ar{}", load.contact_area),
-            format!(
-                "E_exa / E_c (S of eq. gamma) at full resolution, a_r = {} ({:.4} measured)",
-                load.contact_area, a.value
-            ),
-            q,
-        )
-        .persson(1.0),
-    );
-    c.golden.insert(
-        format!("original_ar{}", load.contact_area),
-        round_sig(o.value, 2),
-    );
-    c.golden.insert(
-        format!("corrected_ar{}", load.contact_area),
-        round_sig(q.value, 2),
-    );
-    for (w, window) in windows.iter().enumerate() {
-        let s_w = load.mean(|r| window_mean(r, &r.windows[w]));
-        let last = *window.last().expect("non-empty window");
-        let s_p = scene.correction.factor(original_area(load, last).value);
-        c.details.push(
-            Detail::new(
-                format!("s_tilde_ar{}_window{w}", load.contact_area),
-                format!(
-                    "S~ over {} single-shell increments from zeta = {:.3} to {:.3}, \
-                     a_r = {} at full resolution (Persson: S(a_r) of eq. gamma)",
-                    window.len() - 1,
-                    zetas[window[0]],
-                    zetas[last],
-                    load.contact_area
-                ),
-                s_w,
-            )
-            .persson(s_p),
-        );
+    /// `E_exa / E_c` at full resolution and the headline load, against Persson's 1.
+    fn headline(_run: &Run, s: &EnergyStats) -> (Estimate, f64) {
+        (s.headline.head.corrected, 1.0)
+    }
+
+    fn details(run: &Run, s: &EnergyStats) -> Vec<Detail> {
+        findings::details(run.scene, &loads(run), &s.zetas, &s.windows, &s.headline)
+    }
+
+    fn checks(run: &Run, s: &EnergyStats) -> Vec<Check> {
+        findings::checks(run.criteria, &s.headline)
+    }
+
+    fn golden(run: &Run, s: &EnergyStats) -> BTreeMap<String, f64> {
+        findings::golden(&loads(run), s.zetas.len() - 1, &s.headline)
+    }
+
+    fn account(run: &Run, s: &EnergyStats) -> String {
+        findings::account(run.scene, &s.zetas, &s.headline)
+    }
+
+    fn tables(run: &Run, s: &EnergyStats) -> Vec<Table> {
+        let loads = loads(run);
+        vec![
+            figures::curve_table(&run.criteria.name, &loads, &s.zetas),
+            figures::s_tilde_table(&loads, &s.zetas, &s.windows, run.scene.correction),
+        ]
+    }
+
+    fn figures(run: &Run, s: &EnergyStats) -> Vec<Figure> {
+        let (hurst, correction) = (run.scene.hurst, run.scene.correction);
+        figures::figures(hurst, &loads(run), &s.zetas, &s.windows, correction)
     }
 }
 
@@ -591,17 +454,14 @@ mod tests {
 
     #[test]
     fn shipped_scenes_are_valid_and_ranges_are_named() {
-        let (reduced, full, _) = crate::experiments::shipped_scenes::<EnergyScene>("total_energy");
-        TotalEnergy::validate(&reduced).unwrap();
-        TotalEnergy::validate(&full).unwrap();
+        let (reduced, _) = crate::experiments::shipped_valid::<TotalEnergy>("total_energy");
+        use crate::experiments::assert_refused;
         let mut scene = reduced.clone();
         scene.headline_contact_area = 0.25;
-        let e = TotalEnergy::validate(&scene).unwrap_err().to_string();
-        assert!(e.contains("headline_contact_area"), "{e}");
+        assert_refused::<TotalEnergy>(&scene, "headline_contact_area");
         scene = reduced.clone();
         scene.increments_at = vec![100.0];
-        let e = TotalEnergy::validate(&scene).unwrap_err().to_string();
-        assert!(e.contains("increments_at"), "{e}");
+        assert_refused::<TotalEnergy>(&scene, "increments_at");
     }
 
     #[test]

@@ -4,7 +4,7 @@
 //! ([`crate::experiments::ensemble::LoadGroup::ratio`]).
 
 use super::EnergyResult;
-use crate::experiments::ensemble::LoadGroup;
+use crate::experiments::ensemble::{group, LoadGroup};
 use crate::stats::Estimate;
 
 /// The realizations of one load.
@@ -93,6 +93,76 @@ pub fn deviation_growth(low: Estimate, head: Estimate) -> Estimate {
         (low.value - 1.0).abs() - (head.value - 1.0).abs(),
         low.std_error.hypot(head.std_error),
     )
+}
+
+/// A load at full resolution: the measured area and both theories' ratios.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AtFullResolution {
+    /// The measured contact area.
+    pub area: Estimate,
+    /// `E_exa / E_P`.
+    pub original: Estimate,
+    /// `E_exa / E_c`.
+    pub corrected: Estimate,
+}
+
+impl AtFullResolution {
+    /// The values of `load` at the last step, `end`.
+    pub fn of(load: &Load, end: usize) -> Self {
+        Self {
+            area: measured_area(load, end),
+            original: ratio(load, end, Theory::Original),
+            corrected: ratio(load, end, Theory::Corrected),
+        }
+    }
+}
+
+/// The headline load and the lowest load, the statistics the findings are drawn from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Headline {
+    /// The headline load at full resolution (`corrected` is the headline).
+    pub head: AtFullResolution,
+    /// The step two octaves below the end.
+    pub quarter: usize,
+    /// The change of `E_exa / E_c` at the headline load from `quarter` to the end.
+    pub drift: Estimate,
+    /// The lowest load at full resolution.
+    pub low: AtFullResolution,
+    /// Realizations at the lowest load.
+    pub low_runs: usize,
+}
+
+impl Headline {
+    /// The statistics of `loads` (sweeps over `zetas`) at the headline load
+    /// `headline_area`.
+    pub fn of(loads: &[Load], headline_area: f64, zetas: &[f64]) -> Self {
+        let end = zetas.len() - 1;
+        let headline = group(loads, headline_area);
+        let quarter = two_octaves_below_end(zetas);
+        let lowest = loads
+            .iter()
+            .min_by(|a, b| a.contact_area.total_cmp(&b.contact_area))
+            .expect("validated non-empty");
+        Self {
+            head: AtFullResolution::of(headline, end),
+            quarter,
+            drift: corrected_drift(headline, quarter),
+            low: AtFullResolution::of(lowest, end),
+            low_runs: lowest.runs.len(),
+        }
+    }
+
+    /// How much more the corrected energy deviates at the lowest load than at the
+    /// headline load.
+    pub fn growth(&self) -> Estimate {
+        deviation_growth(self.low.corrected, self.head.corrected)
+    }
+
+    /// How much closer the corrected energy is to the measurement than the original, at
+    /// the headline load: `|E_exa / E_P - 1| - |E_exa / E_c - 1|`.
+    pub fn improvement(&self) -> Estimate {
+        deviation_growth(self.head.original, self.head.corrected)
+    }
 }
 
 #[cfg(test)]

@@ -1,18 +1,53 @@
-//! Estimates with error bars: means over realizations, linear fits, verdict arithmetic.
+//! Estimates with error bars: means over realizations, linear fits, and the rule that
+//! decides a claim about an estimate ([`decision`]).
 //!
 //! Every statistic a validation reports is an [`Estimate`]: a value and its standard error.
 //! Ensemble averages use the spread over independent realizations (seeds), which is the
-//! honest error when points within one realization are correlated.
+//! honest error when points within one realization are correlated. With one realization
+//! there is no spread: the standard error is NaN ("no error bar"), written as `null` in
+//! JSON (serde_json's NaN) and read back as NaN ([`null_as_nan`]), and as an empty cell in
+//! CSV.
 
-use serde::{Deserialize, Serialize};
+pub mod decision;
+
+pub use decision::{decide, Claim, Decision};
+
+use serde::{Deserialize, Deserializer, Serialize};
+
+/// What the text of an estimate without an error bar says in place of `+- error`.
+pub const NO_ERROR_BAR: &str = "no error bar with one realization";
 
 /// A value with its standard error.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Estimate {
-    /// The value.
+    /// The value (NaN, written `null`, when there was nothing to estimate from).
+    #[serde(deserialize_with = "null_as_nan")]
     pub value: f64,
-    /// Its standard error (0 when not estimable, e.g. one sample).
+    /// Its standard error: NaN (written `null`, or left out) when there is no error bar,
+    /// e.g. from one realization.
+    #[serde(deserialize_with = "null_as_nan", default = "nan")]
     pub std_error: f64,
+}
+
+fn nan() -> f64 {
+    f64::NAN
+}
+
+/// Reads a float that may be `null` (how serde_json writes NaN) as NaN: for the fields of
+/// outputs that can be NaN, so that an outcome written from one realization reads back.
+pub fn null_as_nan<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::NAN))
+}
+
+/// [`null_as_nan`] for the values of a map.
+pub fn null_as_nan_values<'de, D: Deserializer<'de>>(
+    d: D,
+) -> Result<std::collections::BTreeMap<String, f64>, D::Error> {
+    let map = std::collections::BTreeMap::<String, Option<f64>>::deserialize(d)?;
+    Ok(map
+        .into_iter()
+        .map(|(k, v)| (k, v.unwrap_or(f64::NAN)))
+        .collect())
 }
 
 impl Estimate {
@@ -54,6 +89,12 @@ impl Estimate {
         Self::new(r, (var / n as f64).sqrt() / mb.abs())
     }
 
+    /// The difference `a - b` of two independent estimates, with their combined standard
+    /// error.
+    pub fn difference(a: Estimate, b: Estimate) -> Self {
+        Self::new(a.value - b.value, a.std_error.hypot(b.std_error))
+    }
+
     /// Whether the estimate has an error bar (a finite standard error): not from one
     /// realization.
     pub fn has_error(&self) -> bool {
@@ -61,8 +102,8 @@ impl Estimate {
     }
 
     /// The estimate in words, times `scale`, with `decimals` decimals and `unit` after
-    /// each number: `"v +- e unit"`, or `"v unit (1 realization: no error bar)"` when the
-    /// error is not known. Never prints NaN for a finite value.
+    /// each number: `"v +- e unit"`, or `"v unit (no error bar with one realization)"`
+    /// when the error is not known. Never prints NaN for a finite value.
     pub fn text(&self, scale: f64, decimals: usize, unit: &str) -> String {
         let v = self.value * scale;
         if self.has_error() {
@@ -72,13 +113,23 @@ impl Estimate {
                 d = decimals
             )
         } else {
-            format!("{v:.d$}{unit} (1 realization: no error bar)", d = decimals)
+            format!("{v:.d$}{unit} ({NO_ERROR_BAR})", d = decimals)
         }
     }
 
     /// `z = (value - reference) / std_error`.
     pub fn z_score(&self, reference: f64) -> f64 {
         (self.value - reference) / self.std_error
+    }
+
+    /// The z-score against `reference` in words, `"z = 4.2 against {whom}"` (one
+    /// decimal), or [`NO_ERROR_BAR`] without an error bar.
+    pub fn z_text(&self, reference: f64, whom: &str) -> String {
+        if self.has_error() {
+            format!("z = {:.1} against {whom}", self.z_score(reference))
+        } else {
+            NO_ERROR_BAR.to_string()
+        }
     }
 }
 
@@ -164,9 +215,19 @@ mod tests {
         assert!(!Estimate::mean_of(&[1.0]).has_error());
         assert_eq!(
             Estimate::mean_of(&[0.25]).text(100.0, 1, "%"),
-            "25.0% (1 realization: no error bar)"
+            "25.0% (no error bar with one realization)"
         );
         assert_eq!(Estimate::new(0.5, 0.02).text(1.0, 2, ""), "0.50 +- 0.02");
+        assert_eq!(
+            Estimate::new(1.5, 0.1).z_text(1.0, "Persson's 1"),
+            "z = 5.0 against Persson's 1"
+        );
+        assert_eq!(
+            Estimate::mean_of(&[1.5]).z_text(1.0, "Persson's 1"),
+            "no error bar with one realization"
+        );
+        let d = Estimate::difference(Estimate::new(1.0, 0.3), Estimate::new(0.5, 0.4));
+        assert!((d.value - 0.5).abs() < 1e-15 && (d.std_error - 0.5).abs() < 1e-15);
         assert_eq!(realizations(1), "1 realization");
         assert_eq!(realizations(4), "4 realizations");
     }
@@ -187,6 +248,21 @@ mod tests {
         let noisy = [1.0, 2.1, 2.9, 4.2, 4.8];
         let g = LineFit::fit(&x, &noisy).unwrap();
         assert!(g.slope.std_error > 0.0 && (g.slope.value - 0.97).abs() < 1e-12);
+    }
+
+    #[test]
+    fn no_error_bar_is_written_as_null_and_read_back_as_nan() {
+        let one = Estimate::mean_of(&[0.25]);
+        let json = serde_json::to_string(&one).unwrap();
+        assert_eq!(json, r#"{"value":0.25,"std_error":null}"#);
+        let back: Estimate = serde_json::from_str(&json).unwrap();
+        assert_eq!(back.value, 0.25);
+        assert!(!back.has_error());
+        // Left out, too; a number reads as itself.
+        let absent: Estimate = serde_json::from_str(r#"{"value":0.5}"#).unwrap();
+        assert!(absent.std_error.is_nan());
+        let full: Estimate = serde_json::from_str(r#"{"value":0.5,"std_error":0.1}"#).unwrap();
+        assert_eq!(full, Estimate::new(0.5, 0.1));
     }
 
     #[test]

@@ -1,0 +1,174 @@
+//! The statistics of assumption (e), as pure functions of the sweeps: the change of
+//! `E_norm` after resolution, the asymptote `E_inf` of each realization (the intercept of
+//! `E_norm` against `1/zeta` over the frozen window) with `x = -d ln a_r / d ln zeta` over
+//! the same window, and the paper's law `E_inf = K1 exp(-K2 x)` fitted to the
+//! partial-contact points.
+
+use super::{Load, ModeEnsemble, ModeResult, ModeScene};
+use crate::experiments::climb::step_of;
+use crate::experiments::ensemble::{group, load_range};
+use crate::stats::{Estimate, LineFit};
+
+/// The paper's asymptote law `K1 exp(-K2 x)` for `H = 0.8`: `(K1, K2)`.
+pub const PAPER_K_H08: (f64, f64) = (0.9, 1.0);
+/// The paper's asymptote law `K1 exp(-K2 x)` for `H = 0.3`: `(K1, K2)`.
+pub const PAPER_K_H03: (f64, f64) = (0.7, 1.4);
+
+/// Loads with a measured contact area at the end of the sweep at or above this are full
+/// contact (`x ~ 0`) and left out of the fit of the asymptote law, as in the paper.
+pub const FULL_CONTACT: f64 = 0.99;
+
+/// The paper's `(K1, K2)` for Hurst exponent `hurst`, if it states them.
+pub fn paper_k(hurst: f64) -> Option<(f64, f64)> {
+    if (hurst - 0.8).abs() < 0.05 {
+        Some(PAPER_K_H08)
+    } else if (hurst - 0.3).abs() < 0.05 {
+        Some(PAPER_K_H03)
+    } else {
+        None
+    }
+}
+
+/// Per-realization asymptote `E_inf` (intercept of `E_norm` against `1/zeta`) and
+/// `x = -d ln a_r / d ln zeta` over the frozen window of target `t`.
+pub fn asymptote(scene: &ModeScene, run: &ModeResult, t: usize) -> Option<(f64, f64)> {
+    let zt = scene.targets[t];
+    let from = step_of(&run.zetas, scene.frozen_from * zt);
+    let e = run.e_norm(t, zt);
+    let inv: Vec<f64> = run.zetas[from..].iter().map(|z| 1.0 / z).collect();
+    let fit = LineFit::fit(&inv, &e[from..])?;
+    let ln_z: Vec<f64> = run.zetas[from..].iter().map(|z| z.ln()).collect();
+    let ln_a: Vec<f64> = run.contact_area[from..].iter().map(|a| a.ln()).collect();
+    let slope = LineFit::fit(&ln_z, &ln_a)?;
+    Some((fit.intercept.value, -slope.slope.value))
+}
+
+/// One target at one load after resolution.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AfterResolution {
+    /// The load, as the contact area at full resolution.
+    pub load: f64,
+    /// Index of the target.
+    pub target: usize,
+    /// The step where the frozen window starts.
+    pub from: usize,
+    /// `E_norm(zeta_end) - E_norm(frozen_from zeta_t)`.
+    pub change: Estimate,
+    /// The asymptote `E_inf`, over realizations.
+    pub asymptote: Estimate,
+    /// `x = -d ln a_r / d ln zeta`, over realizations.
+    pub x: Estimate,
+    /// The correction factor `S(a_r(zeta_t))` (Persson's asymptote).
+    pub s: f64,
+    /// The measured contact area at the end of the sweep.
+    pub a_end: f64,
+}
+
+/// The statistics of target `t` at `load`.
+fn after_resolution(scene: &ModeScene, steps: &[f64], load: &Load, t: usize) -> AfterResolution {
+    let zt = scene.targets[t];
+    let end = steps.len() - 1;
+    let from = step_of(steps, scene.frozen_from * zt);
+    let fits: Vec<(f64, f64)> = load
+        .runs
+        .iter()
+        .filter_map(|r| asymptote(scene, r, t))
+        .collect();
+    let mean =
+        |f: fn(&(f64, f64)) -> f64| Estimate::mean_of(&fits.iter().map(f).collect::<Vec<_>>());
+    AfterResolution {
+        load: load.contact_area,
+        target: t,
+        from,
+        change: load.change(t, zt, from, end),
+        asymptote: mean(|f| f.0),
+        x: mean(|f| f.1),
+        s: scene
+            .correction
+            .factor(load.contact_area_at(step_of(steps, zt)).value),
+        a_end: load.contact_area_at(end).value,
+    }
+}
+
+/// Every statistic of assumption (e).
+#[derive(Debug, Clone)]
+pub struct FrozenStats {
+    /// Every load and target, loads outermost.
+    pub after: Vec<AfterResolution>,
+    /// The lowest and the highest load.
+    pub lowest: f64,
+    /// The highest load.
+    pub highest: f64,
+    /// The asymptote of the first target minus that of the last at the lowest load, per
+    /// realization (with more than one target).
+    pub long_minus_short: Option<Estimate>,
+    /// `(x, ln E_inf)` of the partial-contact points with a positive asymptote.
+    pub k_points: Vec<(f64, f64)>,
+    /// The line through `k_points`: `ln K1 - K2 x`.
+    pub k_fit: Option<LineFit>,
+}
+
+impl FrozenStats {
+    /// The statistics of the loads' sweeps.
+    pub fn of(scene: &ModeScene, loads: &[Load]) -> Self {
+        let steps = scene.steps();
+        let after: Vec<AfterResolution> = loads
+            .iter()
+            .flat_map(|load| {
+                let steps = &steps;
+                (0..scene.targets.len()).map(move |t| after_resolution(scene, steps, load, t))
+            })
+            .collect();
+        let k_points: Vec<(f64, f64)> = after
+            .iter()
+            .filter(|a| a.asymptote.value > 0.0 && a.a_end < FULL_CONTACT)
+            .map(|a| (a.x.value, a.asymptote.value.ln()))
+            .collect();
+        let (xs, ys): (Vec<f64>, Vec<f64>) = k_points.iter().copied().unzip();
+        let (lowest, highest) = load_range(&scene.contact_areas);
+        Self {
+            long_minus_short: long_minus_short(scene, group(loads, lowest)),
+            k_fit: LineFit::fit(&xs, &ys),
+            k_points,
+            after,
+            lowest,
+            highest,
+        }
+    }
+
+    /// Target `t` at load `load`.
+    pub fn at(&self, load: f64, t: usize) -> &AfterResolution {
+        self.after
+            .iter()
+            .find(|a| a.load == load && a.target == t)
+            .expect("every load and target")
+    }
+
+    /// The headline: the change of the first (longest-wavelength) target at the lowest
+    /// load.
+    pub fn headline(&self) -> Estimate {
+        self.at(self.lowest, 0).change
+    }
+
+    /// `(K1, K2)` of the fitted law, with their standard errors.
+    pub fn k(&self) -> Option<(Estimate, Estimate)> {
+        self.k_fit.map(|f| {
+            let k1 = Estimate::new(
+                f.intercept.value.exp(),
+                f.intercept.std_error * f.intercept.value.exp(),
+            );
+            (k1, Estimate::new(-f.slope.value, f.slope.std_error))
+        })
+    }
+}
+
+/// The asymptote of the first target minus that of the last at `load`, per realization.
+fn long_minus_short(scene: &ModeScene, load: &Load) -> Option<Estimate> {
+    let last = scene.targets.len().checked_sub(1).filter(|&l| l > 0)?;
+    let diffs: Vec<f64> = load
+        .runs
+        .iter()
+        .filter_map(|r| Some(asymptote(scene, r, 0)?.0 - asymptote(scene, r, last)?.0))
+        .collect();
+    Some(Estimate::mean_of(&diffs))
+}

@@ -1,0 +1,54 @@
+//! The statistics of the re-entry experiment, as pure functions of the histories: the
+//! re-entry shares at every load and the flux of the interval at the headline load, means
+//! over realizations.
+
+use super::ReentryResult;
+use crate::experiments::ensemble::LoadGroup;
+use crate::stats::Estimate;
+
+/// The shares of one load.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Share {
+    /// The load, as the contact area at `zeta_max`.
+    pub load: f64,
+    /// Points in contact at `zeta_max` that were out of contact at a lower `zeta`.
+    pub share: Estimate,
+    /// Of those, the points that left after the first shell and came back.
+    pub after_first: Estimate,
+}
+
+/// Every statistic of the re-entry experiment.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ReentryStats {
+    /// The shares of every load, in the scene's order (the first is the headline).
+    pub shares: Vec<Share>,
+    /// Flux into contact over the interval at the headline load (fraction of `A0`).
+    pub flux_in: Estimate,
+    /// Flux out of contact over the interval.
+    pub flux_out: Estimate,
+    /// The net flux over the mean one-way flux.
+    pub net_over_gross: Estimate,
+    /// The share of non-contact that enters contact over the interval.
+    pub zero_bin: Estimate,
+}
+
+impl ReentryStats {
+    /// The statistics of the loads' histories (the headline load first).
+    pub fn of(loads: &[LoadGroup<ReentryResult>]) -> Self {
+        let head = &loads[0];
+        Self {
+            shares: loads
+                .iter()
+                .map(|load| Share {
+                    load: load.contact_area,
+                    share: load.mean(ReentryResult::share),
+                    after_first: load.mean(ReentryResult::share_after_first),
+                })
+                .collect(),
+            flux_in: head.mean(|r| r.flux_in),
+            flux_out: head.mean(|r| r.flux_out),
+            net_over_gross: head.mean(ReentryResult::net_over_gross),
+            zero_bin: head.mean(|r| r.zero_bin_reentry),
+        }
+    }
+}

@@ -1,0 +1,178 @@
+//! Assumption (a): the diffusion coefficient does not depend on the pressure. Statistics,
+//! then findings (details, checks, golden values), then the account and the figure.
+
+use std::collections::BTreeMap;
+
+use super::bins::{bin_rows, mean_of, over_realizations, region_mean, BinRow};
+use super::tables::{bin_figure, bin_points, bin_table, common_account, level, transition_table};
+use super::{TransitionResult, TransitionScene};
+use crate::error::Result;
+use crate::experiments::{Check, Detail, Experiment, Table};
+use crate::persson::Correction;
+use crate::plot::{Figure, Series, Style};
+use crate::stats::{decide, round_sig, Claim, Estimate};
+
+/// The diffusion validation, assumption (a).
+pub struct Diffusion;
+
+/// The statistics of the diffusion validation.
+#[derive(Debug, Clone)]
+pub struct DiffusionStats {
+    /// `D_n / D_P` in the low-pressure region (suited bins): the headline.
+    pub low: Estimate,
+    /// `D_n / D_P` in the high-pressure region (suited bins).
+    pub high: Estimate,
+    /// The contact area at `zeta`.
+    pub a_r: Estimate,
+    /// The corrected theory's `S(a_r)`, eq. (gamma).
+    pub s_corrected: f64,
+    /// Every analysed bin.
+    pub rows: Vec<BinRow>,
+}
+
+impl DiffusionStats {
+    /// The statistics of the realizations' transitions.
+    pub fn of(scene: &TransitionScene, results: &[(u64, TransitionResult)]) -> Self {
+        let region = |keep: &dyn Fn(f64) -> bool| {
+            over_realizations(scene, results, |bins| {
+                region_mean(bins, |b| b.suited && keep(b.mean_old), |b| b.ratio)
+            })
+        };
+        let a_r = mean_of(results, |r| r.a_r_old);
+        Self {
+            low: region(&|p| p < scene.low_pressure),
+            high: region(&|p| p >= scene.high_pressure),
+            a_r,
+            s_corrected: Correction::yang_persson().factor(a_r.value),
+            rows: bin_rows(scene, results),
+        }
+    }
+
+    /// Analysed bins whose mean is below the broadening (not used for diffusion).
+    pub fn unsuited(&self) -> usize {
+        self.rows.iter().filter(|r| !r.suited).count()
+    }
+}
+
+type Run<'a> = crate::experiments::Run<'a, Diffusion>;
+
+impl Experiment for Diffusion {
+    type Scene = TransitionScene;
+    type Stats = DiffusionStats;
+
+    fn stats(run: &Run) -> Result<DiffusionStats> {
+        Ok(DiffusionStats::of(run.scene, run.results))
+    }
+
+    fn headline(_run: &Run, s: &DiffusionStats) -> (Estimate, f64) {
+        (s.low, 1.0)
+    }
+
+    /// The high-pressure ratio and the corrected theory's `S(a_r)` beside it.
+    fn details(run: &Run, s: &DiffusionStats) -> Vec<Detail> {
+        vec![
+            Detail::new(
+                "d_ratio_high",
+                format!("D_n / D_P at p >= {} p0/a_r", run.scene.high_pressure),
+                s.high,
+            )
+            .persson(1.0)
+            .paper(Some(1.0)),
+            Detail::new(
+                "s_corrected",
+                "corrected theory's S(a_r) (eq. gamma)",
+                Estimate::new(s.s_corrected, f64::NAN),
+            )
+            .persson(s.s_corrected),
+        ]
+    }
+
+    /// The paper's finding at high pressure: `D_n / D_P ~ 1`, the original theory's value
+    /// rather than the corrected theory's `S(a_r)`.
+    fn checks(run: &Run, s: &DiffusionStats) -> Vec<Check> {
+        let z = run.criteria.significance;
+        let tolerance = run.criteria.resolution;
+        let high = s.high;
+        vec![
+            Check::new(
+                "high_pressure_ratio_near_one",
+                format!(
+                    "D_n / D_P ~ 1 at p >= {} p0/a_r (within {z} standard errors plus \
+                     {tolerance})",
+                    run.scene.high_pressure
+                ),
+                decide(
+                    high,
+                    Claim::Near {
+                        target: 1.0,
+                        tolerance,
+                    },
+                    z,
+                ),
+                high.text(1.0, 3, ""),
+            ),
+            Check::new(
+                "high_pressure_closer_to_original",
+                "high-pressure diffusion closer to the original theory (1) than to S(a_r)",
+                decide(high, Claim::closer_to(1.0, s.s_corrected), 0.0),
+                format!("{:.3} against 1 and S = {:.3}", high.value, s.s_corrected),
+            ),
+        ]
+    }
+
+    fn golden(_run: &Run, s: &DiffusionStats) -> BTreeMap<String, f64> {
+        BTreeMap::from([
+            ("d_ratio_low".into(), round_sig(s.low.value, 3)),
+            ("d_ratio_high".into(), round_sig(s.high.value, 3)),
+            ("a_r".into(), round_sig(s.a_r.value, 4)),
+        ])
+    }
+
+    fn account(run: &Run, s: &DiffusionStats) -> String {
+        format!(
+            "{} In the low-pressure region (p < {} p0/a_r) the diffusion coefficient from \
+             the moment analysis is D_n / D_P = {} times Persson's; at p >= {} p0/a_r it is {} \
+             (the corrected theory's S(a_r) would be {:.2}). {} of the analysed bins have a \
+             mean below the broadening and are not used for diffusion.",
+            common_account(run.scene, run.results),
+            run.scene.low_pressure,
+            s.low.text(1.0, 2, ""),
+            run.scene.high_pressure,
+            s.high.text(1.0, 2, ""),
+            s.s_corrected,
+            s.unsuited()
+        )
+    }
+
+    fn tables(run: &Run, s: &DiffusionStats) -> Vec<Table> {
+        vec![bin_table(&s.rows), transition_table(run.scene, run.results)]
+    }
+
+    fn figures(run: &Run, s: &DiffusionStats) -> Vec<Figure> {
+        vec![diffusion_figure(run.scene, s)]
+    }
+}
+
+/// `D_n / D_P` by pressure bin, suited and unsuited, against both theories.
+fn diffusion_figure(scene: &TransitionScene, s: &DiffusionStats) -> Figure {
+    let series = vec![
+        Series::with_errors(
+            "suited bins",
+            Style::Points,
+            bin_points(&s.rows, |r| r.suited, |r| r.ratio),
+        ),
+        Series::with_errors(
+            "unsuited (mean below broadening)",
+            Style::Points,
+            bin_points(&s.rows, |r| !r.suited, |r| r.ratio),
+        ),
+        Series::xy("Persson (original)", Style::Line, level(scene, 1.0)),
+        Series::xy(
+            "corrected S(a_r)",
+            Style::Dashed,
+            level(scene, s.s_corrected),
+        ),
+    ];
+    let title = "Diffusion coefficient by pressure bin";
+    bin_figure("diffusion", title, "D_n / D_P", series)
+}

@@ -1,0 +1,174 @@
+//! Assumption (b): no drift. Statistics, then findings (details, checks, golden values),
+//! then the account and the figure.
+
+use std::collections::BTreeMap;
+
+use super::bins::{bin_rows, mean_of, over_realizations, region_mean, BinRow};
+use super::tables::{bin_figure, bin_points, bin_table, common_account, level};
+use super::{TransitionResult, TransitionScene};
+use crate::error::Result;
+use crate::experiments::{Check, Detail, Experiment, Table};
+use crate::plot::{Figure, Series, Style};
+use crate::stats::{decide, round_sig, Claim, Estimate};
+
+/// The drift validation, assumption (b).
+pub struct Drift;
+
+/// The statistics of the drift validation, in units of `p0 / a_r` per unit `zeta`.
+#[derive(Debug, Clone)]
+pub struct DriftStats {
+    /// The contact-averaged drift `mu_c`: the headline.
+    pub mu_c: Estimate,
+    /// `mu_n` in the low-pressure region.
+    pub low: Estimate,
+    /// `mu_n` in the high-pressure region.
+    pub high: Estimate,
+    /// `mu_n` in the lowest analysed bin.
+    pub lowest: Estimate,
+    /// Every analysed bin.
+    pub rows: Vec<BinRow>,
+}
+
+/// `mu_c` of one realization: the mean change of pressure of the walkers in contact at
+/// `zeta`, per unit `zeta`, in units of `p0 / a_r`.
+pub fn contact_drift(scene: &TransitionScene, r: &TransitionResult) -> f64 {
+    let (dp, n): (f64, f64) = r
+        .bins
+        .iter()
+        .fold((0.0, 0.0), |(s, n), b| (s + b.new - b.old, n + b.count));
+    dp / n / scene.dzeta / (r.p0 / r.a_r_old)
+}
+
+impl DriftStats {
+    /// The statistics of the realizations' transitions.
+    pub fn of(scene: &TransitionScene, results: &[(u64, TransitionResult)]) -> Self {
+        let region = |keep: &dyn Fn(f64) -> bool| {
+            over_realizations(scene, results, |bins| {
+                region_mean(bins, |b| keep(b.mean_old), |b| b.drift)
+            })
+        };
+        Self {
+            mu_c: mean_of(results, |r| contact_drift(scene, r)),
+            low: region(&|p| p < scene.low_pressure),
+            high: region(&|p| p >= scene.high_pressure),
+            lowest: over_realizations(scene, results, |bins| {
+                bins.iter().flatten().next().map(|b| b.drift)
+            }),
+            rows: bin_rows(scene, results),
+        }
+    }
+}
+
+type Run<'a> = crate::experiments::Run<'a, Drift>;
+
+impl Experiment for Drift {
+    type Scene = TransitionScene;
+    type Stats = DriftStats;
+
+    fn stats(run: &Run) -> Result<DriftStats> {
+        Ok(DriftStats::of(run.scene, run.results))
+    }
+
+    fn headline(_run: &Run, s: &DriftStats) -> (Estimate, f64) {
+        (s.mu_c, 0.0)
+    }
+
+    /// The drift by region (Persson: 0 everywhere).
+    fn details(run: &Run, s: &DriftStats) -> Vec<Detail> {
+        let scene = run.scene;
+        [
+            (
+                "mu_low",
+                format!("mu_n at p < {} p0/a_r", scene.low_pressure),
+                s.low,
+            ),
+            (
+                "mu_high",
+                format!("mu_n at p >= {} p0/a_r", scene.high_pressure),
+                s.high,
+            ),
+            (
+                "mu_lowest_bin",
+                "mu_n in the lowest analysed bin".to_string(),
+                s.lowest,
+            ),
+        ]
+        .into_iter()
+        .map(|(key, name, e)| Detail::new(key, name, e).persson(0.0))
+        .collect()
+    }
+
+    /// The paper's finding: the contact-averaged drift is negative, the drift at high
+    /// pressure about zero.
+    fn checks(run: &Run, s: &DriftStats) -> Vec<Check> {
+        let z = run.criteria.significance;
+        let resolution = run.criteria.resolution;
+        vec![
+            Check::new(
+                "mu_c_negative",
+                format!("mu_c < 0 beyond {z} standard errors"),
+                decide(s.mu_c, Claim::Below(0.0), z),
+                s.mu_c.text(1.0, 4, ""),
+            ),
+            Check::new(
+                "high_pressure_drift_near_zero",
+                format!(
+                    "drift ~ 0 at p >= {} p0/a_r (within {z} standard errors plus {resolution})",
+                    run.scene.high_pressure
+                ),
+                decide(
+                    s.high,
+                    Claim::Near {
+                        target: 0.0,
+                        tolerance: resolution,
+                    },
+                    z,
+                ),
+                s.high.text(1.0, 4, ""),
+            ),
+        ]
+    }
+
+    fn golden(_run: &Run, s: &DriftStats) -> BTreeMap<String, f64> {
+        [("mu_c", s.mu_c), ("mu_low", s.low), ("mu_high", s.high)]
+            .map(|(k, e)| (k.to_string(), round_sig(e.value, 3)))
+            .into()
+    }
+
+    fn account(run: &Run, s: &DriftStats) -> String {
+        format!(
+            "{} The contact-averaged drift is mu_c = {} (p0/a_r per unit zeta; Persson: 0). \
+             By region: {} below {} p0/a_r, {} above {} p0/a_r, and {} in the lowest \
+             analysed bin.",
+            common_account(run.scene, run.results),
+            s.mu_c.text(1.0, 4, ""),
+            s.low.text(1.0, 4, ""),
+            run.scene.low_pressure,
+            s.high.text(1.0, 4, ""),
+            run.scene.high_pressure,
+            s.lowest.text(1.0, 4, "")
+        )
+    }
+
+    fn tables(_run: &Run, s: &DriftStats) -> Vec<Table> {
+        vec![bin_table(&s.rows)]
+    }
+
+    fn figures(run: &Run, s: &DriftStats) -> Vec<Figure> {
+        vec![drift_figure(run.scene, s)]
+    }
+}
+
+/// The drift by pressure bin against Persson's none.
+fn drift_figure(scene: &TransitionScene, s: &DriftStats) -> Figure {
+    let series = vec![
+        Series::with_errors(
+            "drift mu_n",
+            Style::Points,
+            bin_points(&s.rows, |_| true, |r| r.drift),
+        ),
+        Series::xy("Persson: no drift", Style::Line, level(scene, 0.0)),
+    ];
+    let title = "Drift by pressure bin";
+    bin_figure("drift", title, "mu_n / (p0 / a_r)", series)
+}

@@ -1,0 +1,218 @@
+//! Pressure transitions between two magnifications: assumptions (a) pressure-independent
+//! diffusion and (b) no drift ([`crate::conventions`], section 6, rows a and b; paper section 3.2 and the
+//! Appendix).
+//!
+//! Persson's theory treats every interface point as a walker whose pressure diffuses as
+//! the magnification grows, with the transition probability eq. (transitionFinal): a
+//! Gaussian of width `Dp^2` (eq. broadening) about the old pressure, mirrored at the
+//! absorbing boundary `p = 0`. Here each realization is solved at `zeta` (at the load that
+//! gives the scene's contact area there) and again at `zeta + dzeta` (same load, warm
+//! start). Walkers are binned by their old pressure in units of `p0 / a_r` (the mean
+//! pressure inside contact), and each bin `n` is followed to the new magnification, points
+//! that fall out of contact counting at `p = 0`:
+//!
+//! * the transition probabilities `Pr(p, zeta + dzeta | p', zeta)`, as histograms;
+//! * the drift, `mu_n = (<p>_{n, zeta + dzeta} - <p>_{n, zeta}) / dzeta` (Appendix), and the
+//!   contact-averaged drift `mu_c = (1/a_r) int Pr(p) mu(p) dp`, i.e. the mean change of
+//!   pressure of all walkers in contact at `zeta`, per unit `zeta`;
+//! * the diffusion coefficient by the Appendix's moment analysis: with `p' = <p>_{n,new}`
+//!   and the bin's second moment `<p^2>_{n,new}`, the width `Dp_n` of the mirror Gaussian
+//!   with those moments (eq. 2ndMoment, inverted from the start eq. approxDeltaPress by
+//!   Newton's method, [`crate::persson::moments`]), minus the bin's own width
+//!   `dp_n^2` (the variance of the old pressures in the bin):
+//!   `D_n = (Dp_n^2 - dp_n^2) / dzeta`, compared with `D_P = Dp^2 / dzeta` from the shells
+//!   of the same realization that the step adds ([`crate::persson::Broadening`]).
+//!
+//! Bins whose mean is below the broadening (`<p>_{n,zeta} < Dp_n`) are flagged as unsuited
+//! for the moment analysis (the paper excludes its bins below 8 for the same reason): they
+//! are reported, but not used for the diffusion statistics. Their drift is well defined
+//! and is used.
+//!
+//! Error bars are standard errors over realizations: walkers of one realization are
+//! correlated (neighbouring points feel the same added roughness), realizations are not.
+//!
+//! Both validations share the scene and its jobs (one realization each). The statistics of
+//! the bins are pure functions (`bins`); each validation derives its statistics, then its
+//! findings (details, checks, golden values), then its account and figure ([`diffusion`],
+//! [`drift`]); the tables both show are in `tables`.
+
+mod bins;
+mod diffusion;
+mod drift;
+mod tables;
+
+pub use diffusion::{Diffusion, DiffusionStats};
+pub use drift::{contact_drift, Drift, DriftStats};
+
+use serde::{Deserialize, Serialize};
+
+use super::scene::{scene, Step};
+use super::{JobContext, Jobs, Work};
+use crate::engine::solver::SolverKind;
+use crate::error::{check_positive, Error, Result};
+use crate::persson::Broadening;
+
+scene! {
+    /// Scene of the transition experiment.
+    pub struct TransitionScene {
+        /// Relative contact area at `zeta` (sets the load).
+        pub contact_area: f64,
+        /// Old magnification.
+        pub zeta: f64,
+        /// Magnification step.
+        pub dzeta: f64,
+        /// Number of pressure bins.
+        pub bins: usize,
+        /// Bin width, in units of `p0 / a_r`.
+        pub bin_width: f64,
+        /// Bins with mean pressure below this (units of `p0 / a_r`) form the low-pressure region.
+        pub low_pressure: f64,
+        /// Bins with mean pressure above this (units of `p0 / a_r`) form the high-pressure region.
+        pub high_pressure: f64,
+        /// Bins with fewer walkers in a realization are not analysed for it.
+        pub min_walkers: usize,
+    }
+}
+
+/// Sums over the walkers of one bin.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct BinSums {
+    /// Walkers.
+    pub count: f64,
+    /// `sum p_old`.
+    pub old: f64,
+    /// `sum p_old^2`.
+    pub old2: f64,
+    /// `sum p_new`.
+    pub new: f64,
+    /// `sum p_new^2`.
+    pub new2: f64,
+    /// Walkers with `p_new = 0` (out of contact at the new magnification).
+    pub lost: f64,
+}
+
+impl BinSums {
+    fn add(&mut self, old: f64, new: f64) {
+        self.count += 1.0;
+        self.old += old;
+        self.old2 += old * old;
+        self.new += new;
+        self.new2 += new * new;
+        if new <= 0.0 {
+            self.lost += 1.0;
+        }
+    }
+}
+
+/// One realization's transitions.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TransitionResult {
+    /// Load.
+    pub p0: f64,
+    /// Contact area at `zeta`.
+    pub a_r_old: f64,
+    /// Contact area at `zeta + dzeta`.
+    pub a_r_new: f64,
+    /// Persson's diffusion coefficient of the step, `D_P = Dp^2 / dzeta`.
+    pub d_persson: f64,
+    /// Walkers in contact at `zeta`, by bin of old pressure (the last bin collects the rest).
+    pub bins: Vec<BinSums>,
+    /// Walkers out of contact at `zeta`.
+    pub zero: BinSums,
+    /// Transition counts: row = old bin (0 = out of contact, then the bins), column = new
+    /// pressure bin of the same width (0 = out of contact).
+    pub histogram: Vec<Vec<u32>>,
+    /// Largest solver residual.
+    pub max_residual: f64,
+}
+
+impl Jobs for TransitionScene {
+    const FAMILY: &'static str = "transition";
+    type Job = u64;
+    type JobResult = TransitionResult;
+
+    fn validate(&self) -> Result<()> {
+        self.base()
+            .validate_step(self.contact_area, self.zeta, self.dzeta)?;
+        if self.bins < 2 {
+            return Err(Error::invalid("bins", self.bins, ">= 2"));
+        }
+        check_positive("bin_width", self.bin_width)?;
+        check_positive("low_pressure", self.low_pressure)?;
+        check_positive("high_pressure", self.high_pressure)?;
+        if self.min_walkers < 2 {
+            return Err(Error::invalid("min_walkers", self.min_walkers, ">= 2"));
+        }
+        Ok(())
+    }
+
+    fn jobs(&self) -> Vec<u64> {
+        self.seeds.clone()
+    }
+
+    fn work(&self, _seed: &u64) -> Work {
+        // The load at zeta, then one step of dzeta.
+        Work::climb(self.n, 1, 0)
+    }
+
+    fn run_job(&self, seed: &u64, ctx: &JobContext) -> Result<TransitionResult> {
+        run_transition(self, *seed, ctx.solver)
+    }
+
+    fn residual(result: &TransitionResult) -> f64 {
+        result.max_residual
+    }
+}
+
+impl TransitionScene {
+    fn unit_bin(&self, p: f64, unit: f64) -> usize {
+        ((p / (self.bin_width * unit)) as usize).min(self.bins - 1)
+    }
+}
+
+/// Solves one realization at `zeta` and `zeta + dzeta` and bins its walkers.
+fn run_transition(
+    scene: &TransitionScene,
+    seed: u64,
+    solver: SolverKind,
+) -> Result<TransitionResult> {
+    let base = scene.base();
+    let r = base.realization(seed)?;
+    let Step {
+        p0,
+        before: old,
+        after: new,
+    } = base.step(&r, solver, scene.zeta, scene.dzeta, scene.contact_area)?;
+    let a_r_old = old.contact_area();
+    let unit = p0 / a_r_old;
+    let mut bins = vec![BinSums::default(); scene.bins];
+    let mut zero = BinSums::default();
+    let mut histogram = vec![vec![0u32; scene.bins + 1]; scene.bins + 1];
+    for (&po, &pn) in old.pressure.iter().zip(&new.pressure) {
+        let row = if po > 0.0 {
+            let b = scene.unit_bin(po, unit);
+            bins[b].add(po, pn);
+            b + 1
+        } else {
+            zero.add(po, pn);
+            0
+        };
+        let col = if pn > 0.0 {
+            scene.unit_bin(pn, unit) + 1
+        } else {
+            0
+        };
+        histogram[row][col] += 1;
+    }
+    let broadening = Broadening::new(&r.surface.shells(), r.model.halfspace.e_star())?;
+    Ok(TransitionResult {
+        p0,
+        a_r_old,
+        a_r_new: new.contact_area(),
+        d_persson: broadening.diffusion_coefficient(scene.zeta, scene.dzeta)?,
+        bins,
+        zero,
+        histogram,
+        max_residual: old.stats.residual.value().max(new.stats.residual.value()),
+    })
+}

@@ -1,0 +1,212 @@
+//! The one rule that decides a claim about an estimate: every check of a validation, its
+//! verdict, the agreement of two solvers and the paper's range go through [`decide`].
+//!
+//! A claim is a statement about the confidence interval `value +- z std_error` of an
+//! estimate, `z` the significance in standard errors, against a threshold or a target
+//! ([`Claim`]). A claim is decided only when the estimate has an error bar: with one
+//! realization the spread over realizations is unknown, and so is whether the value
+//! reflects the ensemble or the one surface drawn. Such a claim is
+//! [`Decision::Undecided`], whatever its value, and so is a claim on a value that is not
+//! a number. With `z = 0` a claim compares the value alone, but still only when it has an
+//! error bar: an ordering of two ensemble means is as much a statement about the ensemble
+//! as a significance test.
+//!
+//! Decisions combine in three-valued (Kleene) logic: a conjunction fails when one part
+//! fails, is undecided when none fails and one is undecided, and passes otherwise
+//! ([`Decision::all`]).
+
+use super::Estimate;
+
+/// What a check asks of an estimate's interval `value +- z std_error`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Claim {
+    /// The interval lies above `threshold`: `value - z std_error > threshold`.
+    Above(f64),
+    /// The interval lies below `threshold`: `value + z std_error < threshold`.
+    Below(f64),
+    /// The interval comes within `tolerance` of `target` (the value is consistent with
+    /// it up to a deviation that does not matter): `|value - target| <= z std_error +
+    /// tolerance`.
+    Near {
+        /// The value claimed.
+        target: f64,
+        /// The deviation that does not matter.
+        tolerance: f64,
+    },
+    /// The whole interval lies within `resolution` of `target` (an equivalence test):
+    /// `|value - target| + z std_error <= resolution`.
+    Within {
+        /// The value claimed.
+        target: f64,
+        /// The largest deviation allowed.
+        resolution: f64,
+    },
+    /// The interval overlaps `[lo, hi]`: `value + z std_error >= lo` and
+    /// `value - z std_error <= hi`.
+    Overlaps(f64, f64),
+}
+
+/// The outcome of a claim.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Decision {
+    /// The data support the claim.
+    Passed,
+    /// The data contradict it.
+    Failed,
+    /// The data cannot tell: no error bar (one realization), or no value.
+    Undecided,
+}
+
+impl Decision {
+    /// `Passed` when `holds`, else `Failed`.
+    pub fn from_bool(holds: bool) -> Self {
+        if holds {
+            Decision::Passed
+        } else {
+            Decision::Failed
+        }
+    }
+
+    /// Whether the claim passed (false when failed or undecided).
+    pub fn passed(self) -> bool {
+        self == Decision::Passed
+    }
+
+    /// Whether the data decide the claim.
+    pub fn is_decided(self) -> bool {
+        self != Decision::Undecided
+    }
+
+    /// The conjunction: failed if any failed, else undecided if any is undecided, else
+    /// passed (also for none).
+    pub fn all(decisions: impl IntoIterator<Item = Decision>) -> Self {
+        let mut out = Decision::Passed;
+        for d in decisions {
+            match d {
+                Decision::Failed => return Decision::Failed,
+                Decision::Undecided => out = Decision::Undecided,
+                Decision::Passed => {}
+            }
+        }
+        out
+    }
+}
+
+impl std::ops::Not for Decision {
+    type Output = Decision;
+
+    /// The opposite claim: passed and failed swap, undecided stays.
+    fn not(self) -> Self {
+        match self {
+            Decision::Passed => Decision::Failed,
+            Decision::Failed => Decision::Passed,
+            Decision::Undecided => Decision::Undecided,
+        }
+    }
+}
+
+impl Claim {
+    /// The value is closer to `a` than to `b`: above or below their midpoint.
+    pub fn closer_to(a: f64, b: f64) -> Self {
+        let midpoint = 0.5 * (a + b);
+        if a > b {
+            Claim::Above(midpoint)
+        } else {
+            Claim::Below(midpoint)
+        }
+    }
+}
+
+/// Decides `claim` about `estimate` at `significance` standard errors: undecided when the
+/// estimate has no error bar or no finite value, else whether the interval
+/// `value +- significance std_error` satisfies the claim.
+pub fn decide(estimate: Estimate, claim: Claim, significance: f64) -> Decision {
+    if !(estimate.value.is_finite() && estimate.has_error()) {
+        return Decision::Undecided;
+    }
+    let v = estimate.value;
+    let half = significance * estimate.std_error;
+    Decision::from_bool(match claim {
+        Claim::Above(threshold) => v - half > threshold,
+        Claim::Below(threshold) => v + half < threshold,
+        Claim::Near { target, tolerance } => (v - target).abs() <= half + tolerance,
+        Claim::Within { target, resolution } => (v - target).abs() + half <= resolution,
+        Claim::Overlaps(lo, hi) => v + half >= lo && v - half <= hi,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const Z: f64 = 3.0;
+
+    #[test]
+    fn claims_read_the_interval_at_the_significance() {
+        let e = Estimate::new(1.0, 0.1);
+        // Interval [0.7, 1.3] at z = 3.
+        assert_eq!(decide(e, Claim::Above(0.6), Z), Decision::Passed);
+        assert_eq!(decide(e, Claim::Above(0.8), Z), Decision::Failed);
+        assert_eq!(decide(e, Claim::Below(1.4), Z), Decision::Passed);
+        assert_eq!(decide(e, Claim::Below(1.2), Z), Decision::Failed);
+        let near = |target, tolerance| Claim::Near { target, tolerance };
+        assert_eq!(decide(e, near(1.25, 0.0), Z), Decision::Passed);
+        assert_eq!(decide(e, near(1.5, 0.0), Z), Decision::Failed);
+        assert_eq!(decide(e, near(1.5, 0.25), Z), Decision::Passed);
+        let within = |target, resolution| Claim::Within { target, resolution };
+        assert_eq!(decide(e, within(1.0, 0.35), Z), Decision::Passed);
+        assert_eq!(decide(e, within(1.0, 0.25), Z), Decision::Failed);
+        assert_eq!(decide(e, Claim::Overlaps(1.2, 2.0), Z), Decision::Passed);
+        assert_eq!(decide(e, Claim::Overlaps(1.4, 2.0), Z), Decision::Failed);
+        assert_eq!(decide(e, Claim::Overlaps(0.0, 0.6), Z), Decision::Failed);
+        // 1 is closer to 1.2 than to 0.6, and not closer to 0.6 than to 1.2.
+        assert_eq!(decide(e, Claim::closer_to(1.2, 0.6), 0.0), Decision::Passed);
+        assert_eq!(decide(e, Claim::closer_to(0.6, 1.2), 0.0), Decision::Failed);
+    }
+
+    #[test]
+    fn without_an_error_bar_nothing_is_decided() {
+        let one = Estimate::mean_of(&[0.5]);
+        for claim in [
+            Claim::Above(0.0),
+            Claim::Below(1.0),
+            Claim::Near {
+                target: 0.5,
+                tolerance: 1.0,
+            },
+            Claim::Within {
+                target: 0.5,
+                resolution: 1.0,
+            },
+            Claim::Overlaps(0.0, 1.0),
+        ] {
+            assert_eq!(decide(one, claim, Z), Decision::Undecided, "{claim:?}");
+            // Not even a comparison of the value alone.
+            assert_eq!(decide(one, claim, 0.0), Decision::Undecided, "{claim:?}");
+        }
+        let no_value = Estimate::new(f64::NAN, 0.1);
+        assert_eq!(decide(no_value, Claim::Above(0.0), Z), Decision::Undecided);
+    }
+
+    #[test]
+    fn a_zero_significance_compares_the_value_alone() {
+        let e = Estimate::new(0.2, 5.0);
+        assert_eq!(decide(e, Claim::Above(0.0), 0.0), Decision::Passed);
+        assert_eq!(decide(e, Claim::Below(0.2), 0.0), Decision::Failed);
+        // An exact value (zero error) is decided at any significance.
+        let exact = Estimate::new(0.2, 0.0);
+        assert_eq!(decide(exact, Claim::Above(0.1), Z), Decision::Passed);
+    }
+
+    #[test]
+    fn decisions_combine_in_three_valued_logic() {
+        use Decision::*;
+        assert_eq!(Decision::all([Passed, Passed]), Passed);
+        assert_eq!(Decision::all([Passed, Undecided]), Undecided);
+        assert_eq!(Decision::all([Undecided, Failed, Passed]), Failed);
+        assert_eq!(Decision::all([]), Passed);
+        assert_eq!(!Passed, Failed);
+        assert_eq!(!Undecided, Undecided);
+        assert!(Passed.passed() && !Undecided.passed() && !Undecided.is_decided());
+    }
+}
