@@ -2,6 +2,8 @@
 //! checked ([`scan`]), their statistics and spectrum ([`psd`]).
 
 pub mod body;
+pub mod check;
+pub mod page;
 pub mod psd;
 pub mod scan;
 pub mod theory;

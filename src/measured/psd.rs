@@ -21,6 +21,7 @@ use serde::{Deserialize, Serialize};
 use crate::engine::fft::Fft2;
 use crate::engine::grid::Grid;
 use crate::engine::spectrum::ShellSpectrum;
+use crate::engine::surface::Surface;
 use crate::error::Result;
 
 /// How a scan's edges are treated.
@@ -54,7 +55,7 @@ pub struct ScanSpectrum {
     /// How the edges were treated.
     pub boundary: Boundary,
     /// The heights the contact problem is solved on (grid units: divided by the pixel
-    /// size), detrended for a free boundary, mean-free for a periodic one.
+    /// size), detrended for a free boundary, as they are for a periodic one.
     pub heights: Vec<f64>,
     /// The spectrum in shells, grid units, `lambda_l = L` (the scan's side).
     pub shells: ShellSpectrum,
@@ -75,19 +76,27 @@ impl ScanSpectrum {
     pub fn new(heights: &[f64], n: usize, pixel: f64, boundary: Boundary) -> Result<Self> {
         let grid = Grid::new(n, 1.0)?;
         let scaled: Vec<f64> = heights.iter().map(|h| h / pixel).collect();
+        let fft = Fft2::new(&grid);
+        // The heights solved on: a periodic scan as `solve --heights` takes it (the
+        // surface of its modes up to the shortest wavelength present), a free one without
+        // its plane. Statistics are taken without the mean.
         let level = match boundary {
-            Boundary::Periodic => remove_mean(&scaled),
+            Boundary::Periodic => {
+                let surface = Surface::from_heights(grid.clone(), &scaled, None)?;
+                surface.heights_at(surface.zeta_max(), &fft)
+            }
             Boundary::Free => remove_plane(&scaled, n),
         };
-        let fft = Fft2::new(&grid);
+        let centred = remove_mean(&level);
         let mut modes = fft.new_spectrum();
         match boundary {
             Boundary::Periodic => fft.forward(&level, &mut modes),
             Boundary::Free => fft.forward(&hann(&level, n), &mut modes),
         }
         let shells = ShellSpectrum::from_modes(&grid, &modes, grid.length());
-        let h_rms = pixel * (level.iter().map(|h| h * h).sum::<f64>() / level.len() as f64).sqrt();
-        let slope_rms = finite_difference_slope(&level, n, boundary);
+        let h_rms =
+            pixel * (centred.iter().map(|h| h * h).sum::<f64>() / centred.len() as f64).sqrt();
+        let slope_rms = finite_difference_slope(&centred, n, boundary);
         let slope_rms_spectral = shells.rms_gradient(f64::INFINITY);
         let radial = radial_average(&grid, &modes, pixel);
         Ok(Self {
