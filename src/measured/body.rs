@@ -5,13 +5,20 @@
 //!
 //! What a solve gives the check, all over the scan's own window: the relative contact
 //! area (points with `p > 0`), the elastic energy per unit area of the roughness and, at
-//! one load, the window's pressures. The energy is that of the pressure's fluctuation
-//! `dp = p - p0` about the nominal load, as in Persson's theory (whose energy has no
-//! `q = 0` part): for a periodic scan `(1/2) mean[(p - p0) u]`
-//! ([`crate::engine::elastic`]); for a free boundary `(1/2) mean_window(dp (G * dp))`
-//! with `G` the Boussinesq response and `dp` zero outside the window. The uniform load's
-//! own energy, the indentation of a finite window into the half-space (of order
-//! `p0^2 L / E*`), is left out: an infinite rough surface under a uniform load has none.
+//! one load, the window's pressures.
+//!
+//! The energy of the roughness is that of the pressure beyond a flat punch's: with
+//! `p_f` the pressure under a flat rigid punch of the window's shape at unit nominal load,
+//! `E_el = (1/2) mean_window(dp (G * dp))` with `dp = p - p0 p_f` (zero outside the
+//! window) and `G` the half-space's response. The flat punch displaces its window
+//! uniformly, so `p_f` is orthogonal to `G * dp` for any `dp` of zero total load, and the
+//! whole work of `p` splits exactly into the punch's and this:
+//! `W(p) = p0^2 W(p_f) + W(dp)`. For a periodic scan `p_f = 1`, and `E_el` is the energy
+//! of the fluctuation `p - p0`, `(1/2) mean[(p - p0) u]` ([`crate::engine::elastic`]), as in
+//! Persson's theory, whose energy has no `q = 0` part. For a free boundary the punch's
+//! share, the indentation of a finite window into the half-space (of order
+//! `p0^2 L / E*`, with the pressure rising towards the window's edges), is left out: an
+//! infinite rough surface under a uniform load has none.
 
 use std::time::Instant;
 
@@ -36,7 +43,12 @@ pub struct Body {
     /// For a free boundary: the half spectrum of `M^2 G`, the Boussinesq response on the
     /// doubled grid, for the elastic displacement with its mean.
     response: Option<Vec<Complex64>>,
+    /// For a free boundary: the flat punch's pressure at unit nominal load, `p_f`.
+    punch: Vec<f64>,
 }
+
+/// Residual tolerance of the flat punch's solve.
+const PUNCH_TOL: f64 = 1e-10;
 
 impl Body {
     /// The contact problem of `spectrum`'s heights (detrended for a free boundary).
@@ -47,6 +59,7 @@ impl Body {
                 heights: spectrum.heights.clone(),
                 n,
                 response: None,
+                punch: Vec::new(),
             }),
             Boundary::Free => {
                 let model = Model::free_boundary(n, E_STAR)?;
@@ -57,11 +70,13 @@ impl Body {
                 model.fft.forward(&g, &mut spec);
                 let scale = (m * m) as f64;
                 spec.iter_mut().for_each(|v| *v *= scale);
+                let punch = flat_punch(&model, n)?;
                 Ok(Self {
                     model,
                     heights,
                     n,
                     response: Some(spec),
+                    punch,
                 })
             }
         }
@@ -94,7 +109,7 @@ impl Body {
         let dp: Vec<f64> = (0..solution.pressure.len())
             .map(|k| {
                 if self.model.under_wall(k) {
-                    solution.pressure[k] - p0
+                    solution.pressure[k] - p0 * self.punch[k]
                 } else {
                     0.0
                 }
@@ -108,6 +123,20 @@ impl Body {
         let work: f64 = dp.iter().zip(&u).map(|(p, u)| p * u).sum();
         0.5 * work / (self.n * self.n) as f64
     }
+}
+
+/// The pressure under a flat rigid punch of the window's shape at unit nominal load (mean
+/// 1 over the window, zero outside), on `model`'s free boundary: the whole window in
+/// contact with a flat wall, solved by CG to [`PUNCH_TOL`].
+fn flat_punch(model: &Model, n: usize) -> Result<Vec<f64>> {
+    let flat = model.pad_heights(&vec![0.0; n * n])?;
+    let share = (n * n) as f64 / model.grid.points() as f64;
+    let problem = ContactProblem::new(model, &flat, share)?;
+    let solution =
+        SolverKind::Cg
+            .build()
+            .solve(&problem, Start::Cold, &SolveOptions::with_tol(PUNCH_TOL))?;
+    Ok(solution.pressure)
 }
 
 /// One load of a curve as one solver found it.
@@ -219,11 +248,52 @@ mod tests {
         ScanSpectrum::new(&s.heights_at(f64::INFINITY, &fft), n, 1.0, boundary).unwrap()
     }
 
+    /// `(1/2) sum_ab x_a G_ab y_b / n^2` over the window's points, by the direct sum of
+    /// the pixel Boussinesq response.
+    fn direct_work(x: &[f64], y: &[f64], n: usize, m: usize) -> f64 {
+        let mut work = 0.0;
+        for a in 0..n * n {
+            for b in 0..n * n {
+                let (ia, ja, ib, jb) = (a / n, a % n, b / n, b % n);
+                let g = crate::engine::boussinesq::pixel_displacement(
+                    ja as f64 - jb as f64,
+                    ia as f64 - ib as f64,
+                    1.0,
+                    1.0,
+                );
+                work += x[ia * m + ja] * g * y[ib * m + jb];
+            }
+        }
+        0.5 * work / (n * n) as f64
+    }
+
     #[test]
-    fn the_free_boundary_energy_is_the_direct_sum_over_the_fluctuation() {
+    fn the_free_boundary_energy_is_the_work_beyond_the_flat_punch() {
         let n = 8;
         let body = Body::new(&scan(n, Boundary::Free), n).unwrap();
         let m = body.model.grid.n();
+        // The flat punch presses its whole window, with mean 1, and displaces it uniformly.
+        let pf = &body.punch;
+        let window: Vec<usize> = (0..m * m).filter(|&k| body.model.under_wall(k)).collect();
+        assert!(window.iter().all(|&k| pf[k] > 0.0));
+        let mean = window.iter().map(|&k| pf[k]).sum::<f64>() / window.len() as f64;
+        assert!((mean - 1.0).abs() < 1e-12, "{mean}");
+        let u: Vec<f64> = window
+            .iter()
+            .map(|&k| {
+                let mut e = vec![0.0; m * m];
+                e[k] = 1.0;
+                2.0 * (n * n) as f64 * direct_work(&e, pf, n, m)
+            })
+            .collect();
+        let (lo, hi) = u
+            .iter()
+            .fold((f64::MAX, f64::MIN), |(a, b), &v| (a.min(v), b.max(v)));
+        assert!(
+            (hi - lo) < 1e-8 * hi,
+            "punch displacement from {lo} to {hi}"
+        );
+
         let mut p = vec![0.0; m * m];
         for i in 0..n {
             for j in 0..n {
@@ -243,27 +313,25 @@ mod tests {
             },
         };
         let p0 = crate::engine::field::mean(&p) * (m * m) as f64 / (n * n) as f64;
-        for i in 0..n {
-            for j in 0..n {
-                p[i * m + j] -= p0;
-            }
-        }
-        let mut work = 0.0;
-        for a in 0..n * n {
-            for b in 0..n * n {
-                let (ia, ja, ib, jb) = (a / n, a % n, b / n, b % n);
-                let g = crate::engine::boussinesq::pixel_displacement(
-                    ja as f64 - jb as f64,
-                    ia as f64 - ib as f64,
-                    1.0,
-                    1.0,
-                );
-                work += p[ia * m + ja] * g * p[ib * m + jb];
-            }
-        }
-        let direct = 0.5 * work / (n * n) as f64;
+        let dp: Vec<f64> = (0..m * m)
+            .map(|k| {
+                if body.model.under_wall(k) {
+                    p[k] - p0 * pf[k]
+                } else {
+                    0.0
+                }
+            })
+            .collect();
         let e = body.elastic_energy(&solution);
-        assert!((e / direct - 1.0).abs() < 1e-12, "{e} vs {direct}");
+        let direct = direct_work(&dp, &dp, n, m);
+        assert!((e / direct - 1.0).abs() < 1e-9, "{e} vs {direct}");
+        // The whole work splits into the punch's and the roughness's.
+        let whole = direct_work(&p, &p, n, m);
+        let punch = p0 * p0 * direct_work(pf, pf, n, m);
+        assert!(
+            (whole - punch - e).abs() < 1e-9 * whole,
+            "{whole} vs {punch} + {e}"
+        );
     }
 
     #[test]

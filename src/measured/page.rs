@@ -166,9 +166,11 @@ fn energy(s: &mut String, c: &SurfaceCheck) {
          E_el ({}) | E_el ({}) | Persson | Persson, corrected | E_el / Persson | verdict \
          |\n|---|---|---|---|---|---|---|",
         match c.boundary {
-            Boundary::Periodic => "",
+            Boundary::Periodic => " (the energy of the pressure's fluctuation p - p0)",
             Boundary::Free =>
-                " (free boundary: the work of the contact pressure on the half-space)",
+                " (free boundary: the work of the contact pressure on the half-space beyond \
+                 that of a flat punch of the window's shape at the same load, which a finite \
+                 window needs and an infinite surface has not)",
         },
         c.solver.name(),
         c.cross_check.map_or("—", |k| k.name())
@@ -243,8 +245,9 @@ pub fn figures(c: &SurfaceCheck) -> Vec<Figure> {
             .iter()
             .filter_map(|p| Some((p.p0, p.a_r_cross_check?)))
             .collect();
+        // Drawn first, so that the headline's markers stay visible on top of it.
         area.insert(
-            1,
+            0,
             Series::xy(format!("cross-check ({})", k.name()), Style::Points, pts),
         );
     }
