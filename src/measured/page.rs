@@ -6,10 +6,11 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use super::check::{Mean, SurfaceCheck, RULE, SOLVER_AGREEMENT};
+use super::check::{CurvePoint, Mean, SurfaceCheck, RULE, SOLVER_AGREEMENT};
 use super::psd::Boundary;
 use crate::error::Result;
 use crate::plot::{Axis, Figure, Series, Style};
+use crate::validation::Verdict;
 
 /// Writes `surface.json`, `surface.md` and the figures into `dir`; returns the files.
 pub fn write(check: &SurfaceCheck, dir: &Path) -> Result<Vec<PathBuf>> {
@@ -33,10 +34,6 @@ fn mean_text(m: &Mean, digits: usize) -> String {
         Some(e) => format!("{:.*} ± {:.*}", digits, m.value, digits, e),
         None => format!("{:.*} (one scan: no error bar)", digits, m.value),
     }
-}
-
-fn optional(v: Option<f64>, digits: usize) -> String {
-    v.map_or_else(|| "—".into(), |v| format!("{v:.digits$}"))
 }
 
 /// The page.
@@ -119,30 +116,96 @@ fn surface(s: &mut String, c: &SurfaceCheck) {
     );
 }
 
-fn curve(s: &mut String, c: &SurfaceCheck) {
+/// A load curve's table on the page: what it shows and where the numbers come from.
+struct CurveTable {
+    /// Section heading and the text under it.
+    heading: &'static str,
+    note: &'static str,
+    /// The quantity's symbol in the column heads.
+    symbol: &'static str,
+    /// Numbers in scientific notation (else fixed).
+    scientific: bool,
+    /// [value, error, cross-check, Persson, corrected] of a point.
+    pick: fn(&CurvePoint) -> [Option<f64>; 5],
+    /// The ratio to Persson and its verdict.
+    ratio: fn(&CurvePoint) -> (&Mean, Verdict),
+    /// The figure's file stem and caption.
+    figure: (&'static str, &'static str),
+}
+
+fn curve_table(s: &mut String, c: &SurfaceCheck, t: &CurveTable) {
+    let num = |v: f64| {
+        if t.scientific {
+            format!("{v:.5e}")
+        } else {
+            format!("{v:.5}")
+        }
+    };
     let _ = writeln!(
         s,
-        "## Contact area\n\n| p0 / E* | a_r ({}) | a_r ({}) | Persson | Persson, corrected \
-         | a_r / Persson | verdict |\n|---|---|---|---|---|---|---|",
+        "## {}\n\n{}| p0 / E* | {sym} ({}) | {sym} ({}) | Persson | Persson, corrected \
+         | {sym} / Persson | verdict |\n|---|---|---|---|---|---|---|",
+        t.heading,
+        t.note,
         c.solver.name(),
-        c.cross_check.map_or("—", |k| k.name())
+        c.cross_check.map_or("—", |k| k.name()),
+        sym = t.symbol,
     );
     for p in &c.curve {
+        let [value, error, cross, persson, corrected] = (t.pick)(p);
+        let (ratio, verdict) = (t.ratio)(p);
         let _ = writeln!(
             s,
-            "| {:.4e} | {:.5}{} | {} | {:.5} | {:.5} | {} | {} |",
+            "| {:.4e} | {}{} | {} | {} | {} | {} | {} |",
             p.p0,
-            p.a_r,
-            p.a_r_std_error
-                .map_or(String::new(), |e| format!(" ± {e:.5}")),
-            optional(p.a_r_cross_check, 5),
-            p.a_r_persson,
-            p.a_r_persson_corrected,
-            mean_text(&p.area_ratio, 3),
-            p.area_verdict
+            value.map_or_else(|| "—".into(), num),
+            error.map_or(String::new(), |e| format!(" ± {}", num(e))),
+            cross.map_or_else(|| "—".into(), num),
+            persson.map_or_else(|| "—".into(), num),
+            corrected.map_or_else(|| "—".into(), num),
+            mean_text(ratio, 3),
+            verdict
         );
     }
-    let _ = writeln!(s, "\n![contact area](figures/contact_area.png)\n");
+    let _ = writeln!(s, "\n![{}](figures/{}.png)\n", t.figure.1, t.figure.0);
+}
+
+/// The contact area's [value, error, cross-check, Persson, corrected].
+fn area_of(p: &CurvePoint) -> [Option<f64>; 5] {
+    [
+        Some(p.a_r),
+        p.a_r_std_error,
+        p.a_r_cross_check,
+        Some(p.a_r_persson),
+        Some(p.a_r_persson_corrected),
+    ]
+}
+
+/// The elastic energy's [value, error, cross-check, Persson, corrected].
+fn energy_of(p: &CurvePoint) -> [Option<f64>; 5] {
+    [
+        Some(p.energy),
+        p.energy_std_error,
+        p.energy_cross_check,
+        Some(p.energy_persson),
+        Some(p.energy_persson_corrected),
+    ]
+}
+
+fn curve(s: &mut String, c: &SurfaceCheck) {
+    curve_table(
+        s,
+        c,
+        &CurveTable {
+            heading: "Contact area",
+            note: "",
+            symbol: "a_r",
+            scientific: false,
+            pick: area_of,
+            ratio: |p| (&p.area_ratio, p.area_verdict),
+            figure: ("contact_area", "contact area"),
+        },
+    );
 }
 
 fn distribution(s: &mut String, c: &SurfaceCheck) {
@@ -160,36 +223,30 @@ fn distribution(s: &mut String, c: &SurfaceCheck) {
 }
 
 fn energy(s: &mut String, c: &SurfaceCheck) {
-    let _ = writeln!(
+    curve_table(
         s,
-        "## Elastic energy\n\nPer unit area, in E* times the length unit{}.\n\n| p0 / E* | \
-         E_el ({}) | E_el ({}) | Persson | Persson, corrected | E_el / Persson | verdict \
-         |\n|---|---|---|---|---|---|---|",
-        match c.boundary {
-            Boundary::Periodic => " (the energy of the pressure's fluctuation p - p0)",
-            Boundary::Free =>
-                " (free boundary: the work of the contact pressure on the half-space beyond \
-                 that of a flat punch of the window's shape at the same load, which a finite \
-                 window needs and an infinite surface has not)",
+        c,
+        &CurveTable {
+            heading: "Elastic energy",
+            note: match c.boundary {
+                Boundary::Periodic => {
+                    "Per unit area, in E* times the length unit (the energy of the \
+                     pressure's fluctuation p - p0).\n\n"
+                }
+                Boundary::Free => {
+                    "Per unit area, in E* times the length unit (free boundary: the work of \
+                     the contact pressure on the half-space beyond that of a flat punch of \
+                     the window's shape at the same load, which a finite window needs and \
+                     an infinite surface has not).\n\n"
+                }
+            },
+            symbol: "E_el",
+            scientific: true,
+            pick: energy_of,
+            ratio: |p| (&p.energy_ratio, p.energy_verdict),
+            figure: ("elastic_energy", "elastic energy"),
         },
-        c.solver.name(),
-        c.cross_check.map_or("—", |k| k.name())
     );
-    for p in &c.curve {
-        let _ = writeln!(
-            s,
-            "| {:.4e} | {:.5e} | {} | {:.5e} | {:.5e} | {} | {} |",
-            p.p0,
-            p.energy,
-            p.energy_cross_check
-                .map_or_else(|| "—".into(), |e| format!("{e:.5e}")),
-            p.energy_persson,
-            p.energy_persson_corrected,
-            mean_text(&p.energy_ratio, 3),
-            p.energy_verdict
-        );
-    }
-    let _ = writeln!(s, "\n![elastic energy](figures/elastic_energy.png)\n");
 }
 
 fn solvers(s: &mut String, c: &SurfaceCheck) {
@@ -219,53 +276,43 @@ fn solvers(s: &mut String, c: &SurfaceCheck) {
     s.push('\n');
 }
 
+/// A load curve's series: the cross-check's points when there are any (drawn first, so
+/// that the headline's markers stay visible on top), the headline solver's points with
+/// their error bars over scans, and Persson's two predictions; `pick` reads a point's
+/// [value, error, cross-check, Persson, corrected].
+fn curve_series(c: &SurfaceCheck, pick: fn(&CurvePoint) -> [Option<f64>; 5]) -> Vec<Series> {
+    let line = |k: usize| -> Vec<(f64, f64)> {
+        c.curve
+            .iter()
+            .filter_map(|p| Some((p.p0, pick(p)[k]?)))
+            .collect()
+    };
+    let mut series = Vec::new();
+    let cross = line(2);
+    if let (Some(k), false) = (c.cross_check, cross.is_empty()) {
+        series.push(Series::xy(
+            format!("cross-check ({})", k.name()),
+            Style::Points,
+            cross,
+        ));
+    }
+    series.push(Series::with_errors(
+        format!("simulation ({})", c.solver.name()),
+        Style::Points,
+        c.curve.iter().map(|p| {
+            let v = pick(p);
+            (p.p0, v[0].unwrap_or(f64::NAN), v[1].unwrap_or(f64::NAN))
+        }),
+    ));
+    series.push(Series::xy("Persson", Style::Line, line(3)));
+    series.push(Series::xy("Persson, corrected", Style::Dashed, line(4)));
+    series
+}
+
 /// The page's figures.
 pub fn figures(c: &SurfaceCheck) -> Vec<Figure> {
-    let ps = |f: fn(&super::check::CurvePoint) -> f64| -> Vec<(f64, f64)> {
-        c.curve.iter().map(|p| (p.p0, f(p))).collect()
-    };
-    let mut area = vec![
-        Series::with_errors(
-            format!("simulation ({})", c.solver.name()),
-            Style::Points,
-            c.curve
-                .iter()
-                .map(|p| (p.p0, p.a_r, p.a_r_std_error.unwrap_or(f64::NAN))),
-        ),
-        Series::xy("Persson", Style::Line, ps(|p| p.a_r_persson)),
-        Series::xy(
-            "Persson, corrected",
-            Style::Dashed,
-            ps(|p| p.a_r_persson_corrected),
-        ),
-    ];
-    if let Some(k) = c.cross_check {
-        let pts: Vec<(f64, f64)> = c
-            .curve
-            .iter()
-            .filter_map(|p| Some((p.p0, p.a_r_cross_check?)))
-            .collect();
-        // Drawn first, so that the headline's markers stay visible on top of it.
-        area.insert(
-            0,
-            Series::xy(format!("cross-check ({})", k.name()), Style::Points, pts),
-        );
-    }
-    let energy = vec![
-        Series::with_errors(
-            format!("simulation ({})", c.solver.name()),
-            Style::Points,
-            c.curve
-                .iter()
-                .map(|p| (p.p0, p.energy, p.energy_std_error.unwrap_or(f64::NAN))),
-        ),
-        Series::xy("Persson", Style::Line, ps(|p| p.energy_persson)),
-        Series::xy(
-            "Persson, corrected",
-            Style::Dashed,
-            ps(|p| p.energy_persson_corrected),
-        ),
-    ];
+    let area = curve_series(c, area_of);
+    let energy = curve_series(c, energy_of);
     let d = &c.pressure_distribution;
     let col = |k: usize| -> Vec<(f64, f64)> { d.bins.iter().map(|b| (b[0], b[k])).collect() };
     vec![
