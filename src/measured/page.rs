@@ -276,8 +276,8 @@ fn solvers(s: &mut String, c: &SurfaceCheck) {
     s.push('\n');
 }
 
-/// A load curve's series: the cross-check's points when there are any (drawn first, so
-/// that the headline's markers stay visible on top), the headline solver's points with
+/// A load curve's series: the cross-check's points when there are any, joined by a line
+/// and drawn first (so that both stay visible where they agree), the headline solver's points with
 /// their error bars over scans, and Persson's two predictions; `pick` reads a point's
 /// [value, error, cross-check, Persson, corrected].
 fn curve_series(c: &SurfaceCheck, pick: fn(&CurvePoint) -> [Option<f64>; 5]) -> Vec<Series> {
@@ -292,7 +292,7 @@ fn curve_series(c: &SurfaceCheck, pick: fn(&CurvePoint) -> [Option<f64>; 5]) -> 
     if let (Some(k), false) = (c.cross_check, cross.is_empty()) {
         series.push(Series::xy(
             format!("cross-check ({})", k.name()),
-            Style::Points,
+            Style::LinePoints,
             cross,
         ));
     }
