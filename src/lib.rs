@@ -19,8 +19,8 @@
 //!
 //! | layer | what it is |
 //! |---|---|
-//! | [`tasks`] | the tasks both front ends offer (surface, solve, sweep, theory, validations, parsers) |
-//! | [`report`] | the Markdown scorecard, from outcome files |
+//! | [`tasks`] | the tasks both front ends offer (surface, solve, sweep, theory, validations, surface checks, parsers) |
+//! | [`report`], [`measured`] | the Markdown scorecard, from outcome files; Persson checked on measured height maps (`check-surface`) |
 //! | [`validation`] | definitions, verdicts, the registry of experiments, the runner |
 //! | [`experiments`], [`speed`] | the measurements behind the validations; the speed study |
 //! | [`persson`] | Persson's theory on a realization's own spectrum |
@@ -64,6 +64,7 @@ pub mod engine;
 pub mod error;
 pub mod experiments;
 pub mod io;
+pub mod measured;
 pub mod persson;
 pub mod plot;
 pub mod provenance;

@@ -8,6 +8,8 @@
 //! persson-check validate [NAME ...] [--full] --out DIR
 //! persson-check report   [--from DIR] --out FILE.md [--golden DIR] [--no-speed] [--speed-n N]
 //! persson-check speed    [--n N] [--floor-n N ...] [--repeats K] --out DIR
+//! persson-check check-surface --heights FILE... --pixel-size DX [--periodic]
+//!                        [--loads P1,P2,...] [--solver gfmd|cg] [--no-cross-check] --out DIR
 //! ```
 //!
 //! Exit code 0 on success; otherwise a message on stderr and a non-zero code, and no
@@ -48,6 +50,8 @@ enum Command {
     Report(commands::report::Args),
     /// Run the speed-against-error study alone (floor and warm starts on chosen grids).
     Speed(commands::speed::Args),
+    /// Check Persson's theory on measured height maps (contact area, pressures, energy).
+    CheckSurface(commands::check_surface::Args),
 }
 
 fn main() -> ExitCode {
@@ -67,6 +71,7 @@ fn main() -> ExitCode {
         Command::Validate(args) => commands::validate::run(args),
         Command::Report(args) => commands::report::run(args),
         Command::Speed(args) => commands::speed::run(args),
+        Command::CheckSurface(args) => commands::check_surface::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

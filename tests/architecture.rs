@@ -24,6 +24,7 @@ const LAYERS: &[(&str, u32)] = &[
     ("speed", 5),
     ("validation", 6),
     ("report", 7),
+    ("measured", 7),
     ("tasks", 8),
 ];
 

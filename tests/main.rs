@@ -4,6 +4,7 @@
 mod architecture;
 mod bad_input;
 mod cg_bits;
+mod check_surface;
 mod common;
 mod determinism;
 mod gfmd_bits;

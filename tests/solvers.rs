@@ -396,3 +396,60 @@ fn heights_whose_spread_overflows_are_rejected() {
     let h: Vec<f64> = h.iter().map(|v| v * 1e-50).collect();
     assert!(ContactProblem::new(&model, &h, 0.1).is_ok());
 }
+
+/// A sphere of radius `radius` (a paraboloid) centred on a `n x n` free-boundary window,
+/// pressed with `force`: the model, the padded heights and the doubled grid's `p0`.
+fn sphere_on_free_boundary(n: usize, radius: f64, force: f64) -> (Model, Vec<f64>, f64) {
+    let model = Model::free_boundary(n, 1.0).unwrap();
+    let c = 0.5 * n as f64;
+    let window: Vec<f64> = (0..n * n)
+        .map(|k| {
+            let (x, y) = ((k % n) as f64 + 0.5 - c, (k / n) as f64 + 0.5 - c);
+            -(x * x + y * y) / (2.0 * radius)
+        })
+        .collect();
+    let heights = model.pad_heights(&window).unwrap();
+    let p0 = force / model.grid.points() as f64;
+    (model, heights, p0)
+}
+
+#[test]
+fn a_sphere_on_a_free_boundary_gives_hertz_contact_radius() {
+    use persson_check::engine::reference::Hertz;
+    let (n, radius) = (192usize, 1000.0);
+    let hertz = Hertz {
+        radius,
+        e_star: 1.0,
+    };
+    for (a, kind) in [(40.0, SolverKind::Cg), (45.0, SolverKind::Gfmd)] {
+        let force = hertz.force_for_radius(a);
+        let (model, h, p0) = sphere_on_free_boundary(n, radius, force);
+        let s = solve(kind, &model, &h, p0, 1e-8);
+        // Pressure only under the wall, carrying the whole force.
+        let outside: f64 = (0..h.len())
+            .filter(|&k| !model.under_wall(k))
+            .map(|k| s.pressure[k].abs())
+            .sum();
+        assert_eq!(outside, 0.0, "{}: pressure off the window", kind.name());
+        let total: f64 = s.pressure.iter().sum();
+        assert!(
+            (total / force - 1.0).abs() < 1e-8,
+            "{}: force {total} vs {force}",
+            kind.name()
+        );
+        let area = s.pressure.iter().filter(|&&p| p > 0.0).count() as f64;
+        let exact = std::f64::consts::PI * a * a;
+        assert!(
+            (area / exact - 1.0).abs() < 0.03,
+            "{}: contact area {area} vs Hertz {exact}",
+            kind.name()
+        );
+        let peak = s.pressure.iter().copied().fold(0.0, f64::max);
+        assert!(
+            (peak / hertz.peak_pressure(force) - 1.0).abs() < 0.03,
+            "{}: peak {peak} vs {}",
+            kind.name(),
+            hertz.peak_pressure(force)
+        );
+    }
+}

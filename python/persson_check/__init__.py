@@ -8,7 +8,9 @@ arrays in and out.
 * :func:`solve` -- hard-wall contact on any square height array (CG or GFMD);
 * :func:`sweep` -- warm-started solves while roughness is added, as an iterator;
 * :func:`theory` -- Persson's theory on a surface's own spectrum;
-* :func:`validate`, :func:`plan`, :func:`merge`, :func:`report` -- the validations.
+* :func:`validate`, :func:`plan`, :func:`merge`, :func:`report` -- the validations;
+* :func:`check_surface` -- Persson's theory checked on your own height maps (arrays or
+  SurfaceTopography topographies), periodic or with a free boundary.
 
 Units: lengths in grid spacings, pressures in units of E* (E* = 1), generated surfaces of
 unit rms gradient. Bad input raises ValueError or TypeError with the command line's
@@ -18,6 +20,8 @@ Paths may be given as strings or as :class:`os.PathLike` objects (``pathlib.Path
 """
 
 from __future__ import annotations
+
+import os as _os
 
 import numpy as _np
 
@@ -39,6 +43,7 @@ __all__ = [
     "Sweep",
     "SweepStep",
     "Theory",
+    "check_surface",
     "contact_area_law",
     "merge",
     "plan",
@@ -152,6 +157,103 @@ def merge(
 
 def report(source="out", out="scorecard.md", golden=None, speed=False, speed_n=256):
     return _native.report(source, out, golden, speed, speed_n)
+
+
+def _is_topography(value):
+    """A SurfaceTopography topography, or anything with ``heights()`` and
+    ``physical_sizes``."""
+    return callable(getattr(value, "heights", None)) and hasattr(value, "physical_sizes")
+
+
+def _scan(value, pixel_size, i):
+    """One scan's heights and the pixel size it implies (``None`` for an array)."""
+    if not _is_topography(value):
+        return _heights(value), None
+    heights = _np.asarray(value.heights())
+    sizes = _np.atleast_1d(_np.asarray(value.physical_sizes, dtype=float))
+    if heights.ndim != 2 or sizes.size != 2:
+        # The library names the shape (a line scan is refused there, with its reason).
+        return _heights(heights), None
+    pixels = sizes / _np.asarray(heights.shape, dtype=float)
+    if not _np.isclose(pixels[0], pixels[1], rtol=1e-9, atol=0.0):
+        raise ValueError(
+            f"heights[{i}]: pixels of {pixels[0]!r} x {pixels[1]!r} (physical_sizes "
+            f"{tuple(sizes)} over {heights.shape} points): square pixels are needed"
+        )
+    return _heights(heights), float(pixels[0])
+
+
+def _scans(heights, pixel_size):
+    """The scans as float64 arrays and the one pixel size of them all."""
+    several = isinstance(heights, (list, tuple)) and any(
+        isinstance(h, _np.ndarray) or _is_topography(h) for h in heights
+    )
+    values = list(heights) if several else [heights]
+    scans, pixels = [], []
+    for i, value in enumerate(values):
+        array, pixel = _scan(value, pixel_size, i)
+        scans.append(array)
+        if pixel is not None:
+            pixels.append(pixel)
+    if pixel_size is None:
+        if not pixels:
+            raise ValueError(
+                "pixel_size: required for plain arrays (a positive length, in the heights' "
+                "unit); a topography brings its own"
+            )
+        pixel_size = pixels[0]
+    for pixel in pixels:
+        if not _np.isclose(pixel, pixel_size, rtol=1e-9, atol=0.0):
+            raise ValueError(
+                f"pixel_size: {pixel_size!r} given, but a topography's pixel is {pixel!r} "
+                "(physical_sizes over points); give one or the other, or equal ones"
+            )
+    return scans, float(pixel_size)
+
+
+def check_surface(
+    heights,
+    pixel_size=None,
+    periodic=False,
+    loads=None,
+    solver="gfmd",
+    cross_check=True,
+    tol=1e-6,
+    out=None,
+    threads=None,
+    progress=None,
+):
+    scans, pixel_size = _scans(heights, pixel_size)
+    return _native.check_surface(
+        scans,
+        pixel_size,
+        periodic,
+        None if loads is None else [float(p) for p in loads],
+        solver,
+        cross_check,
+        tol,
+        None if out is None else _os.fspath(out),
+        threads,
+        progress,
+    )
+
+
+check_surface.__doc__ = """Persson's theory checked on a measured surface, as ``persson-check
+check-surface`` checks it; returns the dict of ``surface.json``.
+
+``heights`` is a 2D height map (a numpy array with ``pixel_size`` in the heights' length
+unit, or a SurfaceTopography topography, anything with ``heights()`` and
+``physical_sizes``, whose pixel it brings), or a list of them: several scans of one
+surface, treated as realizations, from which the error bars come. Scans must be square.
+``periodic=False`` (a measured window) solves on a free-boundary half-space and detrends
+and windows the spectrum; ``periodic=True`` solves with the periodic kernel, as
+:func:`solve` does. ``loads`` are nominal pressures ``p0 / E*`` (default: eight loads
+giving contact areas of about 1% to 30%). ``solver`` heads the comparison, and
+``cross_check`` also solves with the other one. ``out`` writes ``surface.json``,
+``surface.md`` and the figures there. The result's ``curve`` holds, per load, ``p0``,
+``a_r`` and Persson's ``a_r_persson`` and ``a_r_persson_corrected`` with the elastic
+energies; ``comparisons`` holds the verdicts. The GIL is released; Ctrl-C stops it.
+"""
 
 
 for _wrapper in (solve, sweep, theory, validate, merge, report):

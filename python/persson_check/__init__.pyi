@@ -188,3 +188,17 @@ def report(
     speed_n: int = 256,
 ) -> dict[str, Any]:
     """Writes the Markdown scorecard of the outcomes in source."""
+
+def check_surface(
+    heights: Union[npt.ArrayLike, Any, Sequence[Union[npt.ArrayLike, Any]]],
+    pixel_size: Optional[float] = None,
+    periodic: bool = False,
+    loads: Optional[Sequence[float]] = None,
+    solver: SolverName = "gfmd",
+    cross_check: bool = True,
+    tol: float = 1e-6,
+    out: Optional[Path] = None,
+    threads: Optional[int] = None,
+    progress: Optional[Progress] = None,
+) -> dict[str, Any]:
+    """Persson's theory checked on measured height maps (surface.json as a dict)."""

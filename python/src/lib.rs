@@ -15,10 +15,12 @@
 //! | [`sweeps`] | `sweep` and its iterator of steps |
 //! | [`theory`] | `theory` and the contact-area law |
 //! | [`validations`] | `validate`, `plan`, `merge`, `report` |
+//! | [`check`] | `check_surface`: Persson on the user's own height maps |
 //!
 //! The public signatures, with their defaults, are those of the Python wrappers in
 //! `persson_check/__init__.py`, which convert arrays and paths and call these.
 
+mod check;
 mod conversions;
 mod errors;
 mod solve;
@@ -46,5 +48,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(validations::plan, m)?)?;
     m.add_function(wrap_pyfunction!(validations::merge, m)?)?;
     m.add_function(wrap_pyfunction!(validations::report_md, m)?)?;
+    m.add_function(wrap_pyfunction!(check::check_surface, m)?)?;
     Ok(())
 }

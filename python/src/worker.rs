@@ -72,6 +72,17 @@ impl Hook {
             resume_unwind(Box::new(Cancelled));
         }
     }
+
+    /// A solver's iteration: stops here when the worker is to stop, and forwards every
+    /// [`PROGRESS_EVERY`]th iteration's progress when a callback wants it.
+    pub fn iteration(&self, p: Progress) {
+        self.stop_if_cancelled();
+        if p.iteration % PROGRESS_EVERY == 0 {
+            if let Some(tx) = &self.progress {
+                let _ = tx.send(Event::Progress(p));
+            }
+        }
+    }
 }
 
 /// A solver whose monitor stops the solve when the cancel flag is raised (the one point
@@ -96,12 +107,7 @@ impl Solver for Hooked {
         self.hook.stop_if_cancelled();
         let hook = &self.hook;
         self.inner.solve_monitored(problem, start, opts, &mut |p| {
-            hook.stop_if_cancelled();
-            if p.iteration % PROGRESS_EVERY == 0 {
-                if let Some(tx) = &hook.progress {
-                    let _ = tx.send(Event::Progress(p));
-                }
-            }
+            hook.iteration(p);
             monitor(p);
         })
     }

@@ -54,7 +54,7 @@ def _stubs():
 
 def test_every_public_function_is_listed():
     assert set(FUNCTIONS) == {
-        "contact_area_law", "merge", "plan", "report", "solve", "surface", "sweep",
+        "check_surface", "contact_area_law", "merge", "plan", "report", "solve", "surface", "sweep",
         "theory", "validate",
     }
 

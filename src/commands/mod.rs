@@ -2,6 +2,7 @@
 //! [`persson_check::tasks`] for the work the Python package offers too, and writes its
 //! outputs only once everything has been computed.
 
+pub mod check_surface;
 pub mod report;
 pub mod solve;
 pub mod speed;

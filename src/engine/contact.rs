@@ -57,6 +57,12 @@ use crate::engine::field;
 use crate::engine::grid::Grid;
 use crate::error::{check_positive, Error, Result};
 
+/// How far below a free-boundary window the floor outside it lies, in units of the
+/// window's height range plus its side (see [`Model::pad_heights`]): the elastic
+/// displacement under a mean pressure `p0` over a window of side `L` is of order
+/// `p0 L / E*`, below `10 L` for the loads accepted.
+const FLOOR_DEPTH: f64 = 1000.0;
+
 /// The elastic model on a grid: geometry, material, the FFT plans and the elastic operator
 /// as the solvers use it (see "The elastic operator" in the module docs). Plain data, but
 /// for the inverse masses, made on first use.
@@ -75,23 +81,82 @@ pub struct Model {
     pub compliance: Kernel,
     /// The inverse masses, made on first use ([`Model::inverse_mass`]).
     inverse_mass: OnceLock<Kernel>,
+    /// For a free boundary, the side of the window at the grid's origin that the hard wall
+    /// covers; `None`: the wall covers the whole (periodic) grid.
+    pub window: Option<usize>,
 }
 
 impl Model {
-    /// A model on `grid` with modulus `e_star`.
+    /// A periodic model on `grid` with modulus `e_star`.
     pub fn new(grid: Grid, e_star: f64) -> Result<Self> {
         let halfspace = HalfSpace::new(&grid, e_star)?;
         let fft = Fft2::new(&grid);
+        Ok(Self::with_halfspace(grid, halfspace, fft, None))
+    }
+
+    /// A free-boundary model for a `window x window` surface: the doubled, zero-padded grid
+    /// of [`crate::engine::boussinesq`], the wall over the window only. Heights for it come
+    /// from [`Model::pad_heights`].
+    pub fn free_boundary(window: usize, e_star: f64) -> Result<Self> {
+        let grid = Grid::new(2 * window, 1.0)?;
+        let fft = Fft2::new(&grid);
+        let table = crate::engine::boussinesq::padded_stiffness(&grid, &fft, e_star)?;
+        let halfspace = HalfSpace::with_stiffness(e_star, table)?;
+        Ok(Self::with_halfspace(grid, halfspace, fft, Some(window)))
+    }
+
+    fn with_halfspace(grid: Grid, halfspace: HalfSpace, fft: Fft2, window: Option<usize>) -> Self {
         let stiffness = fft.kernel(halfspace.stiffness());
         let compliance = stiffness.inverse();
-        Ok(Self {
+        Self {
             grid,
             halfspace,
             fft,
             stiffness,
             compliance,
             inverse_mass: OnceLock::new(),
-        })
+            window,
+        }
+    }
+
+    /// Whether point `k` (row-major) is under the wall: every point of a periodic model,
+    /// the window's of a free-boundary one.
+    #[inline]
+    pub fn under_wall(&self, k: usize) -> bool {
+        match self.window {
+            None => true,
+            Some(w) => {
+                let n = self.grid.n();
+                k / n < w && k % n < w
+            }
+        }
+    }
+
+    /// The heights of a free-boundary problem on the doubled grid: the window's heights
+    /// (`window x window`, row-major) at the origin, and outside it a floor so far below
+    /// them that no displacement under a load `p0/E* < 10` reaches it (the window's height
+    /// range plus a thousand times its side). A periodic model takes the heights as they
+    /// are.
+    pub fn pad_heights(&self, heights: &[f64]) -> Result<Vec<f64>> {
+        let Some(w) = self.window else {
+            return Ok(heights.to_vec());
+        };
+        if heights.len() != w * w {
+            return Err(Error::invalid(
+                "heights",
+                format!("{} values", heights.len()),
+                format!("window^2 = {} values", w * w),
+            ));
+        }
+        let lo = heights.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = heights.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let floor = lo - FLOOR_DEPTH * ((hi - lo) + w as f64);
+        let n = self.grid.n();
+        let mut padded = vec![floor; n * n];
+        for (row, src) in padded.chunks_mut(n).zip(heights.chunks(w)) {
+            row[..w].copy_from_slice(src);
+        }
+        Ok(padded)
     }
 
     /// The displacement of a point under unit pressure on that point alone,
@@ -143,7 +208,8 @@ pub struct ContactProblem<'a> {
     pub model: &'a Model,
     /// Substrate heights `h(r)` at the magnification being solved.
     pub heights: &'a [f64],
-    /// Mean pressure `p0`.
+    /// Mean pressure `p0` over the grid (for a free boundary, over the doubled grid: the
+    /// window's mean pressure times the window's share of the grid).
     pub p0: f64,
     /// Length scale `ell` of the residual (see the module docs).
     pub length_scale: f64,
@@ -162,17 +228,32 @@ impl<'a> ContactProblem<'a> {
                 format!("n^2 = {} values", model.grid.points()),
             ));
         }
+        // A free boundary's statistics are the window's (the floor outside it is no surface).
+        let window: Vec<f64>;
+        let (heights_seen, side) = match model.window {
+            None => (heights, model.grid.length()),
+            Some(w) => {
+                let n = model.grid.n();
+                window = heights
+                    .chunks(n)
+                    .take(w)
+                    .flat_map(|r| &r[..w])
+                    .copied()
+                    .collect();
+                (&window[..], w as f64 * model.grid.spacing())
+            }
+        };
         // One pass for the mean (finite exactly when every height is, barring overflow),
         // one for the spread; the finiteness check runs only to name the bad input.
-        let mean = field::mean(heights);
-        if !mean.is_finite() && !field::all_finite(heights) {
+        let mean = field::mean(heights_seen);
+        if !mean.is_finite() && !field::all_finite(heights_seen) {
             return Err(Error::invalid(
                 "heights",
                 "a non-finite value",
                 "finite numbers (no NaN or infinity)",
             ));
         }
-        let rms = field::std_dev_about(heights, mean);
+        let rms = field::std_dev_about(heights_seen, mean);
         if !rms.is_finite() {
             return Err(Error::invalid(
                 "heights",
@@ -180,8 +261,7 @@ impl<'a> ContactProblem<'a> {
                 "heights whose squares are finite",
             ));
         }
-        let flat_scale =
-            p0 * model.grid.length() / (std::f64::consts::PI * model.halfspace.e_star());
+        let flat_scale = p0 * side / (std::f64::consts::PI * model.halfspace.e_star());
         let length_scale = if rms > 1e-12 * flat_scale {
             rms
         } else {
@@ -199,6 +279,40 @@ impl<'a> ContactProblem<'a> {
     /// The grid.
     pub fn grid(&self) -> &Grid {
         &self.model.grid
+    }
+
+    /// The pressure of a cold start: uniform under the wall (all of a periodic grid, the
+    /// window of a free boundary) with mean `p0`, 0 elsewhere.
+    pub fn cold_pressure(&self, p: &mut [f64]) {
+        match self.model.window {
+            None => p.fill(self.p0),
+            Some(w) => {
+                let under = self.p0 * self.model.grid.points() as f64 / (w * w) as f64;
+                for (k, v) in p.iter_mut().enumerate() {
+                    *v = if self.model.under_wall(k) { under } else { 0.0 };
+                }
+            }
+        }
+    }
+
+    /// The displacement of a cold start: on the wall where there is one; on the free
+    /// surface outside a free-boundary window, level with the window's mean height.
+    pub fn cold_displacement(&self, u: &mut [f64]) {
+        u.copy_from_slice(self.heights);
+        if self.model.window.is_some() {
+            let (sum, count) = self
+                .heights
+                .iter()
+                .enumerate()
+                .filter(|(k, _)| self.model.under_wall(*k))
+                .fold((0.0, 0usize), |(s, c), (_, h)| (s + h, c + 1));
+            let level = sum / count as f64;
+            for (k, v) in u.iter_mut().enumerate() {
+                if !self.model.under_wall(k) {
+                    *v = level;
+                }
+            }
+        }
     }
 }
 

@@ -42,6 +42,16 @@ impl HalfSpace {
         Ok(Self { e_star, stiffness })
     }
 
+    /// A half-space of modulus `e_star` whose stiffness over the half spectrum is `table`
+    /// (0 at `q = 0`), e.g. the free-boundary one of [`crate::engine::boussinesq`].
+    pub fn with_stiffness(e_star: f64, table: Vec<f64>) -> Result<Self> {
+        check_positive("e_star", e_star)?;
+        Ok(Self {
+            e_star,
+            stiffness: table,
+        })
+    }
+
     /// Effective modulus `E*`.
     pub fn e_star(&self) -> f64 {
         self.e_star

@@ -8,6 +8,8 @@
 //!   that give the same bits on any number of threads;
 //! * [`spectrum`], [`surface`]: self-affine spectra and realizations, magnification;
 //! * [`elastic`]: the half-space's Green's function and elastic energy;
+//! * [`boussinesq`]: the free-boundary half-space (a pixel's Boussinesq response) on a
+//!   doubled, zero-padded grid, for surfaces that are not periodic;
 //! * [`contact`]: the problem, its solution and the solver-independent residual;
 //! * [`solver`]: the [`solver::Solver`] trait, GFMD and constrained conjugate gradients on
 //!   one scaffold (an executor that runs either, their work space, warm starts and the
@@ -17,6 +19,7 @@
 //! * [`scene`]: scene files (a surface and a solve);
 //! * [`mod@reference`]: closed-form solutions the solvers are tested against.
 
+pub mod boussinesq;
 pub mod contact;
 pub mod elastic;
 pub mod fft;

@@ -67,6 +67,37 @@ impl Westergaard {
     }
 }
 
+/// Hertz's solution for a rigid sphere of radius `R` (a paraboloid, `h(r) = -r^2 / (2R)`)
+/// pressed with force `F` onto an elastic half-space of modulus `E*` with a free surface
+/// (Hertz, J. reine angew. Math. 92, 156 (1882); Johnson, *Contact Mechanics*, section 4.2):
+/// contact radius `a = (3 F R / (4 E*))^(1/3)`, pressure
+/// `p(r) = p_max sqrt(1 - r^2/a^2)`, `p_max = 3 F / (2 pi a^2)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Hertz {
+    /// Radius of the sphere.
+    pub radius: f64,
+    /// Effective modulus `E*`.
+    pub e_star: f64,
+}
+
+impl Hertz {
+    /// Contact radius under force `force`.
+    pub fn contact_radius(&self, force: f64) -> f64 {
+        (0.75 * force * self.radius / self.e_star).cbrt()
+    }
+
+    /// The force that gives contact radius `a`.
+    pub fn force_for_radius(&self, a: f64) -> f64 {
+        4.0 * self.e_star * a.powi(3) / (3.0 * self.radius)
+    }
+
+    /// Peak pressure under force `force`.
+    pub fn peak_pressure(&self, force: f64) -> f64 {
+        let a = self.contact_radius(force);
+        1.5 * force / (std::f64::consts::PI * a * a)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -96,5 +127,18 @@ mod tests {
                 / m as f64;
             assert!((area - w.contact_fraction(p0)).abs() < 1e-4);
         }
+    }
+    #[test]
+    fn hertz_radius_and_force_are_inverse_and_the_pressure_integrates_to_the_force() {
+        let h = Hertz {
+            radius: 1000.0,
+            e_star: 2.0,
+        };
+        let f = h.force_for_radius(45.0);
+        assert!((h.contact_radius(f) - 45.0).abs() < 1e-12);
+        // integral of p_max sqrt(1 - r^2/a^2) 2 pi r dr = (2/3) pi a^2 p_max = F.
+        let a = h.contact_radius(f);
+        let integral = 2.0 / 3.0 * std::f64::consts::PI * a * a * h.peak_pressure(f);
+        assert!((integral / f - 1.0).abs() < 1e-14);
     }
 }

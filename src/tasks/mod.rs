@@ -12,6 +12,7 @@
 //! | a magnification sweep | [`sweep::steps`], [`sweep::SweepRun`] | | `sweep` |
 //! | Persson's theory on a surface's spectrum | [`theory::theory`] | | `theory` |
 //! | the validations, their plan and merge | [`validations`] | `validate [--plan] [--merge]` | `validate`, `plan`, `merge` |
+//! | Persson checked on measured height maps | [`check::check_surface`] | `check-surface` | `check_surface` |
 //! | the parsers: solver names, the load, ranges | [`parse`] | flags | keywords |
 //!
 //! # Names in messages
@@ -21,6 +22,7 @@
 //! -1: ...`). A task takes a [`Spelling`] ([`Flags`] or [`Keywords`]) and names its
 //! parameters through it; everything else in a message is the same in both.
 
+pub mod check;
 pub mod parse;
 pub mod solve;
 pub mod surface;

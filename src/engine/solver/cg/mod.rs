@@ -237,7 +237,7 @@ impl<'a> Solve<'a> {
         let (spec, [p, u, t, r]) = cg.work.on(grid);
         match prev {
             None => {
-                p.fill(p0);
+                problem.cold_pressure(p);
                 u.fill(0.0);
             }
             Some(prev) => {
@@ -274,8 +274,9 @@ impl<'a> Solve<'a> {
             stopping: Stopping::new(tol),
         };
         // Points in contact, and the rigid shift. A uniform pressure displaces nothing (the
-        // compliance has no q = 0 mode): a cold start needs no transform.
-        if prev.is_some() {
+        // compliance has no q = 0 mode): a cold start needs no transform, but for a free
+        // boundary, whose pressure covers the window only.
+        if prev.is_some() || problem.model.window.is_some() {
             solve.exact_displacement();
         } else {
             solve.frame.gbar = -crate::engine::field::mean(problem.heights);

@@ -127,7 +127,7 @@ impl Method for Gfmd {
         } = self;
         let (spec, [u, v, stress, accel]) = work.on(grid);
         match prev {
-            None => u.copy_from_slice(h),
+            None => problem.cold_displacement(u),
             Some(prev) => u
                 .par_iter_mut()
                 .zip(prev.displacement.par_iter().zip(&prev.pressure))

@@ -1,0 +1,363 @@
+//! A scan as a contact problem, and its load curve: the rigid scan pressed onto an elastic
+//! half-space (`E* = 1`, lengths in pixels), periodic or with a free boundary
+//! ([`crate::engine::boussinesq`]), solved at increasing loads, each solve warm-started
+//! from the last.
+//!
+//! What a solve gives the check, all over the scan's own window: the relative contact
+//! area (points with `p > 0`), the elastic energy per unit area of the roughness and, at
+//! one load, the window's pressures.
+//!
+//! The energy of the roughness is that of the pressure beyond a flat punch's: with
+//! `p_f` the pressure under a flat rigid punch of the window's shape at unit nominal load,
+//! `E_el = (1/2) mean_window(dp (G * dp))` with `dp = p - p0 p_f` (zero outside the
+//! window) and `G` the half-space's response. The flat punch displaces its window
+//! uniformly, so `p_f` is orthogonal to `G * dp` for any `dp` of zero total load, and the
+//! whole work of `p` splits exactly into the punch's and this:
+//! `W(p) = p0^2 W(p_f) + W(dp)`. For a periodic scan `p_f = 1`, and `E_el` is the energy
+//! of the fluctuation `p - p0`, `(1/2) mean[(p - p0) u]` ([`crate::engine::elastic`]), as in
+//! Persson's theory, whose energy has no `q = 0` part. For a free boundary the punch's
+//! share, the indentation of a finite window into the half-space (of order
+//! `p0^2 L / E*`, with the pressure rising towards the window's edges), is left out: an
+//! infinite rough surface under a uniform load has none.
+
+use std::time::Instant;
+
+use rustfft::num_complex::Complex64;
+use serde::{Deserialize, Serialize};
+
+use super::psd::{Boundary, ScanSpectrum};
+use super::theory::E_STAR;
+use crate::engine::contact::{ContactProblem, ContactSolution, Model};
+use crate::engine::grid::Grid;
+use crate::engine::solver::{Progress, SolveOptions, Solver, SolverKind, Start};
+use crate::error::{Error, Result};
+
+/// One scan as a contact problem.
+pub struct Body {
+    /// The elastic model (the doubled grid for a free boundary).
+    pub model: Model,
+    /// The heights on the model's grid (pixels), padded for a free boundary.
+    pub heights: Vec<f64>,
+    /// The scan's side (pixels).
+    pub n: usize,
+    /// For a free boundary: the half spectrum of `M^2 G`, the Boussinesq response on the
+    /// doubled grid, for the elastic displacement with its mean.
+    response: Option<Vec<Complex64>>,
+    /// For a free boundary: the flat punch's pressure at unit nominal load, `p_f`.
+    punch: Vec<f64>,
+}
+
+/// Residual tolerance of the flat punch's solve.
+const PUNCH_TOL: f64 = 1e-10;
+
+impl Body {
+    /// The contact problem of `spectrum`'s heights (detrended for a free boundary).
+    pub fn new(spectrum: &ScanSpectrum, n: usize) -> Result<Self> {
+        match spectrum.boundary {
+            Boundary::Periodic => Ok(Self {
+                model: Model::new(Grid::new(n, 1.0)?, E_STAR)?,
+                heights: spectrum.heights.clone(),
+                n,
+                response: None,
+                punch: Vec::new(),
+            }),
+            Boundary::Free => {
+                let model = Model::free_boundary(n, E_STAR)?;
+                let heights = model.pad_heights(&spectrum.heights)?;
+                let m = model.grid.n();
+                let g = crate::engine::boussinesq::padded_response(m, 1.0, E_STAR);
+                let mut spec = model.fft.new_spectrum();
+                model.fft.forward(&g, &mut spec);
+                let scale = (m * m) as f64;
+                spec.iter_mut().for_each(|v| *v *= scale);
+                let punch = flat_punch(&model, n)?;
+                Ok(Self {
+                    model,
+                    heights,
+                    n,
+                    response: Some(spec),
+                    punch,
+                })
+            }
+        }
+    }
+
+    /// The window's share of the model's grid (1 for a periodic scan).
+    fn window_share(&self) -> f64 {
+        (self.n * self.n) as f64 / self.model.grid.points() as f64
+    }
+
+    /// The window's values of a field on the model's grid, row-major.
+    pub fn window(&self, field: &[f64]) -> Vec<f64> {
+        let m = self.model.grid.n();
+        field
+            .chunks(m)
+            .take(self.n)
+            .flat_map(|row| &row[..self.n])
+            .copied()
+            .collect()
+    }
+
+    /// The elastic energy per unit area of the window under `solution` (see the module
+    /// docs).
+    pub fn elastic_energy(&self, solution: &ContactSolution) -> f64 {
+        let Some(response) = &self.response else {
+            return solution.elastic_energy();
+        };
+        let fft = &self.model.fft;
+        let p0 = solution.p0 / self.window_share();
+        let dp: Vec<f64> = (0..solution.pressure.len())
+            .map(|k| {
+                if self.model.under_wall(k) {
+                    solution.pressure[k] - p0 * self.punch[k]
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let mut spec = fft.new_spectrum();
+        fft.forward(&dp, &mut spec);
+        spec.iter_mut().zip(response).for_each(|(p, g)| *p *= g.re);
+        let mut u = vec![0.0; self.model.grid.points()];
+        fft.inverse(&spec, &mut u, &mut Vec::new());
+        let work: f64 = dp.iter().zip(&u).map(|(p, u)| p * u).sum();
+        0.5 * work / (self.n * self.n) as f64
+    }
+}
+
+/// The pressure under a flat rigid punch of the window's shape at unit nominal load (mean
+/// 1 over the window, zero outside), on `model`'s free boundary: the whole window in
+/// contact with a flat wall, solved by CG to [`PUNCH_TOL`].
+fn flat_punch(model: &Model, n: usize) -> Result<Vec<f64>> {
+    let flat = model.pad_heights(&vec![0.0; n * n])?;
+    let share = (n * n) as f64 / model.grid.points() as f64;
+    let problem = ContactProblem::new(model, &flat, share)?;
+    let solution =
+        SolverKind::Cg
+            .build()
+            .solve(&problem, Start::Cold, &SolveOptions::with_tol(PUNCH_TOL))?;
+    Ok(solution.pressure)
+}
+
+/// One load of a curve as one solver found it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Solved {
+    /// The load, `p0 / E*` over the window.
+    pub p0: f64,
+    /// Relative contact area of the window.
+    pub contact_area: f64,
+    /// Elastic energy per unit area (`E*` times pixels).
+    pub energy: f64,
+    /// Iterations of the solve.
+    pub iterations: usize,
+    /// Its residual.
+    pub residual: f64,
+    /// Its wall time, seconds.
+    pub wall_s: f64,
+}
+
+/// A load curve: every load's numbers, and the window's pressures at one load.
+#[derive(Debug, Clone)]
+pub struct Curve {
+    /// The solver.
+    pub solver: SolverKind,
+    /// One entry per load, in the order of the loads.
+    pub points: Vec<Solved>,
+    /// The window's pressures over the load at the load `kept` (`p / p0`).
+    pub pressures: Vec<f64>,
+    /// Wall time of the whole curve, seconds.
+    pub wall_s: f64,
+}
+
+/// Solves `body` at `loads` (increasing) with `solver` to `tol`, warm-starting each load
+/// from the last; keeps the pressures at load index `kept`. `monitor` sees every
+/// iteration.
+pub fn solve_curve(
+    body: &Body,
+    loads: &[f64],
+    solver: SolverKind,
+    tol: f64,
+    kept: usize,
+    monitor: &mut dyn FnMut(usize, Progress),
+) -> Result<Curve> {
+    let timer = Instant::now();
+    let opts = SolveOptions::with_tol(tol);
+    let mut engine: Box<dyn Solver + Send> = solver.build();
+    let mut last: Option<ContactSolution> = None;
+    let mut points = Vec::with_capacity(loads.len());
+    let mut pressures = Vec::new();
+    for (i, &p0) in loads.iter().enumerate() {
+        let problem = ContactProblem::new(&body.model, &body.heights, p0 * body.window_share())?;
+        let start = last.as_ref().map_or(Start::Cold, Start::Warm);
+        let solution = engine
+            .solve_monitored(&problem, start, &opts, &mut |p| monitor(i, p))
+            .map_err(|e| at_load(e, p0))?;
+        let window = body.window(&solution.pressure);
+        let touched = (0..solution.pressure.len())
+            .filter(|&k| !body.model.under_wall(k))
+            .any(|k| solution.pressure[k] > 0.0);
+        if touched {
+            return Err(Error::invalid(
+                "loads",
+                p0,
+                "loads under which the surface stays clear of the floor outside the scan",
+            ));
+        }
+        let contact = window.iter().filter(|&&p| p > 0.0).count();
+        points.push(Solved {
+            p0,
+            contact_area: contact as f64 / window.len() as f64,
+            energy: body.elastic_energy(&solution),
+            iterations: solution.stats.iterations,
+            residual: solution.stats.residual.value(),
+            wall_s: solution.stats.wall_s,
+        });
+        if i == kept {
+            pressures = window.iter().map(|p| p / p0).collect();
+        }
+        last = Some(solution);
+    }
+    Ok(Curve {
+        solver,
+        points,
+        pressures,
+        wall_s: timer.elapsed().as_secs_f64(),
+    })
+}
+
+/// A solve's error with the load it failed at.
+fn at_load(e: Error, p0: f64) -> Error {
+    match e {
+        Error::InvalidInput { .. } | Error::BadFile { .. } | Error::Io { .. } => e,
+        other => Error::invalid(
+            "loads",
+            p0,
+            format!("a load the solver converges at ({other})"),
+        ),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::engine::surface::{Surface, SurfaceParams};
+
+    fn scan(n: usize, boundary: Boundary) -> ScanSpectrum {
+        let s = Surface::generate(&SurfaceParams::new(n, 0.8, n as f64, 4.0, 3)).unwrap();
+        let fft = crate::engine::fft::Fft2::new(s.grid());
+        ScanSpectrum::new(&s.heights_at(f64::INFINITY, &fft), n, 1.0, boundary).unwrap()
+    }
+
+    /// `(1/2) sum_ab x_a G_ab y_b / n^2` over the window's points, by the direct sum of
+    /// the pixel Boussinesq response.
+    fn direct_work(x: &[f64], y: &[f64], n: usize, m: usize) -> f64 {
+        let mut work = 0.0;
+        for a in 0..n * n {
+            for b in 0..n * n {
+                let (ia, ja, ib, jb) = (a / n, a % n, b / n, b % n);
+                let g = crate::engine::boussinesq::pixel_displacement(
+                    ja as f64 - jb as f64,
+                    ia as f64 - ib as f64,
+                    1.0,
+                    1.0,
+                );
+                work += x[ia * m + ja] * g * y[ib * m + jb];
+            }
+        }
+        0.5 * work / (n * n) as f64
+    }
+
+    #[test]
+    fn the_free_boundary_energy_is_the_work_beyond_the_flat_punch() {
+        let n = 8;
+        let body = Body::new(&scan(n, Boundary::Free), n).unwrap();
+        let m = body.model.grid.n();
+        // The flat punch presses its whole window, with mean 1, and displaces it uniformly.
+        let pf = &body.punch;
+        let window: Vec<usize> = (0..m * m).filter(|&k| body.model.under_wall(k)).collect();
+        assert!(window.iter().all(|&k| pf[k] > 0.0));
+        let mean = window.iter().map(|&k| pf[k]).sum::<f64>() / window.len() as f64;
+        assert!((mean - 1.0).abs() < 1e-12, "{mean}");
+        let u: Vec<f64> = window
+            .iter()
+            .map(|&k| {
+                let mut e = vec![0.0; m * m];
+                e[k] = 1.0;
+                2.0 * (n * n) as f64 * direct_work(&e, pf, n, m)
+            })
+            .collect();
+        let (lo, hi) = u
+            .iter()
+            .fold((f64::MAX, f64::MIN), |(a, b), &v| (a.min(v), b.max(v)));
+        assert!(
+            (hi - lo) < 1e-8 * hi,
+            "punch displacement from {lo} to {hi}"
+        );
+
+        let mut p = vec![0.0; m * m];
+        for i in 0..n {
+            for j in 0..n {
+                p[i * m + j] = ((i * 3 + j * 5) % 7) as f64 * 0.01;
+            }
+        }
+        let solution = ContactSolution {
+            pressure: p.clone(),
+            displacement: vec![0.0; m * m],
+            p0: crate::engine::field::mean(&p),
+            stats: crate::engine::contact::SolveStats {
+                solver: "none",
+                iterations: 0,
+                residual: Default::default(),
+                wall_s: 0.0,
+                warm: false,
+            },
+        };
+        let p0 = crate::engine::field::mean(&p) * (m * m) as f64 / (n * n) as f64;
+        let dp: Vec<f64> = (0..m * m)
+            .map(|k| {
+                if body.model.under_wall(k) {
+                    p[k] - p0 * pf[k]
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let e = body.elastic_energy(&solution);
+        let direct = direct_work(&dp, &dp, n, m);
+        assert!((e / direct - 1.0).abs() < 1e-9, "{e} vs {direct}");
+        // The whole work splits into the punch's and the roughness's.
+        let whole = direct_work(&p, &p, n, m);
+        let punch = p0 * p0 * direct_work(pf, pf, n, m);
+        assert!(
+            (whole - punch - e).abs() < 1e-9 * whole,
+            "{whole} vs {punch} + {e}"
+        );
+    }
+
+    #[test]
+    fn a_curve_rises_with_the_load_on_both_boundaries() {
+        for boundary in [Boundary::Periodic, Boundary::Free] {
+            let body = Body::new(&scan(32, boundary), 32).unwrap();
+            let curve = solve_curve(
+                &body,
+                &[0.02, 0.05, 0.1],
+                SolverKind::Cg,
+                1e-8,
+                1,
+                &mut |_, _| {},
+            )
+            .unwrap();
+            let areas: Vec<f64> = curve.points.iter().map(|s| s.contact_area).collect();
+            assert!(
+                areas.windows(2).all(|w| w[0] < w[1]),
+                "{boundary:?}: {areas:?}"
+            );
+            assert_eq!(curve.pressures.len(), 32 * 32);
+            let mean = curve.pressures.iter().sum::<f64>() / curve.pressures.len() as f64;
+            assert!(
+                (mean - 1.0).abs() < 1e-6,
+                "{boundary:?}: mean p/p0 = {mean}"
+            );
+        }
+    }
+}

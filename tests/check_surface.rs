@@ -1,0 +1,214 @@
+//! `check-surface` on height maps: a periodic scan gives what `solve` gives, a measured
+//! (non-periodic) window gives a rising load curve beside Persson's predictions with a
+//! page, its figures and no NaN; bad scans and flags are refused with a word.
+
+use std::path::Path;
+use std::process::Command;
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_persson-check"))
+}
+
+fn run_ok(cmd: &mut Command) -> String {
+    let out = cmd.output().unwrap();
+    assert!(
+        out.status.success(),
+        "{cmd:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8_lossy(&out.stdout).to_string()
+}
+
+fn run_err(cmd: &mut Command) -> String {
+    let out = cmd.output().unwrap();
+    assert!(!out.status.success(), "{cmd:?} succeeded");
+    String::from_utf8_lossy(&out.stderr).to_string()
+}
+
+/// A generated `n x n` surface written to `dir/name`.
+fn surface(dir: &Path, name: &str, n: usize, seed: u64) {
+    run_ok(
+        bin()
+            .args(["surface", "--n", &n.to_string(), "--hurst", "0.8"])
+            .args([
+                "--lambda-l",
+                &(n / 2).to_string(),
+                "--lambda-s",
+                "4",
+                "--seed",
+                &seed.to_string(),
+                "--out",
+                dir.join(name).to_str().unwrap(),
+            ]),
+    );
+}
+
+fn json(path: &Path) -> serde_json::Value {
+    serde_json::from_slice(&std::fs::read(path).unwrap()).unwrap()
+}
+
+#[test]
+fn a_periodic_scan_gives_what_solve_gives() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    surface(d, "h.npy", 64, 3);
+    let p0 = "0.05";
+    run_ok(bin().current_dir(d).args([
+        "solve",
+        "--heights",
+        "h.npy",
+        "--p0",
+        p0,
+        "--solver",
+        "cg",
+        "--tol",
+        "1e-8",
+        "--out",
+        "solved",
+    ]));
+    run_ok(bin().current_dir(d).args([
+        "check-surface",
+        "--heights",
+        "h.npy",
+        "--pixel-size",
+        "1",
+        "--periodic",
+        "--loads",
+        p0,
+        "--solver",
+        "cg",
+        "--no-cross-check",
+        "--tol",
+        "1e-8",
+        "--out",
+        "checked",
+    ]));
+    let solved = json(&d.join("solved/summary.json"));
+    let checked = json(&d.join("checked/surface.json"));
+    let point = &checked["curve"][0];
+    // The same solve: the same numbers to the last bit.
+    assert_eq!(point["a_r"], solved["contact_area"]);
+    assert_eq!(point["energy"], solved["elastic_energy"]);
+}
+
+#[test]
+fn a_measured_window_gives_a_rising_curve_beside_persson() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    surface(d, "full.npy", 128, 5);
+    // Two non-periodic 64 x 64 windows of it, as text (one) and .npy (the other), in a
+    // length unit where the pixel is 0.25.
+    let full = persson_check::io::npy::read_field(&d.join("full.npy"), 4..=1024).unwrap();
+    let window = |i0: usize, j0: usize| -> Vec<f64> {
+        (0..64 * 64)
+            .map(|k| 0.25 * full.values[(i0 + k / 64) * 128 + j0 + k % 64])
+            .collect()
+    };
+    let a = window(0, 0);
+    let text: String = a
+        .chunks(64)
+        .map(|r| {
+            r.iter()
+                .map(|v| format!("{v:e}"))
+                .collect::<Vec<_>>()
+                .join(" ")
+                + "\n"
+        })
+        .collect();
+    std::fs::write(d.join("a.txt"), text).unwrap();
+    persson_check::io::npy::write_field(&d.join("b.npy"), 64, &window(64, 64)).unwrap();
+    let stdout = run_ok(bin().current_dir(d).args([
+        "check-surface",
+        "--heights",
+        "a.txt",
+        "b.npy",
+        "--pixel-size",
+        "0.25",
+        "--out",
+        "checked",
+    ]));
+    assert!(stdout.contains("contact_area"), "{stdout}");
+    let c = json(&d.join("checked/surface.json"));
+    let curve = c["curve"].as_array().unwrap();
+    assert!(curve.len() >= 5, "{} loads", curve.len());
+    let f = |p: &serde_json::Value, k: &str| p[k].as_f64().unwrap();
+    for w in curve.windows(2) {
+        assert!(f(&w[1], "a_r") > f(&w[0], "a_r"), "the curve does not rise");
+    }
+    assert!(f(&curve[0], "a_r") > 0.003 && f(&curve[curve.len() - 1], "a_r") < 0.6);
+    for p in curve {
+        for k in [
+            "a_r_persson",
+            "a_r_persson_corrected",
+            "energy",
+            "energy_persson",
+        ] {
+            assert!(f(p, k) > 0.0, "{k}");
+        }
+        // GFMD and its CG cross-check on the same windows.
+        assert!((f(p, "a_r_cross_check") / f(p, "a_r") - 1.0).abs() < 0.01);
+    }
+    assert_eq!(c["solvers_agree"], true);
+    assert_eq!(c["comparisons"].as_array().unwrap().len(), 3);
+    let md = std::fs::read_to_string(d.join("checked/surface.md")).unwrap();
+    let json_text = std::fs::read_to_string(d.join("checked/surface.json")).unwrap();
+    for text in [&md, &json_text] {
+        assert!(
+            !text.contains("NaN") && !text.contains("nan"),
+            "a NaN in the output"
+        );
+    }
+    for figure in [
+        "psd",
+        "contact_area",
+        "pressure_distribution",
+        "elastic_energy",
+    ] {
+        for ext in ["svg", "png"] {
+            let path = d.join(format!("checked/figures/{figure}.{ext}"));
+            assert!(
+                std::fs::metadata(&path).unwrap().len() > 1000,
+                "{}",
+                path.display()
+            );
+        }
+        assert!(md.contains(&format!("figures/{figure}.png")));
+    }
+}
+
+#[test]
+fn bad_scans_and_flags_are_refused_with_a_word() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let mut rows = vec!["1 2 3 4 5 6".to_string(); 6];
+    rows[2] = "1 2 nan 4 NaN 6".into();
+    std::fs::write(d.join("holes.txt"), rows.join("\n")).unwrap();
+    surface(d, "ok.npy", 32, 1);
+    let check = |args: &[&str]| {
+        let mut cmd = bin();
+        cmd.current_dir(d)
+            .arg("check-surface")
+            .args(args)
+            .args(["--out", "o"]);
+        run_err(&mut cmd)
+    };
+    let e = check(&["--heights", "holes.txt", "--pixel-size", "1"]);
+    assert!(
+        e.contains("2 of 36 heights are not finite") && e.contains("row 2, column 2"),
+        "{e}"
+    );
+    let e = check(&["--heights", "ok.npy", "--pixel-size", "0"]);
+    assert!(e.contains("--pixel-size"), "{e}");
+    let e = check(&[
+        "--heights",
+        "ok.npy",
+        "--pixel-size",
+        "1",
+        "--loads",
+        "0.1,-1",
+    ]);
+    assert!(e.contains("--loads"), "{e}");
+    let e = check(&["--heights", "missing.npy", "--pixel-size", "1"]);
+    assert!(e.contains("missing.npy"), "{e}");
+    assert!(!d.join("o").exists(), "a refused check wrote output");
+}
