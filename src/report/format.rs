@@ -71,6 +71,13 @@ pub fn push_table<S: Borrow<str>>(s: &mut String, header: &[S], rows: &[Vec<Stri
     s.push('\n');
 }
 
+/// A Markdown table of one row per item, `row(item)`, under `header`, appended to `s`
+/// with the blank line after it.
+pub fn push_rows<T>(s: &mut String, header: &[&str], items: &[T], row: impl Fn(&T) -> Vec<String>) {
+    let rows: Vec<Vec<String>> = items.iter().map(row).collect();
+    push_table(s, header, &rows);
+}
+
 /// A cell of a value that may be absent: `shown(value)`, or an em dash.
 pub fn or_dash<T>(value: Option<T>, shown: impl FnOnce(T) -> String) -> String {
     value.map_or_else(|| "—".into(), shown)

@@ -2,7 +2,7 @@
 
 use std::fmt::Write as _;
 
-use super::format::{duration, failed, md, num, or_dash, pm, push_table, sig};
+use super::format::{duration, failed, md, num, or_dash, pm, push_rows, push_table, sig};
 use super::{Scorecard, SpeedSection};
 use crate::engine::solver::SolverKind;
 use crate::speed::{SizeRow, SpeedStudy, ThreadRow, SOLVERS};
@@ -108,22 +108,6 @@ fn scene(s: &mut String, study: &SpeedStudy) {
 
 /// Cold solves at each tolerance: time, iterations and the errors against the reference.
 fn tolerance_table(s: &mut String, study: &SpeedStudy) {
-    let rows: Vec<Vec<String>> = study
-        .tolerance
-        .iter()
-        .map(|t| {
-            vec![
-                t.solver.name().to_string(),
-                sig(t.tol, 2),
-                t.error.as_deref().map_or_else(|| time(t.wall_s), failed),
-                count(t.iterations),
-                or_dash(t.residual, num),
-                or_dash(t.tamaas, num),
-                or_dash(t.area_error, num),
-                or_dash(t.energy_error, num),
-            ]
-        })
-        .collect();
     let header = [
         "solver",
         "tol",
@@ -134,7 +118,18 @@ fn tolerance_table(s: &mut String, study: &SpeedStudy) {
         "abs. a\\_r error",
         "rel. energy error",
     ];
-    push_table(s, &header, &rows);
+    push_rows(s, &header, &study.tolerance, |t| {
+        vec![
+            t.solver.name().to_string(),
+            sig(t.tol, 2),
+            t.error.as_deref().map_or_else(|| time(t.wall_s), failed),
+            count(t.iterations),
+            or_dash(t.residual, num),
+            or_dash(t.tamaas, num),
+            or_dash(t.area_error, num),
+            or_dash(t.energy_error, num),
+        ]
+    });
 }
 
 /// Iterations against the grid size, with the fitted exponent.
@@ -229,22 +224,6 @@ fn floor_table(s: &mut String, study: &SpeedStudy) {
          (pairs used × pair), 1 meaning nothing but transforms.\n",
         sig(study.options.size_tol, 2)
     );
-    let rows: Vec<Vec<String>> = study
-        .floor
-        .iter()
-        .map(|r| {
-            vec![
-                r.solver.name().to_string(),
-                r.n.to_string(),
-                duration(r.fft_pair_s),
-                count(r.iterations),
-                r.error.as_deref().map_or_else(|| time(r.wall_s), failed),
-                ratio(r.pairs_per_iteration),
-                ratio(r.iteration_in_pairs),
-                ratio(r.overhead),
-            ]
-        })
-        .collect();
     let header = [
         "solver",
         "N",
@@ -255,7 +234,18 @@ fn floor_table(s: &mut String, study: &SpeedStudy) {
         "iteration in pairs",
         "each pair",
     ];
-    push_table(s, &header, &rows);
+    push_rows(s, &header, &study.floor, |r| {
+        vec![
+            r.solver.name().to_string(),
+            r.n.to_string(),
+            duration(r.fft_pair_s),
+            count(r.iterations),
+            r.error.as_deref().map_or_else(|| time(r.wall_s), failed),
+            ratio(r.pairs_per_iteration),
+            ratio(r.iteration_in_pairs),
+            ratio(r.overhead),
+        ]
+    });
 }
 
 /// Warm re-solves against cold solves of the same problem.
@@ -270,21 +260,6 @@ fn warm_table(s: &mut String, study: &SpeedStudy) {
          lower), against a cold solve of the same problem.\n",
         sig(study.options.size_tol, 2)
     );
-    let rows: Vec<Vec<String>> = study
-        .warm
-        .iter()
-        .map(|r| {
-            let warm = format!("{} ({})", time(r.warm_wall_s), count(r.warm_iterations));
-            vec![
-                r.solver.name().to_string(),
-                r.n.to_string(),
-                md(&r.change),
-                format!("{} ({})", time(r.cold_wall_s), count(r.cold_iterations)),
-                r.error.as_deref().map_or(warm, failed),
-                ratio(r.ratio),
-            ]
-        })
-        .collect();
     let header = [
         "solver",
         "N",
@@ -293,7 +268,17 @@ fn warm_table(s: &mut String, study: &SpeedStudy) {
         "warm (iterations)",
         "warm / cold",
     ];
-    push_table(s, &header, &rows);
+    push_rows(s, &header, &study.warm, |r| {
+        let warm = format!("{} ({})", time(r.warm_wall_s), count(r.warm_iterations));
+        vec![
+            r.solver.name().to_string(),
+            r.n.to_string(),
+            md(&r.change),
+            format!("{} ({})", time(r.cold_wall_s), count(r.cold_iterations)),
+            r.error.as_deref().map_or(warm, failed),
+            ratio(r.ratio),
+        ]
+    });
 }
 
 /// A wall time, or an em dash.

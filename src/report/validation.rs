@@ -5,7 +5,7 @@
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
-use super::format::{duration, md, num, or_dash, pm, prose, push_table, sig};
+use super::format::{duration, md, num, or_dash, pm, prose, push_rows, push_table, sig};
 use super::golden::GoldenMatch;
 use super::outcomes::{grid_cell, seeds_cell, Loaded};
 use super::table::headline;
@@ -182,29 +182,6 @@ fn sensitivity(s: &mut String, o: &Outcome) {
     let opt = |e: Option<Estimate>, scale: f64| {
         e.map_or_else(|| "—".into(), |e| pm(scale * e.value, scale * e.std_error))
     };
-    let rows: Vec<Vec<String>> = o
-        .sensitivity
-        .iter()
-        .map(|r| {
-            vec![
-                md(&r.parameter),
-                md(&r.label),
-                format!("{}x{}, {}", r.config.n, r.config.n, r.config.solver.name()),
-                pct(r.flux_in),
-                pct(r.flux_out),
-                pct(r.flux_in_of_contact),
-                pct(r.flux_out_of_contact),
-                opt(r.net_over_gross, 1.0),
-                opt(r.zero_bin, 100.0),
-                match (r.variance_added, r.modes_added) {
-                    (Some(v), Some(m)) => {
-                        format!("{}, {m:.0}", pm(100.0 * v.value, 100.0 * v.std_error))
-                    }
-                    _ => "—".into(),
-                },
-            ]
-        })
-        .collect();
     let header = [
         "setting",
         "value",
@@ -217,7 +194,25 @@ fn sensitivity(s: &mut String, o: &Outcome) {
         "zero bin, %",
         "step: variance %, modes",
     ];
-    push_table(s, &header, &rows);
+    push_rows(s, &header, &o.sensitivity, |r| {
+        vec![
+            md(&r.parameter),
+            md(&r.label),
+            format!("{}x{}, {}", r.config.n, r.config.n, r.config.solver.name()),
+            pct(r.flux_in),
+            pct(r.flux_out),
+            pct(r.flux_in_of_contact),
+            pct(r.flux_out_of_contact),
+            opt(r.net_over_gross, 1.0),
+            opt(r.zero_bin, 100.0),
+            match (r.variance_added, r.modes_added) {
+                (Some(v), Some(m)) => {
+                    format!("{}, {m:.0}", pm(100.0 * v.value, 100.0 * v.std_error))
+                }
+                _ => "—".into(),
+            },
+        ]
+    });
 }
 
 /// The secondary statistics with Persson's and the paper's values.
@@ -226,21 +221,16 @@ fn details(s: &mut String, o: &Outcome) {
         return;
     }
     let _ = writeln!(s, "**Secondary statistics**\n");
-    let rows: Vec<Vec<String>> = o
-        .details
-        .iter()
-        .map(|d| {
-            vec![
-                prose(&d.name),
-                pm(d.value.value, d.value.std_error),
-                or_dash(d.persson, num),
-                or_dash(d.paper, num),
-                or_dash(d.grid, |n| n.to_string()),
-            ]
-        })
-        .collect();
     let header = ["statistic", "measured ± error", "Persson", "paper", "grid"];
-    push_table(s, &header, &rows);
+    push_rows(s, &header, &o.details, |d| {
+        vec![
+            prose(&d.name),
+            pm(d.value.value, d.value.std_error),
+            or_dash(d.persson, num),
+            or_dash(d.paper, num),
+            or_dash(d.grid, |n| n.to_string()),
+        ]
+    });
 }
 
 /// The checks of the paper's finding and the numbers behind each.
@@ -249,12 +239,9 @@ fn checks(s: &mut String, o: &Outcome) {
         return;
     }
     let _ = writeln!(s, "**Checks of the paper's finding**\n");
-    let rows: Vec<Vec<String>> = o
-        .checks
-        .iter()
-        .map(|c| vec![prose(&c.name), check_result(c).into(), prose(&c.detail)])
-        .collect();
-    push_table(s, &["check", "result", "numbers"], &rows);
+    push_rows(s, &["check", "result", "numbers"], &o.checks, |c| {
+        vec![prose(&c.name), check_result(c).into(), prose(&c.detail)]
+    });
 }
 
 fn check_result(c: &Check) -> &'static str {

@@ -23,28 +23,24 @@ pub fn reproducing(rows: &[SensitivityRow]) -> Vec<String> {
         let net = r.net_over_gross.map_or(String::new(), |e| {
             format!(", net/gross {}", e.text(1.0, 2, ""))
         });
-        let pair = |i: Estimate, o: Estimate| {
-            format!(
-                "in {}, out {}{net}",
-                i.text(100.0, 3, "%"),
-                o.text(100.0, 3, "%")
-            )
-        };
-        if matches(r.flux_in, PAPER_IN) && matches(r.flux_out, PAPER_OUT) {
-            hits.push(format!(
-                "{} = {} (of the nominal area: {})",
-                r.parameter,
-                r.label,
-                pair(r.flux_in, r.flux_out)
-            ));
-        }
-        if matches(r.flux_in_of_contact, PAPER_IN) && matches(r.flux_out_of_contact, PAPER_OUT) {
-            hits.push(format!(
-                "{} = {} (of the true contact area: {})",
-                r.parameter,
-                r.label,
-                pair(r.flux_in_of_contact, r.flux_out_of_contact)
-            ));
+        let measures = [
+            ("nominal area", r.flux_in, r.flux_out),
+            (
+                "true contact area",
+                r.flux_in_of_contact,
+                r.flux_out_of_contact,
+            ),
+        ];
+        for (measure, flux_in, flux_out) in measures {
+            if matches(flux_in, PAPER_IN) && matches(flux_out, PAPER_OUT) {
+                hits.push(format!(
+                    "{} = {} (of the {measure}: in {}, out {}{net})",
+                    r.parameter,
+                    r.label,
+                    flux_in.text(100.0, 3, "%"),
+                    flux_out.text(100.0, 3, "%")
+                ));
+            }
         }
     }
     hits
