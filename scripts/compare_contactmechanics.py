@@ -11,8 +11,10 @@ for the like-for-like time, and its default (GFMD with the CG cross-check) for t
 user waits. The script prints the contact area of each load by both tools and the times.
 
 Times are the solves alone: ContactMechanics's solver calls, and the `wall_s` of
-persson-check's solvers in surface.json (reading, spectra and figures excluded). The
-two tools get the same threads. ContactMechanics is a reference, not a dependency:
+persson-check's solvers in surface.json (reading, spectra and figures excluded).
+persson-check uses every core (its rayon pool; RAYON_NUM_THREADS=1 for one thread), while
+ContactMechanics's serial FFTs use one: say so with the ratio. ContactMechanics is a
+reference, not a dependency:
 
     pip install ContactMechanics numpy
     cargo build --release
