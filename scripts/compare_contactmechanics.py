@@ -12,7 +12,7 @@ user waits. The script prints the contact area of each load by both tools and th
 
 Times are the solves alone: ContactMechanics's solver calls, and the `wall_s` of
 persson-check's solvers in surface.json (reading, spectra and figures excluded).
-persson-check uses every core (its rayon pool; RAYON_NUM_THREADS=1 for one thread), while
+persson-check uses every core (its global `--threads N` flag sets fewer), while
 ContactMechanics's serial FFTs use one: say so with the ratio. ContactMechanics is a
 reference, not a dependency:
 
