@@ -38,6 +38,44 @@ pub(crate) fn line(label: &str, result: &persson_check::error::Result<ContactSol
     }
 }
 
+/// The two failing solves of a probe, with `solver` at `p0 = 0.01`: a small iteration
+/// budget, and a tolerance below the rounding floor.
+pub(crate) fn failures(
+    solver: &mut dyn Solver,
+    model: &Model,
+    h: &[f64],
+    label: &str,
+    out: &mut Vec<String>,
+) {
+    let problem = ContactProblem::new(model, h, 0.01).unwrap();
+    let short = SolveOptions {
+        tol: 1e-10,
+        max_iter: 7,
+    };
+    out.push(line(
+        &format!("{label} budget"),
+        &solver.solve(&problem, Start::Cold, &short),
+    ));
+    let floor = SolveOptions {
+        tol: 1e-14,
+        max_iter: 3000,
+    };
+    out.push(line(
+        &format!("{label} floor"),
+        &solver.solve(&problem, Start::Cold, &floor),
+    ));
+}
+
+/// Prints a probe's lines, and writes them to the file the environment variable `var`
+/// names, if set.
+pub(crate) fn emit(out: &[String], var: &str) {
+    let text = out.join("\n");
+    println!("{text}");
+    if let Ok(path) = std::env::var(var) {
+        std::fs::write(path, text + "\n").unwrap();
+    }
+}
+
 #[test]
 #[ignore = "a probe: prints digests to compare before and after a change"]
 fn cg_bits() {
@@ -64,32 +102,16 @@ fn cg_bits() {
                     }
                 }
             }
-            // Failures: a small budget, and a tolerance below the rounding floor.
             if n == 128 {
-                let mut cg = ConstrainedCg::default();
-                let problem = ContactProblem::new(&model, &h, 0.01).unwrap();
-                let short = SolveOptions {
-                    tol: 1e-10,
-                    max_iter: 7,
-                };
-                out.push(line(
-                    &format!("n={n} H={hurst} budget"),
-                    &cg.solve(&problem, Start::Cold, &short),
-                ));
-                let floor = SolveOptions {
-                    tol: 1e-14,
-                    max_iter: 3000,
-                };
-                out.push(line(
-                    &format!("n={n} H={hurst} floor"),
-                    &cg.solve(&problem, Start::Cold, &floor),
-                ));
+                failures(
+                    &mut ConstrainedCg::default(),
+                    &model,
+                    &h,
+                    &format!("n={n} H={hurst}"),
+                    &mut out,
+                );
             }
         }
     }
-    let text = out.join("\n");
-    println!("{text}");
-    if let Ok(path) = std::env::var("CG_BITS_OUT") {
-        std::fs::write(path, text + "\n").unwrap();
-    }
+    emit(&out, "CG_BITS_OUT");
 }

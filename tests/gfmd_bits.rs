@@ -11,7 +11,7 @@ use persson_check::engine::solver::{Gfmd, SolveOptions, Solver, Start};
 use persson_check::engine::surface::{Surface, SurfaceParams};
 use persson_check::engine::sweep::{shell_steps, Sweep};
 
-use crate::cg_bits::line;
+use crate::cg_bits::{emit, failures, line};
 
 /// Shells of the sweep, from the first above this magnification.
 const SWEEP_FROM: f64 = 3.0;
@@ -61,32 +61,16 @@ fn gfmd_bits() {
                 }
                 Err(e) => out.push(format!("{label} load: err {e:?}")),
             }
-            // Failures: a small budget, and a tolerance below the rounding floor.
             if n == 128 {
-                let mut gfmd = Gfmd::default();
-                let problem = ContactProblem::new(&model, &h, 0.01).unwrap();
-                let short = SolveOptions {
-                    tol: 1e-10,
-                    max_iter: 7,
-                };
-                out.push(line(
-                    &format!("n={n} H={hurst} budget"),
-                    &gfmd.solve(&problem, Start::Cold, &short),
-                ));
-                let floor = SolveOptions {
-                    tol: 1e-14,
-                    max_iter: 3000,
-                };
-                out.push(line(
-                    &format!("n={n} H={hurst} floor"),
-                    &gfmd.solve(&problem, Start::Cold, &floor),
-                ));
+                failures(
+                    &mut Gfmd::default(),
+                    &model,
+                    &h,
+                    &format!("n={n} H={hurst}"),
+                    &mut out,
+                );
             }
         }
     }
-    let text = out.join("\n");
-    println!("{text}");
-    if let Ok(path) = std::env::var("GFMD_BITS_OUT") {
-        std::fs::write(path, text + "\n").unwrap();
-    }
+    emit(&out, "GFMD_BITS_OUT");
 }

@@ -182,17 +182,7 @@ fn every_validation_with_one_realization_writes_no_nan_and_fails_no_check() {
         assert_no_nan(&format!("{} notes", o.name), &o.notes.join(" "));
     }
     // The scorecard reads every outcome back (nulls where there is no error bar).
-    let card = out.path().join("scorecard.md");
-    write(
-        &ReportOptions {
-            from: out.path().to_path_buf(),
-            out: card.clone(),
-            golden: None,
-            speed: SpeedChoice::Skip,
-        },
-        &mut |_| {},
-    )
-    .unwrap();
+    scorecard(out.path());
     let files = text_files(out.path());
     assert!(files.len() > 3 * outcomes.len(), "{files:?}");
     for path in files {
@@ -202,6 +192,22 @@ fn every_validation_with_one_realization_writes_no_nan_and_fails_no_check() {
     // Where there is no error bar, the CSV cell is empty.
     let csv = std::fs::read_to_string(out.path().join("d_onset.csv")).unwrap();
     assert!(csv.lines().nth(1).unwrap().contains(",,"), "{csv}");
+}
+
+/// Writes the scorecard of the outcomes in `dir` (no speed section); returns its path.
+fn scorecard(dir: &std::path::Path) -> std::path::PathBuf {
+    let card = dir.join("scorecard.md");
+    write(
+        &ReportOptions {
+            from: dir.to_path_buf(),
+            out: card.clone(),
+            golden: None,
+            speed: SpeedChoice::Skip,
+        },
+        &mut |_| {},
+    )
+    .unwrap();
+    card
 }
 
 fn assert_no_nan(what: &str, text: &str) {
@@ -246,17 +252,7 @@ fn one_realization_prints_no_nan() {
     let csv = std::fs::read_to_string(out.path().join("c_reentry.csv")).unwrap();
     assert_no_nan("the CSV", &csv);
 
-    let card = out.path().join("scorecard.md");
-    write(
-        &ReportOptions {
-            from: out.path().to_path_buf(),
-            out: card.clone(),
-            golden: None,
-            speed: SpeedChoice::Skip,
-        },
-        &mut |_| {},
-    )
-    .unwrap();
+    let card = scorecard(out.path());
     let text = std::fs::read_to_string(&card).unwrap();
     assert_no_nan("the scorecard", &text);
     assert!(text.contains("not decided (1 realization)"));
