@@ -82,6 +82,16 @@ impl Body {
         }
     }
 
+    /// Puts the heights of `spectrum`, another scan of the same size and boundary, on this
+    /// body: its half-space, response and flat punch depend on the size alone.
+    pub fn set_heights(&mut self, spectrum: &ScanSpectrum) -> Result<()> {
+        self.heights = match spectrum.boundary {
+            Boundary::Periodic => spectrum.heights.clone(),
+            Boundary::Free => self.model.pad_heights(&spectrum.heights)?,
+        };
+        Ok(())
+    }
+
     /// The window's share of the model's grid (1 for a periodic scan).
     fn window_share(&self) -> f64 {
         (self.n * self.n) as f64 / self.model.grid.points() as f64

@@ -240,15 +240,23 @@ pub fn check(
         solvers.push(other(opts.solver));
     }
     let mut measured = Vec::with_capacity(scans.len());
+    // One body for every scan: its half-space depends on the size alone.
+    let mut body: Option<Body> = None;
     for (k, spectrum) in spectra.into_iter().enumerate() {
         let theory = Theory::new(&spectrum.shells)?;
         let predicted = loads.iter().map(|&p| theory.at(p)).collect::<Result<_>>()?;
-        let body = Body::new(&spectrum, n)?;
+        let body = match body.as_mut() {
+            Some(b) => {
+                b.set_heights(&spectrum)?;
+                b
+            }
+            None => body.insert(Body::new(&spectrum, n)?),
+        };
         let mut curves = Vec::new();
         for &solver in &solvers {
             let mut monitor = |i: usize, p: Progress| progress(k, solver, i, p);
             curves.push(solve_curve(
-                &body,
+                body,
                 &loads,
                 solver,
                 opts.tol,
@@ -266,6 +274,7 @@ pub fn check(
         scans,
         opts,
         &loads,
+        kept,
         &measured,
         timer.elapsed().as_secs_f64(),
     ))
@@ -281,7 +290,7 @@ fn other(solver: SolverKind) -> SolverKind {
 
 fn validate(scans: &[Scan], opts: &CheckOptions) -> Result<()> {
     check_positive("pixel_size", opts.pixel_size)?;
-    opts.solve_options_check()?;
+    crate::engine::solver::SolveOptions::with_tol(opts.tol).validate()?;
     let Some(first) = scans.first() else {
         return Err(Error::invalid(
             "heights",
@@ -308,24 +317,19 @@ fn validate(scans: &[Scan], opts: &CheckOptions) -> Result<()> {
     Ok(())
 }
 
-impl CheckOptions {
-    fn solve_options_check(&self) -> Result<()> {
-        crate::engine::solver::SolveOptions::with_tol(self.tol).validate()
-    }
-}
-
 /// From the scans' measurements to the check's findings.
 fn conclude(
     scans: &[Scan],
     opts: &CheckOptions,
     loads: &[f64],
+    kept: usize,
     measured: &[Measured],
     wall_s: f64,
 ) -> SurfaceCheck {
     let curve: Vec<CurvePoint> = (0..loads.len())
         .map(|i| curve_point(measured, i, opts.pixel_size))
         .collect();
-    let distribution = distribution(measured, loads, loads.len() / 2);
+    let distribution = distribution(measured, loads, kept);
     let over = |f: fn(&CurvePoint) -> Verdict| combine(curve.iter().map(f));
     let comparisons = vec![
         Comparison {
