@@ -66,6 +66,35 @@ pub(crate) fn failures(
     ));
 }
 
+/// A probe's surface: its size, Hurst exponent, model and full-resolution heights.
+pub(crate) struct Scene {
+    pub n: usize,
+    pub hurst: f64,
+    pub surface: Surface,
+    pub model: Model,
+    pub h: Vec<f64>,
+}
+
+/// The probes' surfaces: `n` of 128 and 256, `H` of 0.8 and 0.3, `lambda_l = n / 2`,
+/// `lambda_s = 4`, seed 11.
+pub(crate) fn scenes() -> impl Iterator<Item = Scene> {
+    [128usize, 256].into_iter().flat_map(|n| {
+        [0.8, 0.3].into_iter().map(move |hurst| {
+            let params = SurfaceParams::new(n, hurst, n as f64 / 2.0, 4.0, 11);
+            let surface = Surface::generate(&params).unwrap();
+            let model = Model::new(surface.grid().clone(), 1.0).unwrap();
+            let h = surface.heights_at(f64::INFINITY, &model.fft);
+            Scene {
+                n,
+                hurst,
+                surface,
+                model,
+                h,
+            }
+        })
+    })
+}
+
 /// Prints a probe's lines, and writes them to the file the environment variable `var`
 /// names, if set.
 pub(crate) fn emit(out: &[String], var: &str) {
@@ -80,37 +109,38 @@ pub(crate) fn emit(out: &[String], var: &str) {
 #[ignore = "a probe: prints digests to compare before and after a change"]
 fn cg_bits() {
     let mut out = Vec::new();
-    for n in [128usize, 256] {
-        for hurst in [0.8, 0.3] {
-            let params = SurfaceParams::new(n, hurst, n as f64 / 2.0, 4.0, 11);
-            let surface = Surface::generate(&params).unwrap();
-            let model = Model::new(surface.grid().clone(), 1.0).unwrap();
-            let h = surface.heights_at(f64::INFINITY, &model.fft);
-            for preconditioned in [true, false] {
-                for p0 in [0.01, 0.1, 1.0] {
-                    let label = format!("n={n} H={hurst} pc={preconditioned} p0={p0}");
-                    let mut cg = ConstrainedCg::default();
-                    cg.preconditioned = preconditioned;
-                    let opts = SolveOptions::with_tol(1e-9);
-                    let problem = ContactProblem::new(&model, &h, p0).unwrap();
-                    let cold = cg.solve(&problem, Start::Cold, &opts);
-                    out.push(line(&format!("{label} cold"), &cold));
-                    if let Ok(prev) = &cold {
-                        let warm_problem = ContactProblem::new(&model, &h, p0 * 1.1).unwrap();
-                        let warm = cg.solve(&warm_problem, Start::Warm(prev), &opts);
-                        out.push(line(&format!("{label} warm"), &warm));
-                    }
+    for Scene {
+        n,
+        hurst,
+        surface: _,
+        model,
+        h,
+    } in scenes()
+    {
+        for preconditioned in [true, false] {
+            for p0 in [0.01, 0.1, 1.0] {
+                let label = format!("n={n} H={hurst} pc={preconditioned} p0={p0}");
+                let mut cg = ConstrainedCg::default();
+                cg.preconditioned = preconditioned;
+                let opts = SolveOptions::with_tol(1e-9);
+                let problem = ContactProblem::new(&model, &h, p0).unwrap();
+                let cold = cg.solve(&problem, Start::Cold, &opts);
+                out.push(line(&format!("{label} cold"), &cold));
+                if let Ok(prev) = &cold {
+                    let warm_problem = ContactProblem::new(&model, &h, p0 * 1.1).unwrap();
+                    let warm = cg.solve(&warm_problem, Start::Warm(prev), &opts);
+                    out.push(line(&format!("{label} warm"), &warm));
                 }
             }
-            if n == 128 {
-                failures(
-                    &mut ConstrainedCg::default(),
-                    &model,
-                    &h,
-                    &format!("n={n} H={hurst}"),
-                    &mut out,
-                );
-            }
+        }
+        if n == 128 {
+            failures(
+                &mut ConstrainedCg::default(),
+                &model,
+                &h,
+                &format!("n={n} H={hurst}"),
+                &mut out,
+            );
         }
     }
     emit(&out, "CG_BITS_OUT");

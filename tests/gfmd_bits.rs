@@ -6,12 +6,11 @@
 //!
 //! `cargo test --test suite gfmd_bits -- --ignored --nocapture`
 
-use persson_check::engine::contact::{ContactProblem, Model};
+use persson_check::engine::contact::ContactProblem;
 use persson_check::engine::solver::{Gfmd, SolveOptions, Solver, Start};
-use persson_check::engine::surface::{Surface, SurfaceParams};
 use persson_check::engine::sweep::{shell_steps, Sweep};
 
-use crate::cg_bits::{emit, failures, line};
+use crate::cg_bits::{emit, failures, line, scenes, Scene};
 
 /// Shells of the sweep, from the first above this magnification.
 const SWEEP_FROM: f64 = 3.0;
@@ -22,54 +21,55 @@ const SWEEP_SHELLS: usize = 4;
 #[ignore = "a probe: prints digests to compare before and after a change"]
 fn gfmd_bits() {
     let mut out = Vec::new();
-    for n in [128usize, 256] {
-        for hurst in [0.8, 0.3] {
-            let params = SurfaceParams::new(n, hurst, n as f64 / 2.0, 4.0, 11);
-            let surface = Surface::generate(&params).unwrap();
-            let model = Model::new(surface.grid().clone(), 1.0).unwrap();
-            let h = surface.heights_at(f64::INFINITY, &model.fft);
-            let opts = SolveOptions::with_tol(1e-9);
-            for p0 in [0.01, 0.1, 1.0] {
-                let label = format!("n={n} H={hurst} p0={p0}");
-                // One solver for both solves: the warm solve begins from the step the
-                // cold one ended with.
-                let mut gfmd = Gfmd::default();
-                let problem = ContactProblem::new(&model, &h, p0).unwrap();
-                let cold = gfmd.solve(&problem, Start::Cold, &opts);
-                out.push(line(&format!("{label} cold"), &cold));
-                if let Ok(prev) = &cold {
-                    let warm_problem = ContactProblem::new(&model, &h, p0 * 1.1).unwrap();
-                    let warm = gfmd.solve(&warm_problem, Start::Warm(prev), &opts);
-                    out.push(line(&format!("{label} warm"), &warm));
+    for Scene {
+        n,
+        hurst,
+        surface,
+        model,
+        h,
+    } in scenes()
+    {
+        let opts = SolveOptions::with_tol(1e-9);
+        for p0 in [0.01, 0.1, 1.0] {
+            let label = format!("n={n} H={hurst} p0={p0}");
+            // One solver for both solves: the warm solve begins from the step the
+            // cold one ended with.
+            let mut gfmd = Gfmd::default();
+            let problem = ContactProblem::new(&model, &h, p0).unwrap();
+            let cold = gfmd.solve(&problem, Start::Cold, &opts);
+            out.push(line(&format!("{label} cold"), &cold));
+            if let Ok(prev) = &cold {
+                let warm_problem = ContactProblem::new(&model, &h, p0 * 1.1).unwrap();
+                let warm = gfmd.solve(&warm_problem, Start::Warm(prev), &opts);
+                out.push(line(&format!("{label} warm"), &warm));
+            }
+        }
+        // A load search, then shells added one by one, warm-started from predicted
+        // states, with one solver throughout.
+        let steps = shell_steps(&surface, SWEEP_FROM, f64::INFINITY);
+        let mut sweep = Sweep::with_solver(&surface, &model, Box::new(Gfmd::default()), opts);
+        let label = format!("n={n} H={hurst} sweep");
+        match sweep.find_load(steps[0], 0.1) {
+            Ok(p0) => {
+                out.push(line(
+                    &format!("{label} load p0={:016x}", p0.to_bits()),
+                    &Ok(sweep.solution().unwrap().clone()),
+                ));
+                for &zeta in &steps[1..=SWEEP_SHELLS] {
+                    let step = sweep.solve_at(zeta, p0).cloned();
+                    out.push(line(&format!("{label} zeta={zeta:.6}"), &step));
                 }
             }
-            // A load search, then shells added one by one, warm-started from predicted
-            // states, with one solver throughout.
-            let steps = shell_steps(&surface, SWEEP_FROM, f64::INFINITY);
-            let mut sweep = Sweep::with_solver(&surface, &model, Box::new(Gfmd::default()), opts);
-            let label = format!("n={n} H={hurst} sweep");
-            match sweep.find_load(steps[0], 0.1) {
-                Ok(p0) => {
-                    out.push(line(
-                        &format!("{label} load p0={:016x}", p0.to_bits()),
-                        &Ok(sweep.solution().unwrap().clone()),
-                    ));
-                    for &zeta in &steps[1..=SWEEP_SHELLS] {
-                        let step = sweep.solve_at(zeta, p0).cloned();
-                        out.push(line(&format!("{label} zeta={zeta:.6}"), &step));
-                    }
-                }
-                Err(e) => out.push(format!("{label} load: err {e:?}")),
-            }
-            if n == 128 {
-                failures(
-                    &mut Gfmd::default(),
-                    &model,
-                    &h,
-                    &format!("n={n} H={hurst}"),
-                    &mut out,
-                );
-            }
+            Err(e) => out.push(format!("{label} load: err {e:?}")),
+        }
+        if n == 128 {
+            failures(
+                &mut Gfmd::default(),
+                &model,
+                &h,
+                &format!("n={n} H={hurst}"),
+                &mut out,
+            );
         }
     }
     emit(&out, "GFMD_BITS_OUT");
