@@ -22,6 +22,10 @@ use rustfft::{Fft, FftPlanner};
 
 use crate::engine::grid::Grid;
 
+mod blocks;
+
+use blocks::{gather, scatter, SharedMut, COLUMN_ORDER_MAX_N};
+
 /// Precomputed plans for real 2D transforms on one grid size.
 ///
 /// The plans are shared, immutable tables; per-thread scratch (a row or a block of
@@ -36,7 +40,7 @@ pub struct Fft2 {
     col_inv: Arc<dyn Fft<f64>>,
     block: usize,
     /// Whether the column pass visits the spectrum column by column
-    /// ([`COLUMN_ORDER_MAX_N`]).
+    /// ([`blocks::COLUMN_ORDER_MAX_N`]).
     by_column: bool,
     transforms: AtomicU64,
 }
@@ -84,14 +88,6 @@ const BLOCK_COLUMNS_MIN: usize = 4;
 /// Most columns in a block (small grids): enough for whole lines, few enough for several
 /// blocks per thread.
 const BLOCK_COLUMNS_MAX: usize = 16;
-/// Largest grid whose column pass gathers (and scatters) one column at a time; larger grids
-/// go row by row. Column by column, the block buffer is written contiguously but every row
-/// of the spectrum is visited once per column: cheap while those rows stay in cache and in
-/// the TLB. Row by row, each row is visited once but a row's values go to `block` places
-/// `n` values apart, and with `n` a power of two more than eight of them share one L1
-/// cache set. Measured (`benches/fft.rs`, one thread, against row by row): the transform
-/// pair 28% faster at 256^2, 12-17% at 1024^2, equal at 2048^2, 48% slower at 4096^2.
-const COLUMN_ORDER_MAX_N: usize = 1024;
 /// Tasks per thread of a row pass: a few, for load balance on a shared machine (not a
 /// measurement).
 const TASKS_PER_THREAD: usize = 4;
@@ -115,21 +111,6 @@ fn at_least<T: Clone + Default>(v: &mut Vec<T>, len: usize) -> &mut [T] {
         v.resize(len, T::default());
     }
     &mut v[..len]
-}
-
-/// A raw pointer that may be shared between rayon tasks that touch disjoint elements.
-#[derive(Clone, Copy)]
-struct SharedMut(*mut Complex64);
-// SAFETY: used only by the column pass, where each task reads and writes a disjoint set of
-// columns of one buffer that outlives the parallel loop.
-unsafe impl Send for SharedMut {}
-unsafe impl Sync for SharedMut {}
-
-impl SharedMut {
-    /// The pointer (a method, so that closures capture the whole `Send` wrapper).
-    fn get(self) -> *mut Complex64 {
-        self.0
-    }
 }
 
 impl Fft2 {
@@ -492,69 +473,6 @@ impl Fft2 {
                 unsafe { scatter(base, m, c0, buf, n, scale, by_column) };
             })
         });
-    }
-}
-
-/// Copies columns `c0..c0 + buf.len() / n` of the half spectrum at `base` (rows of `m`
-/// values) into `buf`, column after column, `n` values each; visiting the spectrum one
-/// column at a time or one row at a time ([`COLUMN_ORDER_MAX_N`]).
-///
-/// # Safety
-/// `base` points to `n m` values and no other thread touches these columns meanwhile.
-unsafe fn gather(
-    base: SharedMut,
-    m: usize,
-    c0: usize,
-    buf: &mut [Complex64],
-    n: usize,
-    by_column: bool,
-) {
-    let width = buf.len() / n;
-    if by_column {
-        for (c, column) in buf.chunks_exact_mut(n).enumerate() {
-            let top = base.get().add(c0 + c);
-            for (ky, b) in column.iter_mut().enumerate() {
-                *b = *top.add(ky * m);
-            }
-        }
-    } else {
-        for ky in 0..n {
-            let row = base.get().add(ky * m + c0);
-            for c in 0..width {
-                *buf.get_unchecked_mut(c * n + ky) = *row.add(c);
-            }
-        }
-    }
-}
-
-/// Writes `buf` (as filled by [`gather`]) back into its columns, times `scale`.
-///
-/// # Safety
-/// As [`gather`].
-unsafe fn scatter(
-    base: SharedMut,
-    m: usize,
-    c0: usize,
-    buf: &[Complex64],
-    n: usize,
-    scale: f64,
-    by_column: bool,
-) {
-    let width = buf.len() / n;
-    if by_column {
-        for (c, column) in buf.chunks_exact(n).enumerate() {
-            let top = base.get().add(c0 + c);
-            for (ky, b) in column.iter().enumerate() {
-                *top.add(ky * m) = *b * scale;
-            }
-        }
-    } else {
-        for ky in 0..n {
-            let row = base.get().add(ky * m + c0);
-            for c in 0..width {
-                *row.add(c) = *buf.get_unchecked(c * n + ky) * scale;
-            }
-        }
     }
 }
 
