@@ -397,6 +397,7 @@ impl Residual {
         let s = field::fold_chunks(
             p.len(),
             PointSums::default(),
+            #[inline(always)]
             |rg| {
                 let mut acc = PointSums::default();
                 for ((&pi, &ui), &hi) in p[rg.clone()].iter().zip(&u[rg.clone()]).zip(&h[rg]) {
@@ -419,8 +420,10 @@ impl Residual {
             &model.stiffness,
             spec,
             None,
+            #[inline(always)]
             |i, row, _, _| row.copy_from_slice(&u[i * n..(i + 1) * n]),
             scratch,
+            #[inline(always)]
             |i, ku, _| {
                 ku.iter()
                     .zip(&p[i * n..(i + 1) * n])
@@ -533,14 +536,22 @@ impl ContactSolution {
 
     /// Mean gap `mean(u - h)`, clipped at 0 point by point as in [`Self::gap`].
     pub fn mean_gap(&self, heights: &[f64]) -> f64 {
-        field::sum_zip(&self.displacement, heights, |u, h| gap(u, h).max(0.0))
-            / heights.len() as f64
+        field::sum_zip(
+            &self.displacement,
+            heights,
+            #[inline(always)]
+            |u, h| gap(u, h).max(0.0),
+        ) / heights.len() as f64
     }
 
     /// Elastic energy per unit area, `(1/2) mean[(p - p0) u]` (see [`crate::engine::elastic`]).
     pub fn elastic_energy(&self) -> f64 {
-        0.5 * field::sum_zip(&self.pressure, &self.displacement, |p, u| (p - self.p0) * u)
-            / self.pressure.len() as f64
+        0.5 * field::sum_zip(
+            &self.pressure,
+            &self.displacement,
+            #[inline(always)]
+            |p, u| (p - self.p0) * u,
+        ) / self.pressure.len() as f64
     }
 
     /// Displacement spectrum `u~(q)`.

@@ -6,6 +6,8 @@
 
 use rayon::prelude::*;
 
+use crate::engine::wide::wide;
+
 /// Elements per chunk of a reduction.
 pub const CHUNK: usize = 8192;
 
@@ -19,11 +21,16 @@ where
         .enumerate()
         .map(|(c, chunk)| {
             let base = c * CHUNK;
-            chunk
-                .iter()
-                .enumerate()
-                .map(|(k, &v)| f(base + k, v))
-                .sum::<f64>()
+            wide(
+                #[inline(always)]
+                || {
+                    chunk
+                        .iter()
+                        .enumerate()
+                        .map(|(k, &v)| f(base + k, v))
+                        .sum::<f64>()
+                },
+            )
         })
         .collect();
     partial.iter().sum()
@@ -38,7 +45,12 @@ where
     let partial: Vec<f64> = a
         .par_chunks(CHUNK)
         .zip(b.par_chunks(CHUNK))
-        .map(|(ca, cb)| ca.iter().zip(cb).map(|(&x, &y)| f(x, y)).sum::<f64>())
+        .map(|(ca, cb)| {
+            wide(
+                #[inline(always)]
+                || ca.iter().zip(cb).map(|(&x, &y)| f(x, y)).sum::<f64>(),
+            )
+        })
         .collect();
     partial.iter().sum()
 }
@@ -54,7 +66,12 @@ where
     let chunks = len.div_ceil(CHUNK);
     let partial: Vec<T> = (0..chunks)
         .into_par_iter()
-        .map(|c| f(c * CHUNK..((c + 1) * CHUNK).min(len)))
+        .map(|c| {
+            wide(
+                #[inline(always)]
+                || f(c * CHUNK..((c + 1) * CHUNK).min(len)),
+            )
+        })
         .collect();
     partial.into_iter().fold(init, combine)
 }
@@ -80,7 +97,12 @@ where
     a.par_chunks_mut(CHUNK)
         .zip(b.par_chunks_mut(CHUNK))
         .enumerate()
-        .map(|(c, (ca, cb))| f(c * CHUNK..c * CHUNK + ca.len(), ca, cb))
+        .map(|(c, (ca, cb))| {
+            wide(
+                #[inline(always)]
+                || f(c * CHUNK..c * CHUNK + ca.len(), ca, cb),
+            )
+        })
         .collect()
 }
 

@@ -17,7 +17,9 @@
 //! * [`load`]: the load that gives a target contact area;
 //! * [`sweep`]: one realization solved at a sequence of magnifications, warm-started;
 //! * [`scene`]: scene files (a surface and a solve);
-//! * [`mod@reference`]: closed-form solutions the solvers are tested against.
+//! * [`mod@reference`]: closed-form solutions the solvers are tested against;
+//! * [`wide`]: the element-wise loops compiled for the processor's widest vectors (AVX2)
+//!   where it has them, with the same numbers.
 
 pub mod boussinesq;
 pub mod contact;
@@ -32,3 +34,4 @@ pub mod solver;
 pub mod spectrum;
 pub mod surface;
 pub mod sweep;
+pub mod wide;

@@ -16,6 +16,8 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 
 use rayon::prelude::*;
+
+use crate::engine::wide::wide;
 use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::num_complex::Complex64;
 use rustfft::{Fft, FftPlanner};
@@ -318,7 +320,10 @@ impl Fft2 {
                         } else {
                             &mut []
                         };
-                        values.push(input(i, row, side_row, &old_chunk[k * n..(k + 1) * n]));
+                        values.push(wide(
+                            #[inline(always)]
+                            || input(i, row, side_row, &old_chunk[k * n..(k + 1) * n]),
+                        ));
                         self.r2c
                             .process_with_scratch(row, o, scratch)
                             .expect("r2c lengths are planned");
@@ -384,7 +389,10 @@ impl Fft2 {
                         } else {
                             &[]
                         };
-                        values.push(output(c * rows + k, o, side_row));
+                        values.push(wide(
+                            #[inline(always)]
+                            || output(c * rows + k, o, side_row),
+                        ));
                     }
                     values
                 })
@@ -417,17 +425,22 @@ impl Fft2 {
         self.column_blocks(spec, scratch_len, 1.0, |c0, buf, scratch| {
             self.col_fwd.process_with_scratch(buf, scratch);
             let k = &kernel.values[c0 * n..c0 * n + buf.len()];
-            if kernel.inverse {
-                // kv = k / N^2, and the inverse needs (1/k) / N^2 = N^-4 / kv.
-                let norm2 = kernel.norm * kernel.norm;
-                for (b, &kv) in buf.iter_mut().zip(k) {
-                    *b *= if kv > 0.0 { norm2 / kv } else { 0.0 };
-                }
-            } else {
-                for (b, &kv) in buf.iter_mut().zip(k) {
-                    *b *= kv;
-                }
-            }
+            wide(
+                #[inline(always)]
+                || {
+                    if kernel.inverse {
+                        // kv = k / N^2, and the inverse needs (1/k) / N^2 = N^-4 / kv.
+                        let norm2 = kernel.norm * kernel.norm;
+                        for (b, &kv) in buf.iter_mut().zip(k) {
+                            *b *= if kv > 0.0 { norm2 / kv } else { 0.0 };
+                        }
+                    } else {
+                        for (b, &kv) in buf.iter_mut().zip(k) {
+                            *b *= kv;
+                        }
+                    }
+                },
+            );
             self.col_inv.process_with_scratch(buf, scratch);
         });
     }
@@ -467,10 +480,16 @@ impl Fft2 {
                 let scratch = at_least(complex, scratch_len);
                 // SAFETY: block `b` owns columns c0..c0+width of every row; no other task
                 // touches them, and `spec` outlives this loop.
-                unsafe { gather(base, m, c0, buf, n, by_column) };
+                wide(
+                    #[inline(always)]
+                    || unsafe { gather(base, m, c0, buf, n, by_column) },
+                );
                 body(c0, buf, scratch);
                 // SAFETY: as above.
-                unsafe { scatter(base, m, c0, buf, n, scale, by_column) };
+                wide(
+                    #[inline(always)]
+                    || unsafe { scatter(base, m, c0, buf, n, scale, by_column) },
+                );
             })
         });
     }

@@ -302,10 +302,12 @@ impl<'a> Solve<'a> {
                 &model.stiffness,
                 &mut self.spec[..],
                 None,
+                #[inline(always)]
                 |i, row, _, _| view.gap_sums_into(i * n..(i + 1) * n, Some(row)),
                 // z shares r's memory: it is read while t is generated, before r is
                 // written (see `Fft2::convolve`).
                 &mut self.r[..],
+                #[inline(always)]
                 |i, z, _| {
                     let (p, u, h) = view.row(i, n);
                     let frame = view.frame;
@@ -357,6 +359,7 @@ impl<'a> Solve<'a> {
             &model.compliance,
             &mut self.spec[..],
             Some(&mut self.t[..]),
+            #[inline(always)]
             |i, row, t, z| {
                 let (p, u, h) = view.row(i, n);
                 let frame = view.frame;
@@ -377,6 +380,7 @@ impl<'a> Solve<'a> {
                 }
             },
             &mut self.r[..],
+            #[inline(always)]
             |i, r, t| {
                 let (p, u, h) = view.row(i, n);
                 let frame = view.frame;

@@ -235,6 +235,7 @@ impl<'a> View<'a> {
         fold_chunks(
             n2,
             GapSums::default(),
+            #[inline(always)]
             |rg| self.gap_sums_into(rg, None),
             GapSums::add,
         )

@@ -331,6 +331,7 @@ impl Dynamics<'_> {
             &model.stiffness,
             self.spec,
             None,
+            #[inline(always)]
             |i, row, _, _| {
                 let rg = i * n..(i + 1) * n;
                 for (((y, &ui), &vi), &hi) in row
@@ -343,6 +344,7 @@ impl Dynamics<'_> {
                 }
             },
             self.stress,
+            #[inline(always)]
             |i, ky, _| {
                 let rg = i * n..(i + 1) * n;
                 let mut acc = BalanceSums::default();
@@ -389,6 +391,7 @@ impl Dynamics<'_> {
             self.inverse_mass,
             self.spec,
             None,
+            #[inline(always)]
             |i, row, _, _| {
                 let rg = i * n..(i + 1) * n;
                 for ((((f, &ui), &vi), &hi), &k) in row
@@ -412,25 +415,30 @@ impl Dynamics<'_> {
         let problem = self.problem;
         let (h, p0, beta, tau) = (problem.heights, problem.p0, self.beta, self.momentum.tau);
         let (a, ky) = (&*self.accel, &*self.stress);
-        let powers = map_chunks_mut(self.u, self.v, |range, uc, vc| {
-            let (h, ky, a) = (&h[range.clone()], &ky[range.clone()], &a[range]);
-            let mut power = 0.0;
-            for ((((ui, vi), &hi), &k), &ai) in
-                uc.iter_mut().zip(vc.iter_mut()).zip(h).zip(ky).zip(a)
-            {
-                let y = look_ahead(*ui, *vi, beta, hi);
-                let s = k + p0;
-                let next = if held(y, hi, s) {
-                    hi
-                } else {
-                    (y + tau * ai).max(hi)
-                };
-                power += total_force(y, hi, s) * (next - *ui);
-                *vi = next - *ui;
-                *ui = next;
-            }
-            power
-        });
+        let powers = map_chunks_mut(
+            self.u,
+            self.v,
+            #[inline(always)]
+            |range, uc, vc| {
+                let (h, ky, a) = (&h[range.clone()], &ky[range.clone()], &a[range]);
+                let mut power = 0.0;
+                for ((((ui, vi), &hi), &k), &ai) in
+                    uc.iter_mut().zip(vc.iter_mut()).zip(h).zip(ky).zip(a)
+                {
+                    let y = look_ahead(*ui, *vi, beta, hi);
+                    let s = k + p0;
+                    let next = if held(y, hi, s) {
+                        hi
+                    } else {
+                        (y + tau * ai).max(hi)
+                    };
+                    power += total_force(y, hi, s) * (next - *ui);
+                    *vi = next - *ui;
+                    *ui = next;
+                }
+                power
+            },
+        );
         powers.iter().sum()
     }
 
