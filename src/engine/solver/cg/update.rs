@@ -39,7 +39,6 @@ impl Solve<'_> {
             &model.compliance,
             &mut self.spec[..],
             Some(&mut self.p[..]),
-            #[inline(always)]
             |i, row, pr, ur| {
                 let rg = i * n..(i + 1) * n;
                 let mut acc = [0.0; 3];
@@ -60,7 +59,6 @@ impl Solve<'_> {
                 acc
             },
             &mut self.u[..],
-            #[inline(always)]
             |i, u, p| contact_sums(u, p, &h[i * n..(i + 1) * n]),
         );
         Update::new(add_all(rows), add_all(outs))
@@ -72,31 +70,26 @@ impl Solve<'_> {
         let h = self.problem.heights;
         let (t, r) = (&self.t[..], &self.r[..]);
         let (scale, tau) = (step.frame.scale, step.tau);
-        let parts = map_chunks_mut(
-            self.p,
-            self.u,
-            #[inline(always)]
-            |range, pc, uc| {
-                let (t, r, h) = (&t[range.clone()], &r[range.clone()], &h[range]);
-                let mut acc = [0.0; 6];
-                for ((((pk, uk), &tk), &rk), &hk) in
-                    pc.iter_mut().zip(uc.iter_mut()).zip(t).zip(r).zip(h)
-                {
-                    let (q, clip, enter) = step.point(*pk, *uk, hk, tk);
-                    let u_new = scale * *uk - tau * rk;
-                    *pk = q;
-                    *uk = u_new;
-                    let w = if q > 0.0 { 1.0 } else { 0.0 };
-                    acc[0] += q;
-                    acc[1] += clip;
-                    acc[2] += enter;
-                    acc[3] += w * u_new;
-                    acc[4] += w * hk;
-                    acc[5] += w;
-                }
-                acc
-            },
-        );
+        let parts = map_chunks_mut(self.p, self.u, |range, pc, uc| {
+            let (t, r, h) = (&t[range.clone()], &r[range.clone()], &h[range]);
+            let mut acc = [0.0; 6];
+            for ((((pk, uk), &tk), &rk), &hk) in
+                pc.iter_mut().zip(uc.iter_mut()).zip(t).zip(r).zip(h)
+            {
+                let (q, clip, enter) = step.point(*pk, *uk, hk, tk);
+                let u_new = scale * *uk - tau * rk;
+                *pk = q;
+                *uk = u_new;
+                let w = if q > 0.0 { 1.0 } else { 0.0 };
+                acc[0] += q;
+                acc[1] += clip;
+                acc[2] += enter;
+                acc[3] += w * u_new;
+                acc[4] += w * hk;
+                acc[5] += w;
+            }
+            acc
+        });
         let [sum_p, clipped, entered, su, sh, cnt] = add_all(parts);
         Update::new([sum_p, clipped, entered], [su, sh, cnt])
     }
@@ -151,7 +144,6 @@ impl Solve<'_> {
             &model.compliance,
             &mut self.spec[..],
             Some(&mut self.p[..]),
-            #[inline(always)]
             |_, row, p, _| {
                 for (x, pj) in row.iter_mut().zip(p.iter_mut()) {
                     *pj *= s;
@@ -159,7 +151,6 @@ impl Solve<'_> {
                 }
             },
             &mut self.u[..],
-            #[inline(always)]
             |i, u, p| contact_sums(u, p, &h[i * n..(i + 1) * n]),
         );
         self.frame.scale = 1.0;
