@@ -37,7 +37,7 @@ ROWS = [
      "c_flux", "detail:flux_out", "near", None),
     ("(c) net over mean one-way flux, same step", "~0.12", 0.12264,
      "c_flux", "detail:net_over_gross", "near", None),
-    ("(c) non-contact entering contact, zeta 63 -> 63.3 (H = 0.5, a_r = 0.01)", "~1%", 0.01,
+    ("(c) non-contact entering contact, zeta 63 -> 63.3 (H = 0.5, a_r = 0.01; % of the non-contact)", "~1%", 0.01,
      "c_flux", "sensitivity:transition:zero_bin", "near", None),
     ("(c) re-entry share at a_r = 0.14 (H = 0.8)", "~62%", 0.62,
      "c_reentry", "detail:share_ar0.14", "near", None),

@@ -241,6 +241,7 @@ pub fn notes(rows: &[SensitivityRow], a_r_before: f64, a_r_after: f64) -> Vec<St
     });
     notes.extend(step_notes(rows));
     notes.extend(hypothesis_notes(rows));
+    notes.extend(summary_note(rows, &hits));
     notes.push(format!(
         "Direction: the caption's red (entered, 0.675%) exceeds its blue (left, 0.597%), \
          which at fixed load would make a_r grow with zeta by 0.078% of the area per step, \
@@ -263,9 +264,9 @@ fn step_notes(rows: &[SensitivityRow]) -> Vec<String> {
         .iter()
         .map(|(r, v)| {
             format!(
-                "{} (variance +{:.3}%, {} modes): in {}, out {}{}",
+                "{} (variance +{}%, {} modes): in {}, out {}{}",
                 r.label,
-                100.0 * v,
+                three_digits(100.0 * v),
                 r.modes_added.map_or("?".into(), |m| format!("{m:.0}")),
                 r.flux_in.text(100.0, 3, "%"),
                 r.flux_out.text(100.0, 3, "%"),
@@ -317,6 +318,48 @@ fn step_notes(rows: &[SensitivityRow]) -> Vec<String> {
     notes
 }
 
+/// `x` with three significant digits (at least one decimal).
+fn three_digits(x: f64) -> String {
+    let decimals = if x > 0.0 {
+        (2.0 - x.log10().floor()).max(1.0) as usize
+    } else {
+        1
+    };
+    format!("{x:.decimals$}")
+}
+
+/// The study in two sentences: the stated step's magnitude and net/gross against the
+/// paper's, and which rows give both of the paper's numbers (none where no step row is the
+/// stated step).
+fn summary_note(rows: &[SensitivityRow], hits: &[String]) -> Option<String> {
+    let stated = rows.iter().find(|r| {
+        r.parameter == "dzeta_over_zeta" && (r.value / PAPER_RELATIVE_STEP - 1.0).abs() < 1e-9
+    })?;
+    let n = stated.config.n;
+    let paper_mean = 0.5 * (PAPER_IN + PAPER_OUT);
+    let mean = 0.5 * (stated.flux_in.value + stated.flux_out.value);
+    let net = stated.net_over_gross.map_or(String::new(), |e| {
+        format!(", net/gross {}", e.text(1.0, 2, ""))
+    });
+    let mut text = format!(
+        "In sum ({n}x{n}): at the stated parameters the mean one-way flux is {:.3}%, {:.1} \
+         times below the paper's {:.3}%{net} (the paper's: {:.2}).",
+        100.0 * mean,
+        paper_mean / mean,
+        100.0 * paper_mean,
+        crate::experiments::reentry::net_over_gross(PAPER_IN, PAPER_OUT)
+    );
+    if hits.is_empty() {
+        text.push_str(" No row gives both of the paper's numbers.");
+    } else {
+        text.push_str(
+            " The rows that give both of the paper's numbers are listed above; the flux \
+             alone does not tell them apart.",
+        );
+    }
+    Some(text)
+}
+
 /// The misprint hypotheses (another Hurst exponent or contact area than stated) and the
 /// paper's transition scene, row by row against the paper.
 fn hypothesis_notes(rows: &[SensitivityRow]) -> Vec<String> {
@@ -355,13 +398,13 @@ fn hypothesis_notes(rows: &[SensitivityRow]) -> Vec<String> {
         if let Some(z) = r.zero_bin {
             notes.push(format!(
                 "The paper's transition scene ({}, {}x{}): {} of the non-contact at zeta \
-                 enters contact in the step (paper: about 1%; {:.2} times it), {} of the \
-                 contact area; a_r = {:.4} before the step.",
+                 enters contact in the step (paper: about 1%, {:.0} times as much), {} of \
+                 the contact area; a_r = {:.4} before the step.",
                 r.label,
                 r.config.n,
                 r.config.n,
-                z.text(100.0, 3, "%"),
-                z.value / 0.01,
+                z.text(100.0, 4, "%"),
+                0.01 / z.value,
                 r.flux_in_of_contact.text(100.0, 2, "%"),
                 r.contact_area.value
             ));
