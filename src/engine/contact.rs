@@ -536,22 +536,14 @@ impl ContactSolution {
 
     /// Mean gap `mean(u - h)`, clipped at 0 point by point as in [`Self::gap`].
     pub fn mean_gap(&self, heights: &[f64]) -> f64 {
-        field::sum_zip(
-            &self.displacement,
-            heights,
-            #[inline(always)]
-            |u, h| gap(u, h).max(0.0),
-        ) / heights.len() as f64
+        field::sum_zip(&self.displacement, heights, |u, h| gap(u, h).max(0.0))
+            / heights.len() as f64
     }
 
     /// Elastic energy per unit area, `(1/2) mean[(p - p0) u]` (see [`crate::engine::elastic`]).
     pub fn elastic_energy(&self) -> f64 {
-        0.5 * field::sum_zip(
-            &self.pressure,
-            &self.displacement,
-            #[inline(always)]
-            |p, u| (p - self.p0) * u,
-        ) / self.pressure.len() as f64
+        0.5 * field::sum_zip(&self.pressure, &self.displacement, |p, u| (p - self.p0) * u)
+            / self.pressure.len() as f64
     }
 
     /// Displacement spectrum `u~(q)`.

@@ -6,8 +6,11 @@
 
 use super::sensitivity::{SensitivityRow, PAPER_RELATIVE_STEP};
 use super::{PAPER_IN, PAPER_OUT};
-use crate::plot::{Axis, Figure, Point, Series, Style};
+use crate::plot::{significant, Axis, Figure, Point, Series, Style};
 use crate::stats::{Estimate, LineFit};
+
+/// The paper's mean one-way flux, `(in + out) / 2`, fraction of the nominal area.
+const PAPER_MEAN: f64 = 0.5 * (PAPER_IN + PAPER_OUT);
 
 /// Whether `e` matches the paper's `paper` value: within 10% of it, or within three
 /// standard errors.
@@ -145,7 +148,7 @@ pub fn step_scaling(rows: &[SensitivityRow]) -> Option<StepScaling> {
     let gross = |r: &SensitivityRow| 0.5 * (r.flux_in.value + r.flux_out.value);
     let ln_gross: Vec<f64> = steps.iter().map(|(r, _)| gross(r).ln()).collect();
     let fit = LineFit::fit(&ln_v, &ln_gross)?;
-    let target = (0.5 * (PAPER_IN + PAPER_OUT)).ln();
+    let target = PAPER_MEAN.ln();
     let ln_v_needed = (target - fit.intercept.value) / fit.slope.value;
     // The net flux, where it is non-zero.
     let (nx, ny): (Vec<f64>, Vec<f64>) = steps
@@ -266,7 +269,7 @@ fn step_notes(rows: &[SensitivityRow]) -> Vec<String> {
             format!(
                 "{} (variance +{}%, {} modes): in {}, out {}{}",
                 r.label,
-                three_digits(100.0 * v),
+                significant(100.0 * v, 3),
                 r.modes_added.map_or("?".into(), |m| format!("{m:.0}")),
                 r.flux_in.text(100.0, 3, "%"),
                 r.flux_out.text(100.0, 3, "%"),
@@ -296,7 +299,7 @@ fn step_notes(rows: &[SensitivityRow]) -> Vec<String> {
         text.push_str(&format!(
             ". The paper's mean one-way flux ({:.3}%) would need {:.1} times the variance the \
              stated step adds",
-            50.0 * (PAPER_IN + PAPER_OUT),
+            100.0 * PAPER_MEAN,
             s.variance_factor
         ));
         if let Some(step) = s.step {
@@ -318,16 +321,6 @@ fn step_notes(rows: &[SensitivityRow]) -> Vec<String> {
     notes
 }
 
-/// `x` with three significant digits (at least one decimal).
-fn three_digits(x: f64) -> String {
-    let decimals = if x > 0.0 {
-        (2.0 - x.log10().floor()).max(1.0) as usize
-    } else {
-        1
-    };
-    format!("{x:.decimals$}")
-}
-
 /// The study in two sentences: the stated step's magnitude and net/gross against the
 /// paper's, and which rows give both of the paper's numbers (none where no step row is the
 /// stated step).
@@ -336,7 +329,6 @@ fn summary_note(rows: &[SensitivityRow], hits: &[String]) -> Option<String> {
         r.parameter == "dzeta_over_zeta" && (r.value / PAPER_RELATIVE_STEP - 1.0).abs() < 1e-9
     })?;
     let n = stated.config.n;
-    let paper_mean = 0.5 * (PAPER_IN + PAPER_OUT);
     let mean = 0.5 * (stated.flux_in.value + stated.flux_out.value);
     let net = stated.net_over_gross.map_or(String::new(), |e| {
         format!(", net/gross {}", e.text(1.0, 2, ""))
@@ -345,8 +337,8 @@ fn summary_note(rows: &[SensitivityRow], hits: &[String]) -> Option<String> {
         "In sum ({n}x{n}): at the stated parameters the mean one-way flux is {:.3}%, {:.1} \
          times below the paper's {:.3}%{net} (the paper's: {:.2}).",
         100.0 * mean,
-        paper_mean / mean,
-        100.0 * paper_mean,
+        PAPER_MEAN / mean,
+        100.0 * PAPER_MEAN,
         crate::experiments::reentry::net_over_gross(PAPER_IN, PAPER_OUT)
     );
     if hits.is_empty() {
@@ -554,7 +546,7 @@ mod tests {
         let s = step_scaling(&rows).unwrap();
         assert!((s.gross_exponent.value - 0.5).abs() < 1e-9, "{:?}", s);
         assert!((s.net_exponent.unwrap().value - 1.0).abs() < 1e-9);
-        let k = (0.5 * (PAPER_IN + PAPER_OUT) / 0.002f64).powi(2);
+        let k = (PAPER_MEAN / 0.002f64).powi(2);
         assert!(
             (s.variance_factor / k - 1.0).abs() < 1e-9,
             "{} vs {k}",
@@ -563,7 +555,7 @@ mod tests {
         // The step: variance ~ step^2, so sqrt(k) times the stated step.
         assert!((s.step.unwrap() / (k.sqrt() * PAPER_RELATIVE_STEP) - 1.0).abs() < 1e-9);
         // Net/gross there: 0.0002 k / 0.00636.
-        let ng = 0.0002 * k / (0.5 * (PAPER_IN + PAPER_OUT));
+        let ng = 0.0002 * k / PAPER_MEAN;
         assert!((s.net_over_gross.unwrap() / ng - 1.0).abs() < 1e-9);
     }
 
