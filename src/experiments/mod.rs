@@ -194,7 +194,11 @@ impl Table {
 
     /// Appends a row.
     pub fn push(&mut self, row: Vec<f64>) {
-        debug_assert_eq!(row.len(), self.columns.len());
+        assert_eq!(
+            row.len(),
+            self.columns.len(),
+            "a row has one value per column"
+        );
         self.rows.push(row);
     }
 
