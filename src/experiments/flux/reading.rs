@@ -6,6 +6,7 @@
 
 use super::sensitivity::{SensitivityRow, PAPER_RELATIVE_STEP};
 use super::{PAPER_IN, PAPER_OUT};
+use crate::experiments::reentry::net_over_gross;
 use crate::plot::{significant, Axis, Figure, Point, Series, Style};
 use crate::stats::{Estimate, LineFit};
 
@@ -312,7 +313,7 @@ fn step_notes(rows: &[SensitivityRow]) -> Vec<String> {
         if let Some(ng) = s.net_over_gross {
             text.push_str(&format!(
                 "; there the net/gross would be about {ng:.2}, against the paper's {:.2}",
-                crate::experiments::reentry::net_over_gross(PAPER_IN, PAPER_OUT)
+                net_over_gross(PAPER_IN, PAPER_OUT)
             ));
         }
         text.push_str(". An extrapolation of these rows, not a measurement.");
@@ -339,7 +340,7 @@ fn summary_note(rows: &[SensitivityRow], hits: &[String]) -> Option<String> {
         100.0 * mean,
         PAPER_MEAN / mean,
         100.0 * PAPER_MEAN,
-        crate::experiments::reentry::net_over_gross(PAPER_IN, PAPER_OUT)
+        net_over_gross(PAPER_IN, PAPER_OUT)
     );
     if hits.is_empty() {
         text.push_str(" No row gives both of the paper's numbers.");
