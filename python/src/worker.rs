@@ -1,7 +1,8 @@
 //! The cancellable worker: long computations run on a worker thread with the GIL
 //! released, while the calling thread waits for it and checks for signals every
 //! [`POLL`]. On Ctrl-C (or an exception from a progress callback) it raises a flag that
-//! the solver's per-iteration monitor sees ([`Hooked`]), and the worker stops at its next
+//! the solver's per-iteration monitor sees ([`Hook::wrap`]; iteration 0 of every solve
+//! comes right after its set-up), and the worker stops at its next
 //! iteration by unwinding with [`Cancelled`] out of the solver's loop; the exception is
 //! raised once the worker has stopped.
 
@@ -14,8 +15,8 @@ use std::time::Duration;
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 
-use persson_check::engine::contact::{ContactProblem, ContactSolution};
-use persson_check::engine::solver::{Progress, SolveOptions, Solver, Start};
+use persson_check::engine::contact::ContactProblem;
+use persson_check::engine::solver::{Progress, Solver, Watched};
 use persson_check::error::Error;
 use persson_check::tasks::parse::{self, MAX_THREADS};
 use persson_check::tasks::sweep::SweepStep;
@@ -55,9 +56,10 @@ pub struct Hook {
 impl Hook {
     /// `solver`, stopped by the cancel flag and reporting its progress.
     pub fn wrap(&self, solver: Box<dyn Solver + Send>) -> Box<dyn Solver + Send> {
-        Box::new(Hooked {
+        let hook = self.clone();
+        Box::new(Watched {
             inner: solver,
-            hook: self.clone(),
+            watch: move |_: &ContactProblem, p: Progress| hook.iteration(p),
         })
     }
 
@@ -82,34 +84,6 @@ impl Hook {
                 let _ = tx.send(Event::Progress(p));
             }
         }
-    }
-}
-
-/// A solver whose monitor stops the solve when the cancel flag is raised (the one point
-/// where every solver hands control back) and forwards its progress.
-struct Hooked {
-    inner: Box<dyn Solver + Send>,
-    hook: Hook,
-}
-
-impl Solver for Hooked {
-    fn name(&self) -> &'static str {
-        self.inner.name()
-    }
-
-    fn solve_monitored(
-        &mut self,
-        problem: &ContactProblem,
-        start: Start,
-        opts: &SolveOptions,
-        monitor: &mut dyn FnMut(Progress),
-    ) -> persson_check::Result<ContactSolution> {
-        self.hook.stop_if_cancelled();
-        let hook = &self.hook;
-        self.inner.solve_monitored(problem, start, opts, &mut |p| {
-            hook.iteration(p);
-            monitor(p);
-        })
     }
 }
 

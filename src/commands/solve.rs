@@ -5,11 +5,11 @@ use std::path::PathBuf;
 use clap::Args as ClapArgs;
 use indicatif::{ProgressBar, ProgressStyle};
 
-use persson_check::engine::contact::{ContactProblem, ContactSolution};
+use persson_check::engine::contact::ContactProblem;
 use persson_check::engine::grid::{MAX_N, MIN_N};
 use persson_check::engine::scene::SolveScene;
 use persson_check::engine::solver::SolverKind;
-use persson_check::engine::solver::{Progress, SolveOptions, Solver, Start};
+use persson_check::engine::solver::{Progress, Start, Watched};
 use persson_check::engine::surface::Surface;
 use persson_check::error::{Error, Result};
 use persson_check::tasks::solve::{self, Origin, SolveRequest, Solved};
@@ -116,9 +116,18 @@ pub fn run(args: Args) -> Result<()> {
         e_star,
     };
     let bar = spinner(kind);
-    let mut solver = Monitored {
+    // Every 16th iteration ticks the spinner.
+    let mut solver = Watched {
         inner: kind.build(),
-        bar: &bar,
+        watch: |problem: &ContactProblem, p: Progress| {
+            if p.iteration % 16 == 0 {
+                bar.set_message(format!(
+                    "p0 {:.4e}  iteration {}  residual {:.2e}",
+                    problem.p0, p.iteration, p.residual
+                ));
+                bar.tick();
+            }
+        },
     };
     let solved = solve::solve(&surface, &request, &mut solver, Start::Cold, origin, &FLAGS)?;
     bar.finish_and_clear();
@@ -144,39 +153,6 @@ fn read_heights(path: &std::path::Path, file_lambda_l: Option<f64>) -> Result<Su
         Error::InvalidInput { field, .. } if field == "lambda_l" => HEIGHTS_FLAGS.rename(e),
         _ => Error::bad_file(path, e.to_string()),
     })
-}
-
-/// A solver whose iterations tick a progress bar.
-struct Monitored<'a> {
-    inner: Box<dyn Solver + Send>,
-    bar: &'a ProgressBar,
-}
-
-impl Solver for Monitored<'_> {
-    fn name(&self) -> &'static str {
-        self.inner.name()
-    }
-
-    fn solve_monitored(
-        &mut self,
-        problem: &ContactProblem,
-        start: Start,
-        opts: &SolveOptions,
-        monitor: &mut dyn FnMut(Progress),
-    ) -> Result<ContactSolution> {
-        let bar = self.bar;
-        let p0 = problem.p0;
-        self.inner.solve_monitored(problem, start, opts, &mut |p| {
-            if p.iteration % 16 == 0 {
-                bar.set_message(format!(
-                    "p0 {p0:.4e}  iteration {}  residual {:.2e}",
-                    p.iteration, p.residual
-                ));
-                bar.tick();
-            }
-            monitor(p);
-        })
-    }
 }
 
 fn spinner(kind: SolverKind) -> ProgressBar {

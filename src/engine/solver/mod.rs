@@ -173,3 +173,33 @@ impl<M: executor::Method> Solver for M {
         executor::run(solve, opts.max_iter, monitor)
     }
 }
+
+/// A solver whose every iteration is also shown to `watch`, with the problem being
+/// solved: a progress display, or a check that stops the solve. The caller's own monitor
+/// still sees every iteration.
+pub struct Watched<F> {
+    /// The solver that does the work.
+    pub inner: Box<dyn Solver + Send>,
+    /// Sees each iteration of every solve.
+    pub watch: F,
+}
+
+impl<F: FnMut(&ContactProblem, Progress)> Solver for Watched<F> {
+    fn name(&self) -> &'static str {
+        self.inner.name()
+    }
+
+    fn solve_monitored(
+        &mut self,
+        problem: &ContactProblem,
+        start: Start,
+        opts: &SolveOptions,
+        monitor: &mut dyn FnMut(Progress),
+    ) -> Result<ContactSolution> {
+        let watch = &mut self.watch;
+        self.inner.solve_monitored(problem, start, opts, &mut |p| {
+            watch(problem, p);
+            monitor(p);
+        })
+    }
+}
