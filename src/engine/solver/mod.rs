@@ -203,3 +203,47 @@ impl<F: FnMut(&ContactProblem, Progress)> Solver for Watched<F> {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::engine::contact::Model;
+    use crate::engine::surface::{Surface, SurfaceParams};
+
+    #[test]
+    fn watched_sees_every_iteration_and_leaves_the_solution_alone() {
+        let surface = Surface::generate(&SurfaceParams::new(32, 0.8, 16.0, 2.0, 3)).unwrap();
+        let model = Model::new(surface.grid().clone(), 1.0).unwrap();
+        let heights = surface.heights_at(surface.zeta_max(), &model.fft);
+        let problem = ContactProblem::new(&model, &heights, 0.05).unwrap();
+        let opts = SolveOptions::with_tol(1e-8);
+        let plain = SolverKind::Gfmd
+            .build()
+            .solve(&problem, Start::Cold, &opts)
+            .unwrap();
+
+        let mut watched_p0 = Vec::new();
+        let mut watched = Vec::new();
+        let mut seen = Vec::new();
+        let solution = Watched {
+            inner: SolverKind::Gfmd.build(),
+            watch: |problem: &ContactProblem, p: Progress| {
+                watched_p0.push(problem.p0);
+                watched.push(p.iteration);
+            },
+        }
+        .solve_monitored(&problem, Start::Cold, &opts, &mut |p| {
+            seen.push(p.iteration)
+        })
+        .unwrap();
+
+        assert_eq!(solution.pressure, plain.pressure);
+        assert_eq!(
+            watched, seen,
+            "the watcher and the caller's monitor see the same"
+        );
+        assert_eq!(watched.first(), Some(&0));
+        assert!(watched.len() >= solution.stats.iterations);
+        assert!(watched_p0.iter().all(|&p0| p0 == 0.05));
+    }
+}
