@@ -34,4 +34,6 @@ pub mod solver;
 pub mod spectrum;
 pub mod surface;
 pub mod sweep;
+#[cfg(test)]
+pub(crate) mod testing;
 pub mod wide;

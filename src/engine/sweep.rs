@@ -256,11 +256,11 @@ pub fn shell_steps(surface: &Surface, zeta_from: f64, zeta_to: f64) -> Vec<f64> 
 mod tests {
     use super::*;
     use crate::engine::surface::SurfaceParams;
+    use crate::engine::testing::rough_contact;
 
     #[test]
     fn sweep_reaches_the_cold_solution_and_finds_loads() {
-        let surface = Surface::generate(&SurfaceParams::new(64, 0.8, 32.0, 4.0, 9)).unwrap();
-        let model = Model::new(surface.grid().clone(), 1.0).unwrap();
+        let (surface, model) = rough_contact(64, 0.8, 9);
         let opts = SolveOptions::with_tol(1e-10);
         let mut sweep = Sweep::new(&surface, &model, SolverKind::Cg, opts);
         let p0 = sweep.find_load(4.0, 0.2).unwrap();
@@ -281,8 +281,7 @@ mod tests {
         // Under a load far above the full-contact pressure every point stays in contact,
         // and p + K dh is the exact solution at the new magnification: the warm solve has
         // nothing left to do, while the previous solution alone needs iterations.
-        let surface = Surface::generate(&SurfaceParams::new(64, 0.8, 32.0, 4.0, 3)).unwrap();
-        let model = Model::new(surface.grid().clone(), 1.0).unwrap();
+        let (surface, model) = rough_contact(64, 0.8, 3);
         let opts = SolveOptions::with_tol(1e-10);
         let p0 = 20.0;
         let (z0, z1) = (4.0, 6.0);

@@ -207,13 +207,11 @@ impl<F: FnMut(&ContactProblem, Progress)> Solver for Watched<F> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::engine::contact::Model;
-    use crate::engine::surface::{Surface, SurfaceParams};
+    use crate::engine::testing::rough_contact;
 
     #[test]
     fn watched_sees_every_iteration_and_leaves_the_solution_alone() {
-        let surface = Surface::generate(&SurfaceParams::new(32, 0.8, 16.0, 2.0, 3)).unwrap();
-        let model = Model::new(surface.grid().clone(), 1.0).unwrap();
+        let (surface, model) = rough_contact(32, 0.8, 3);
         let heights = surface.heights_at(surface.zeta_max(), &model.fft);
         let problem = ContactProblem::new(&model, &heights, 0.05).unwrap();
         let opts = SolveOptions::with_tol(1e-8);

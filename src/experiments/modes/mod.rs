@@ -333,8 +333,8 @@ pub(super) fn golden(x: f64) -> f64 {
 pub(crate) mod tests {
     use super::*;
     use crate::engine::solver::{SolveOptions, SolverKind};
-    use crate::engine::surface::{Surface, SurfaceParams};
     use crate::engine::sweep::Sweep;
+    use crate::engine::testing::rough_contact;
     use crate::experiments::Criteria;
 
     #[test]
@@ -342,8 +342,7 @@ pub(crate) mod tests {
         // At a load far above the pressure fluctuations the contact stays complete: u = h
         // + const, so a band holds nothing before resolution and exactly its full-contact
         // energy once resolved, E_norm = Theta(zeta - zeta_t) with a_r = 1.
-        let surface = Surface::generate(&SurfaceParams::new(64, 0.8, 32.0, 4.0, 3)).unwrap();
-        let model = Model::new(surface.grid().clone(), 1.0).unwrap();
+        let (surface, model) = rough_contact(64, 0.8, 3);
         let band = Band::new(&surface, 3.0, 0.1, 1.0).unwrap();
         assert!(band.zeta_lo < 3.0 && band.zeta_hi > 3.0 && band.modes.len() > 10);
         let mut sweep = Sweep::new(

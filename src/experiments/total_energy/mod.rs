@@ -371,13 +371,13 @@ mod tests {
     use crate::engine::solver::{SolveOptions, SolverKind};
     use crate::engine::surface::SurfaceParams;
     use crate::engine::sweep::Sweep;
+    use crate::engine::testing::rough_contact;
 
     #[test]
     fn full_contact_energy_is_persson_s_exactly() {
         // At a load far above the pressure fluctuations, u = h + const: the total energy
         // equals E_P = E_c (a_r = 1, S = 1) at every magnification.
-        let surface = Surface::generate(&SurfaceParams::new(64, 0.5, 32.0, 4.0, 2)).unwrap();
-        let model = Model::new(surface.grid().clone(), 1.0).unwrap();
+        let (surface, model) = rough_contact(64, 0.5, 2);
         let b = Broadening::new(&surface.shells(), 1.0).unwrap();
         let p0 = 8.0;
         let original = Prediction::original(&b, p0).unwrap();
