@@ -13,7 +13,8 @@
 //! * [`contact`]: the problem, its solution and the solver-independent residual;
 //! * [`solver`]: the [`solver::Solver`] trait, GFMD and constrained conjugate gradients on
 //!   one scaffold (an executor that runs either, their work space, warm starts and the
-//!   packaging of a solution);
+//!   packaging of a solution), and [`solver::Watched`], which shows every iteration to a
+//!   progress display or a cancel check;
 //! * [`load`]: the load that gives a target contact area;
 //! * [`sweep`]: one realization solved at a sequence of magnifications, warm-started;
 //! * [`scene`]: scene files (a surface and a solve);

@@ -13,7 +13,7 @@
 //! of the paper's finding ([`Check`]) and golden values), then a thin builder of the
 //! account, tables and figures.
 //!
-//! Every check is decided by one rule, [`crate::stats::decide`] ([`Check::claim`]): a
+//! Every check is decided by one rule, [`crate::stats::decide`] ([`Check::new`]): a
 //! claim about the interval `value +- z std_error`, not decided without an error bar (one
 //! realization). An undecided check says so in its detail and leaves the reproduction
 //! undecided; texts print "(no error bar with one realization)" where an error bar would

@@ -33,8 +33,8 @@
 //!
 //! Both validations share the scene and its jobs (one realization each). The statistics of
 //! the bins are pure functions (`bins`); each validation derives its statistics, then its
-//! findings (details, checks, golden values), then its account and figure ([`diffusion`],
-//! [`drift`]); the tables both show are in `tables`.
+//! findings (details, checks, golden values), then its account and figure (`diffusion`,
+//! `drift`); the tables both show are in `tables`.
 
 mod bins;
 mod diffusion;
