@@ -66,7 +66,7 @@ impl Experiment for Coin {
         })
     }
 
-    fn headline(_run: &Run<Self>, s: &CoinStats) -> (Estimate, f64) {
+    fn headline(s: &CoinStats) -> (Estimate, f64) {
         (s.mean, 0.5)
     }
 

@@ -413,7 +413,7 @@ pub trait Experiment {
     fn stats(run: &Run<Self>) -> Result<Self::Stats>;
 
     /// The headline statistic and Persson's prediction of it.
-    fn headline(run: &Run<Self>, stats: &Self::Stats) -> (Estimate, f64);
+    fn headline(stats: &Self::Stats) -> (Estimate, f64);
 
     /// Secondary statistics, with stable keys.
     fn details(_run: &Run<Self>, _stats: &Self::Stats) -> Vec<Detail> {
@@ -479,7 +479,7 @@ pub trait Experiment {
             results,
         };
         let stats = Self::stats(&run)?;
-        let (measured, persson) = Self::headline(&run, &stats);
+        let (measured, persson) = Self::headline(&stats);
         let max_residual = results
             .iter()
             .map(|(_, r)| Self::Scene::residual(r))

@@ -231,7 +231,7 @@ impl Experiment for ContactArea {
         Ok(AreaStats::of(run.scene, run.results))
     }
 
-    fn headline(_run: &Run, s: &AreaStats) -> (Estimate, f64) {
+    fn headline(s: &AreaStats) -> (Estimate, f64) {
         (s.kappa, persson_kappa())
     }
 

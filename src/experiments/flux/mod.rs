@@ -256,7 +256,7 @@ impl Experiment for Flux {
         Ok(FluxStats::of(run.scene, run.results))
     }
 
-    fn headline(_run: &Run, s: &FluxStats) -> (Estimate, f64) {
+    fn headline(s: &FluxStats) -> (Estimate, f64) {
         (s.steps.ratio, 0.0)
     }
 

@@ -45,7 +45,7 @@ impl Experiment for ModeFrozen {
         Ok(FrozenStats::of(run.scene, &loads))
     }
 
-    fn headline(_run: &Run, s: &FrozenStats) -> (Estimate, f64) {
+    fn headline(s: &FrozenStats) -> (Estimate, f64) {
         (s.headline(), 0.0)
     }
 

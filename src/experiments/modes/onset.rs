@@ -107,7 +107,7 @@ impl Experiment for ModeOnset {
         Ok(OnsetStats::of(run.scene, &loads))
     }
 
-    fn headline(_run: &Run, s: &OnsetStats) -> (Estimate, f64) {
+    fn headline(s: &OnsetStats) -> (Estimate, f64) {
         (s.headline, 0.0)
     }
 

@@ -250,7 +250,7 @@ impl Experiment for Reentry {
         )))
     }
 
-    fn headline(_run: &Run, s: &ReentryStats) -> (Estimate, f64) {
+    fn headline(s: &ReentryStats) -> (Estimate, f64) {
         (s.shares[0].share, 0.0)
     }
 

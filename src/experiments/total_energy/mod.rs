@@ -331,7 +331,7 @@ impl Experiment for TotalEnergy {
     }
 
     /// `E_exa / E_c` at full resolution and the headline load, against Persson's 1.
-    fn headline(_run: &Run, s: &EnergyStats) -> (Estimate, f64) {
+    fn headline(s: &EnergyStats) -> (Estimate, f64) {
         (s.headline.head.corrected, 1.0)
     }
 

@@ -64,7 +64,7 @@ impl Experiment for Diffusion {
         Ok(DiffusionStats::of(run.scene, run.results))
     }
 
-    fn headline(_run: &Run, s: &DiffusionStats) -> (Estimate, f64) {
+    fn headline(s: &DiffusionStats) -> (Estimate, f64) {
         (s.low, 1.0)
     }
 

@@ -69,7 +69,7 @@ impl Experiment for Drift {
         Ok(DriftStats::of(run.scene, run.results))
     }
 
-    fn headline(_run: &Run, s: &DriftStats) -> (Estimate, f64) {
+    fn headline(s: &DriftStats) -> (Estimate, f64) {
         (s.mu_c, 0.0)
     }
 
