@@ -80,7 +80,7 @@ use rayon::prelude::*;
 use rustfft::num_complex::Complex64;
 
 use crate::engine::contact::{ContactProblem, ContactSolution, Residual};
-use crate::engine::fft::Kernel;
+use crate::engine::fft::{FusedPass, Kernel};
 use crate::engine::field::map_chunks_mut;
 use crate::engine::solver::executor::{Iteration, Method, Verdict};
 use crate::engine::solver::workspace::{warm_start, Record, Workspace};
@@ -231,6 +231,99 @@ impl Balance {
     }
 }
 
+/// The look-ahead positions `y = max(u + beta v, h)` of a step, row by row.
+#[derive(Clone, Copy)]
+struct LookAhead<'a> {
+    u: &'a [f64],
+    v: &'a [f64],
+    h: &'a [f64],
+    beta: f64,
+    n: usize,
+}
+
+impl<'a> LookAhead<'a> {
+    /// The look-ahead `max(u + beta v, h)` of `problem`'s heights.
+    fn new(problem: &'a ContactProblem, u: &'a [f64], v: &'a [f64], beta: f64) -> Self {
+        Self {
+            u,
+            v,
+            h: problem.heights,
+            beta,
+            n: problem.model.grid.n(),
+        }
+    }
+
+    /// Row `i` of `u`, `v` and `h`.
+    #[inline(always)]
+    fn row(&self, i: usize) -> (&'a [f64], &'a [f64], &'a [f64]) {
+        let rg = i * self.n..(i + 1) * self.n;
+        (&self.u[rg.clone()], &self.v[rg.clone()], &self.h[rg])
+    }
+}
+
+/// Step 1 as the fused pass of `K y`: the look-ahead position generated, the sums of
+/// [`Balance`] taken over its stress `s = K y + p0`.
+struct StressPass<'a> {
+    at: LookAhead<'a>,
+    p0: f64,
+}
+
+impl FusedPass for StressPass<'_> {
+    type Generated = ();
+    type Consumed = BalanceSums;
+
+    #[inline(always)]
+    fn generate(&self, i: usize, row: &mut [f64], _: &mut [f64], _: &[f64]) {
+        let beta = self.at.beta;
+        let (u, v, h) = self.at.row(i);
+        for (((y, &ui), &vi), &hi) in row.iter_mut().zip(u).zip(v).zip(h) {
+            *y = look_ahead(ui, vi, beta, hi);
+        }
+    }
+
+    #[inline(always)]
+    fn consume(&self, i: usize, ky: &[f64], _: &[f64]) -> BalanceSums {
+        let (beta, p0) = (self.at.beta, self.p0);
+        let (u, v, h) = self.at.row(i);
+        let mut acc = BalanceSums::default();
+        for (((&k, &ui), &vi), &hi) in ky.iter().zip(u).zip(v).zip(h) {
+            let s = k + p0;
+            let p = pressure(look_ahead(ui, vi, beta, hi), hi, s);
+            acc.unbalanced += (s - p) * (s - p);
+            acc.sum_p += p;
+            acc.sum_p2 += p * p;
+            acc.nonfinite |= !s.is_finite();
+        }
+        acc
+    }
+}
+
+/// Step 2 as the fused pass of `M^-1 F`: the total force at the look-ahead position, with
+/// the wall's reaction, generated from its stress.
+struct ForcePass<'a> {
+    at: LookAhead<'a>,
+    /// `K y` at the look-ahead position.
+    stress: &'a [f64],
+    p0: f64,
+}
+
+impl FusedPass for ForcePass<'_> {
+    type Generated = ();
+    type Consumed = ();
+
+    #[inline(always)]
+    fn generate(&self, i: usize, row: &mut [f64], _: &mut [f64], _: &[f64]) {
+        let (beta, p0, n) = (self.at.beta, self.p0, self.at.n);
+        let (u, v, h) = self.at.row(i);
+        let ky = &self.stress[i * n..(i + 1) * n];
+        for ((((f, &ui), &vi), &hi), &k) in row.iter_mut().zip(u).zip(v).zip(h).zip(ky) {
+            *f = total_force(look_ahead(ui, vi, beta, hi), hi, k + p0);
+        }
+    }
+
+    fn consume(&self, _: usize, _: &[f64], _: &[f64]) {}
+}
+
 /// One solve's state: the problem, the fields, the masses and the schedule.
 pub struct Dynamics<'a> {
     problem: &'a ContactProblem<'a>,
@@ -324,57 +417,24 @@ impl Dynamics<'_> {
     fn stress(&mut self) -> Balance {
         let problem = self.problem;
         let model = problem.model;
-        let n = model.grid.n();
-        let (h, p0, beta) = (problem.heights, problem.p0, self.beta);
-        let (u, v) = (&*self.u, &*self.v);
-        let (_, rows) = model.fft.convolve(
-            &model.stiffness,
-            self.spec,
-            None,
-            #[inline(always)]
-            |i, row, _, _| {
-                let rg = i * n..(i + 1) * n;
-                for (((y, &ui), &vi), &hi) in row
-                    .iter_mut()
-                    .zip(&u[rg.clone()])
-                    .zip(&v[rg.clone()])
-                    .zip(&h[rg])
-                {
-                    *y = look_ahead(ui, vi, beta, hi);
-                }
-            },
-            self.stress,
-            #[inline(always)]
-            |i, ky, _| {
-                let rg = i * n..(i + 1) * n;
-                let mut acc = BalanceSums::default();
-                for (((&k, &ui), &vi), &hi) in ky
-                    .iter()
-                    .zip(&u[rg.clone()])
-                    .zip(&v[rg.clone()])
-                    .zip(&h[rg])
-                {
-                    let s = k + p0;
-                    let p = pressure(look_ahead(ui, vi, beta, hi), hi, s);
-                    acc.unbalanced += (s - p) * (s - p);
-                    acc.sum_p += p;
-                    acc.sum_p2 += p * p;
-                    acc.nonfinite |= !s.is_finite();
-                }
-                acc
-            },
-        );
+        let pass = StressPass {
+            at: LookAhead::new(problem, self.u, self.v, self.beta),
+            p0: problem.p0,
+        };
+        let (_, rows) = model
+            .fft
+            .convolve(&model.stiffness, self.spec, None, &pass, self.stress);
         let sums = rows
             .into_iter()
             .fold(BalanceSums::default(), BalanceSums::add);
-        let npts = h.len() as f64;
+        let npts = problem.heights.len() as f64;
         // Where no point is pressed, the full residual measures the stress against p0;
         // this estimate only keeps its scale off zero. The two differ only there, where
         // the estimate's larger value steers the step control: kept as it is.
         let rms_p = Residual::rms_of(sums.sum_p2, npts).max(f64::MIN_POSITIVE);
         Balance {
             equilibrium: Residual::equilibrium_of(sums.unbalanced, npts, rms_p),
-            load: Residual::load_of(sums.sum_p, npts, p0),
+            load: Residual::load_of(sums.sum_p, npts, problem.p0),
             finite: !sums.nonfinite,
         }
     }
@@ -384,29 +444,14 @@ impl Dynamics<'_> {
     fn acceleration(&mut self) {
         let problem = self.problem;
         let model = problem.model;
-        let n = model.grid.n();
-        let (h, p0, beta) = (problem.heights, problem.p0, self.beta);
-        let (u, v, ky) = (&*self.u, &*self.v, &*self.stress);
-        model.fft.convolve(
-            self.inverse_mass,
-            self.spec,
-            None,
-            #[inline(always)]
-            |i, row, _, _| {
-                let rg = i * n..(i + 1) * n;
-                for ((((f, &ui), &vi), &hi), &k) in row
-                    .iter_mut()
-                    .zip(&u[rg.clone()])
-                    .zip(&v[rg.clone()])
-                    .zip(&h[rg.clone()])
-                    .zip(&ky[rg])
-                {
-                    *f = total_force(look_ahead(ui, vi, beta, hi), hi, k + p0);
-                }
-            },
-            self.accel,
-            |_, _, _| (),
-        );
+        let pass = ForcePass {
+            at: LookAhead::new(problem, self.u, self.v, self.beta),
+            stress: self.stress,
+            p0: self.problem.p0,
+        };
+        model
+            .fft
+            .convolve(self.inverse_mass, self.spec, None, &pass, self.accel);
     }
 
     /// Step 3: the position moves to `max(y + tau a, h)`, points held by the wall stay on
