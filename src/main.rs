@@ -5,7 +5,7 @@
 //!                        [--zeta Z] --out FILE.npy
 //! persson-check solve    (--heights FILE.npy | --scene FILE.toml) (--p0 P | --contact-area A)
 //!                        [--zeta Z] [--solver gfmd|cg] [--tol T] --out DIR
-//! persson-check validate [NAME ...] [--full] --out DIR
+//! persson-check validate [NAME ...] [--full] [--solvers S1,S2,...] --out DIR
 //! persson-check report   [--from DIR] --out FILE.md [--golden DIR] [--no-speed] [--speed-n N]
 //! persson-check speed    [--n N] [--floor-n N ...] [--repeats K] --out DIR
 //! persson-check check-surface --heights FILE... --pixel-size DX [--periodic]

@@ -5,7 +5,8 @@ command line itself): the same surfaces, solvers, theory and validations, with n
 arrays in and out.
 
 * :func:`surface` -- a self-affine surface, the command line's realization bit for bit;
-* :func:`solve` -- hard-wall contact on any square height array (CG or GFMD);
+* :func:`solve` -- hard-wall contact on any square height array, by any solver of
+  :data:`SOLVERS` (CG, GFMD, FIRE);
 * :func:`sweep` -- warm-started solves while roughness is added, as an iterator;
 * :func:`theory` -- Persson's theory on a surface's own spectrum;
 * :func:`validate`, :func:`plan`, :func:`merge`, :func:`report` -- the validations;
@@ -27,6 +28,7 @@ import numpy as _np
 
 from . import _native
 from ._native import (
+    SOLVERS,
     Solution,
     SolveError,
     Sweep,
@@ -38,6 +40,7 @@ from ._native import (
 )
 
 __all__ = [
+    "SOLVERS",
     "Solution",
     "SolveError",
     "Sweep",

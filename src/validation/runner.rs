@@ -39,8 +39,8 @@ pub struct RunOptions {
     pub resume: bool,
     /// Show progress bars on stderr (when it is a terminal).
     pub progress: bool,
-    /// The solvers to run every scene with: the first gives the headline statistic, the
-    /// second (if any) its cross-check.
+    /// The solvers to run every scene with, each at most once: the first gives the
+    /// headline statistic, each of the others a cross-check.
     pub solvers: Vec<SolverKind>,
     /// Run everything, one share of the jobs, or merge the shares' results.
     pub mode: Mode,
@@ -69,17 +69,19 @@ pub enum Mode {
 }
 
 impl RunOptions {
-    /// The headline solver (GFMD, the paper's method) and the cross-check (CG).
-    pub const BOTH: [SolverKind; 2] = [SolverKind::Gfmd, SolverKind::Cg];
+    /// The solvers of a run unless it names others: GFMD (the paper's method) for the
+    /// headline and CG for the cross-check.
+    pub const DEFAULT_SOLVERS: [SolverKind; 2] = [SolverKind::Gfmd, SolverKind::Cg];
 
-    /// Options for `scale` written to `out`: both solvers, no resume, no progress bars.
+    /// Options for `scale` written to `out`: the default solvers, no resume, no progress
+    /// bars.
     pub fn new(scale: Scale, out: impl Into<PathBuf>) -> Self {
         Self {
             scale,
             out: out.into(),
             resume: false,
             progress: false,
-            solvers: Self::BOTH.to_vec(),
+            solvers: Self::DEFAULT_SOLVERS.to_vec(),
             mode: Mode::All,
         }
     }
@@ -134,6 +136,18 @@ impl<E: Experiment> Prepared<E> {
 pub(crate) fn prepare<E: Experiment>(source: &Source, opts: &RunOptions) -> Result<Prepared<E>> {
     if opts.solvers.is_empty() {
         return Err(Error::invalid("solvers", "none", "at least one solver"));
+    }
+    if let Some(twice) = opts
+        .solvers
+        .iter()
+        .enumerate()
+        .find_map(|(k, s)| opts.solvers[..k].contains(s).then_some(s))
+    {
+        return Err(Error::invalid(
+            "solvers",
+            format!("{} twice", twice.name()),
+            "each solver at most once",
+        ));
     }
     let def = source.parse::<E::Scene>()?;
     let (scene, jobs) = checked_scene::<E>(source, &def, opts.scale)?;
@@ -313,7 +327,7 @@ pub fn run_experiment<E: Experiment>(
     conclude::<E>(source, &prepared, results, opts, wall_s, merge).map(Some)
 }
 
-/// The headline and the cross-check from the units' results (in unit order), the verdict,
+/// The headline and the cross-checks from the units' results (in unit order), the verdict,
 /// and the outcome and its files.
 pub(crate) fn conclude<E: Experiment>(
     source: &Source,
@@ -331,12 +345,14 @@ pub(crate) fn conclude<E: Experiment>(
         .fold(0.0, f64::max);
     let mut rest = conclusions.into_iter();
     let (solver, conclusion, measured) = rest.next().expect("at least one solver");
-    let cross_check = rest.next().map(|(s, _, m)| CrossCheck {
-        solver: s.name().to_string(),
-        value: m.value,
-        std_error: m.std_error,
-        agrees: def.verdict.agree(measured, m),
-    });
+    let cross_checks = rest
+        .map(|(s, _, m)| CrossCheck {
+            solver: s.name().to_string(),
+            value: m.value,
+            std_error: m.std_error,
+            agrees: def.verdict.agree(measured, m),
+        })
+        .collect();
     let verdict = def.verdict.judge(measured, conclusion.persson);
     let reproduced = reproduced(def, verdict, measured, &conclusion.checks);
     let files = write_files(&opts.out, &def.name, &conclusion)?;
@@ -369,7 +385,7 @@ pub(crate) fn conclude<E: Experiment>(
         files,
         threads: rayon::current_num_threads(),
         solver: solver.name().to_string(),
-        cross_check,
+        cross_checks,
         merge,
     };
     let json = serde_json::to_vec_pretty(&outcome).expect("outcomes serialise");

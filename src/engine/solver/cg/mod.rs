@@ -139,6 +139,8 @@ impl Default for ConstrainedCg {
 
 impl Method for ConstrainedCg {
     const NAME: &'static str = "cg";
+    /// The unit of the others.
+    const RELATIVE_COST: f64 = 1.0;
     type Solve<'a> = Solve<'a>;
 
     fn init<'a>(
