@@ -31,6 +31,7 @@
 //!   comes from the [`Model`](crate::engine::contact::Model).
 
 mod cg;
+mod dynamics;
 pub mod executor;
 mod gfmd;
 pub mod workspace;
