@@ -7,6 +7,7 @@ mod cg_bits;
 mod check_surface;
 mod common;
 mod determinism;
+mod fire_bits;
 mod gfmd_bits;
 mod hard_scenes;
 mod one_realization;

@@ -338,32 +338,70 @@ fn warm_start_across_a_doubled_load_converges() {
 
 #[test]
 fn budget_exhaustion_is_an_error_with_the_residual() {
-    let surface = Surface::generate(&SurfaceParams::new(64, 0.8, 32.0, 4.0, 2)).unwrap();
-    let model = Model::new(surface.grid().clone(), 1.0).unwrap();
-    let h = surface.heights_at(f64::INFINITY, &model.fft);
+    let (model, h) = full_resolution(SurfaceParams::new(64, 0.8, 32.0, 4.0, 2));
     let problem = ContactProblem::new(&model, &h, 0.1).unwrap();
     for kind in SolverKind::ALL {
         let opts = SolveOptions {
             tol: 1e-12,
             max_iter: 3,
         };
-        match kind.build().solve(&problem, Start::Cold, &opts) {
-            Err(Error::NotConverged {
-                iterations,
-                residual,
-                reason,
-                ..
-            }) => {
-                assert_eq!(reason, Termination::BudgetExhausted, "{}", kind.name());
-                assert_eq!(iterations, 3);
-                assert!(residual > 1e-12 && residual.is_finite());
-            }
-            other => panic!(
-                "{}: expected NotConverged, got {:?}",
-                kind.name(),
-                other.err()
-            ),
-        }
+        let (reason, iterations, residual) = not_converged(kind, &problem, &opts);
+        assert_eq!(reason, Termination::BudgetExhausted, "{}", kind.name());
+        assert_eq!(iterations, 3);
+        assert!(residual > 1e-12 && residual.is_finite());
+    }
+}
+
+/// The model and the full-resolution heights of the surface of `params`.
+fn full_resolution(params: SurfaceParams) -> (Model, Vec<f64>) {
+    let surface = Surface::generate(&params).unwrap();
+    let model = Model::new(surface.grid().clone(), 1.0).unwrap();
+    let h = surface.heights_at(f64::INFINITY, &model.fft);
+    (model, h)
+}
+
+/// The reason, iterations and residual of a solve by `kind` that must fail as not
+/// converged.
+fn not_converged(
+    kind: SolverKind,
+    problem: &ContactProblem,
+    opts: &SolveOptions,
+) -> (Termination, usize, f64) {
+    match kind.build().solve(problem, Start::Cold, opts) {
+        Err(Error::NotConverged {
+            reason,
+            iterations,
+            residual,
+            ..
+        }) => (reason, iterations, residual),
+        other => panic!(
+            "{}: expected a solve that does not converge, got {:?}",
+            kind.name(),
+            other.map(|s| s.stats)
+        ),
+    }
+}
+
+/// A tolerance below the residual's rounding floor (the probes' scene at `p0 = 0.01`,
+/// tol 1e-14) ends as a stalled solve with the residual reached, not at the end of the
+/// budget.
+#[test]
+fn a_tolerance_below_the_rounding_floor_stalls_with_the_residual_reached() {
+    let (model, h) = full_resolution(SurfaceParams::new(128, 0.8, 64.0, 4.0, 11));
+    let problem = ContactProblem::new(&model, &h, 0.01).unwrap();
+    let opts = SolveOptions {
+        tol: 1e-14,
+        max_iter: 3000,
+    };
+    for kind in SolverKind::ALL {
+        let (reason, iterations, residual) = not_converged(kind, &problem, &opts);
+        assert_eq!(reason, Termination::Stalled, "{}", kind.name());
+        assert!(iterations < 3000, "{}: {iterations}", kind.name());
+        assert!(
+            residual > 1e-14 && residual < 1e-12,
+            "{}: {residual:e}",
+            kind.name()
+        );
     }
 }
 

@@ -13,7 +13,7 @@ SOLVERS: tuple[str, ...]
 Array2 = npt.NDArray[np.float64]
 Progress = Callable[[int, float], object]
 # The names of SOLVERS, in its order (a test keeps the two in step).
-SolverName = Literal["gfmd", "cg"]
+SolverName = Literal["gfmd", "cg", "fire"]
 SolverNames = Union[SolverName, Sequence[SolverName], None]
 Names = Union[str, Sequence[str], None]
 Path = Union[str, os.PathLike[str]]

@@ -48,7 +48,7 @@ use crate::engine::contact::{ContactProblem, ContactSolution, Residual};
 use crate::engine::fft::{FusedPass, Kernel, PassValues};
 use crate::engine::solver::workspace::{warm_start, Record, Workspace};
 use crate::engine::solver::{SolveOptions, Start};
-use crate::error::Result;
+use crate::error::{Result, Termination};
 
 /// One solve's state: the problem, the masses, the fields, and the record of the solve.
 pub(super) struct State<'a> {
@@ -108,6 +108,16 @@ impl<'a> State<'a> {
         Ok((state, prev.is_some()))
     }
 
+    /// Step 1 as the measure of an iteration `it`: [`State::stress`], and an error when
+    /// the stress is not finite.
+    pub(super) fn measure(&mut self, beta: f64, it: usize) -> Result<Balance> {
+        let balance = self.stress(beta);
+        if !balance.finite {
+            return Err(self.record.non_finite("stress", it));
+        }
+        Ok(balance)
+    }
+
     /// Step 1: the stress of the position `max(u + beta v, h)`, and its equilibrium and
     /// load residuals.
     pub(super) fn stress(&mut self, beta: f64) -> Balance {
@@ -154,6 +164,42 @@ impl<'a> State<'a> {
         model
             .fft
             .convolve(self.inverse_mass, self.spec, None, &pass, self.accel)
+    }
+
+    /// The position `max(u + beta v, h)` becomes the state, at rest (`v = 0`).
+    pub(super) fn settle(&mut self, beta: f64) {
+        let h = self.problem.heights;
+        self.u
+            .par_iter_mut()
+            .zip(self.v.par_iter_mut())
+            .zip(h.par_iter())
+            .for_each(|((u, v), &hi)| {
+                *u = look_ahead(*u, *v, beta, hi);
+                *v = 0.0;
+            });
+    }
+
+    /// The end of a solve stopped after `iterations` iterations for `reason`: a stalled
+    /// solve fails with `stalled_at`, the estimate it stalled at; at the end of the budget
+    /// the position `max(u + beta v, h)` the last step reached may have converged, and if
+    /// not the error reports its residual.
+    pub(super) fn conclude(
+        mut self,
+        (iterations, reason): (usize, Termination),
+        stalled_at: f64,
+        beta: f64,
+    ) -> Result<ContactSolution> {
+        let tol = self.tol;
+        if reason != Termination::BudgetExhausted {
+            return Err(self
+                .record
+                .not_converged((iterations, reason), stalled_at, tol));
+        }
+        self.measure(beta, iterations)?;
+        self.settle(beta);
+        let solution = self.solution(iterations);
+        self.record
+            .accept(solution, tol, (iterations, reason), None)
     }
 
     /// The state, at the position of the last [`State::stress`] (`u` itself), and its

@@ -5,14 +5,18 @@
 //!   mass-weighted so that every mode shares one frequency, relaxed with a momentum
 //!   schedule that restarts when the force opposes the motion.
 //! * [`ConstrainedCg`]: constrained conjugate gradients on the pressure
-//!   (Polonsky & Keer 1999), the algorithm of tamaas and ContactMechanics.
+//!   (Polonsky & Keer 1999), the algorithm of tamaas and ContactMechanics;
+//! * [`Fire`]: the fast inertial relaxation engine (Bitzek et al. 2006) on GFMD's masses:
+//!   the same mass-weighted dynamics (`dynamics.rs`), relaxed by FIRE's velocity mixing
+//!   and adaptive time step.
 //!
-//! Both are [`Solver`]s, start cold or from a previous solution, stop at the
+//! [`SolverKind::ALL`] lists them, one entry each: adding a solver is its folder and one
+//! entry. All are [`Solver`]s, start cold or from a previous solution, stop at the
 //! solver-independent [`crate::engine::contact::Residual`], and fail with
 //! [`crate::Error::NotConverged`] (carrying the residual), [`crate::Error::NonFinite`] or
 //! [`crate::Error::LostContact`] rather than return an unconverged field.
 //!
-//! # One scaffold under both
+//! # One scaffold under all
 //!
 //! A solver keeps only its own steps. What every solve does is written once:
 //!
@@ -33,10 +37,12 @@
 mod cg;
 mod dynamics;
 pub mod executor;
+mod fire;
 mod gfmd;
 pub mod workspace;
 
 pub use cg::ConstrainedCg;
+pub use fire::{Fire, FireParams};
 pub use gfmd::{Gfmd, GfmdParams};
 
 use serde::{Deserialize, Serialize};
@@ -90,6 +96,8 @@ solvers! {
     /// Constrained conjugate gradients (Polonsky-Keer).
     #[default]
     Cg => ConstrainedCg,
+    /// FIRE on GFMD's masses (Bitzek et al. 2006).
+    Fire => Fire,
 }
 
 impl SolverKind {

@@ -321,10 +321,7 @@ impl SensitivityPlan {
             }
         }
         for &solver in &self.solvers {
-            let v = match solver {
-                SolverKind::Gfmd => 0.0,
-                SolverKind::Cg => 1.0,
-            };
+            let v = solver.index() as f64;
             let c = StudyConfig {
                 solver,
                 ..base.clone()

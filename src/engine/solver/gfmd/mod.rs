@@ -59,8 +59,6 @@
 //! convergence. If it fails, the dynamics goes on from
 //! there.
 
-use rayon::prelude::*;
-
 use crate::engine::contact::ContactProblem;
 use crate::engine::contact::ContactSolution;
 use crate::engine::field::map_chunks_mut;
@@ -138,11 +136,7 @@ impl Iteration for Dynamics<'_> {
 
     /// Step 1, and an error when the stress is not finite.
     fn measure(&mut self, it: usize) -> Result<Balance> {
-        let balance = self.state.stress(self.beta);
-        if !balance.finite {
-            return Err(self.state.record.non_finite("stress", it));
-        }
-        Ok(balance)
+        self.state.measure(self.beta, it)
     }
 
     fn estimate(balance: &Balance) -> f64 {
@@ -175,27 +169,18 @@ impl Iteration for Dynamics<'_> {
         Ok(None)
     }
 
-    /// A stalled solve fails with the estimate it stalled at; at the end of the budget
-    /// the state the last step reached may have converged, and if not the error reports
-    /// its residual.
-    fn terminate(mut self, iterations: usize, reason: Termination) -> Result<ContactSolution> {
-        let tol = self.state.tol;
-        if reason != Termination::BudgetExhausted {
-            return Err(self.state.record.not_converged(
-                (iterations, reason),
-                self.stalled_at,
-                tol,
-            ));
-        }
-        self.measure(iterations)?;
-        self.settle();
-        let solution = self.state.solution(iterations);
-        let accepted = self
-            .state
-            .record
-            .accept(solution, tol, (iterations, reason), None);
+    /// [`State::conclude`]; a solve that ends converged records its step.
+    fn terminate(self, iterations: usize, reason: Termination) -> Result<ContactSolution> {
+        let Dynamics {
+            state,
+            momentum,
+            beta,
+            last_tau,
+            stalled_at,
+        } = self;
+        let accepted = state.conclude((iterations, reason), stalled_at, beta);
         if accepted.is_ok() {
-            *self.last_tau = Some(self.momentum.tau);
+            *last_tau = Some(momentum.tau);
         }
         accepted
     }
@@ -239,17 +224,7 @@ impl Dynamics<'_> {
     /// The look-ahead position becomes the state, without momentum (before its full
     /// residual is evaluated).
     fn settle(&mut self) {
-        let state = &mut self.state;
-        let (h, beta) = (state.problem.heights, self.beta);
-        state
-            .u
-            .par_iter_mut()
-            .zip(state.v.par_iter_mut())
-            .zip(h.par_iter())
-            .for_each(|((u, v), &hi)| {
-                *u = look_ahead(*u, *v, beta, hi);
-                *v = 0.0;
-            });
+        self.state.settle(self.beta);
         self.beta = 0.0;
         self.momentum.restart();
     }
