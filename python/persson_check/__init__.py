@@ -252,7 +252,7 @@ surface, treated as realizations, from which the error bars come. Scans must be 
 and windows the spectrum; ``periodic=True`` solves with the periodic kernel, as
 :func:`solve` does. ``loads`` are nominal pressures ``p0 / E*`` (default: eight loads
 giving contact areas of about 1% to 30%). ``solver`` heads the comparison, and
-``cross_check`` also solves with the other one. ``out`` writes ``surface.json``,
+``cross_check`` also solves with a second solver (CG for GFMD, GFMD for any other). ``out`` writes ``surface.json``,
 ``surface.md`` and the figures there. The result's ``curve`` holds, per load, ``p0``,
 ``a_r`` and Persson's ``a_r_persson`` and ``a_r_persson_corrected`` with the elastic
 energies; ``comparisons`` holds the verdicts. The GIL is released; Ctrl-C stops it.
