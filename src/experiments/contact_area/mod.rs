@@ -69,6 +69,23 @@ pub struct AreaScene {
     pub law_tolerance: f64,
     /// Residual tolerance.
     pub tol: f64,
+    /// A further grid, finer than the last of `refinements`, for some Hurst exponents at
+    /// some loads: with three grids, whether the grid error is first order in `eps_c`
+    /// (what the extrapolation assumes).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub finer_grid: Option<FinerGrid>,
+}
+
+/// A grid finer than the scene's finest, run for a subset of its Hurst exponents and loads.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FinerGrid {
+    /// Refinement factor, above the scene's last refinement.
+    pub refine: usize,
+    /// Hurst exponents, each one of the scene's.
+    pub hursts: Vec<f64>,
+    /// Reduced pressures `p~0`, increasing, each one of the scene's.
+    pub reduced_pressures: Vec<f64>,
 }
 
 /// One realization at one Hurst exponent and one grid refinement.
@@ -104,6 +121,59 @@ impl AreaScene {
             self.lambda_s * r,
             job.seed,
         )
+    }
+
+    /// The reduced pressures of a job: the finer grid's on that grid, else the scene's.
+    pub fn pressures(&self, job: &AreaJob) -> &[f64] {
+        match &self.finer_grid {
+            Some(f) if f.refine == job.refine => &f.reduced_pressures,
+            _ => &self.reduced_pressures,
+        }
+    }
+
+    fn validate_finer_grid(&self, f: &FinerGrid) -> Result<()> {
+        let last = *self.refinements.last().expect("validated non-empty");
+        if f.refine <= last {
+            return Err(Error::invalid(
+                "finer_grid.refine",
+                f.refine,
+                format!("a refinement above the last of refinements ({last})"),
+            ));
+        }
+        if f.hursts.is_empty() {
+            return Err(Error::invalid(
+                "finer_grid.hursts",
+                "[]",
+                "at least one Hurst exponent",
+            ));
+        }
+        for &h in &f.hursts {
+            if !self.hursts.contains(&h) {
+                return Err(Error::invalid(
+                    "finer_grid.hursts",
+                    h,
+                    format!("one of hursts {:?}", self.hursts),
+                ));
+            }
+            let p = self.params(&AreaJob {
+                hurst: h,
+                seed: 0,
+                refine: f.refine,
+            });
+            p.spectrum
+                .validate(&crate::engine::grid::Grid::new(p.n, 1.0)?)?;
+        }
+        check_increasing("finer_grid.reduced_pressures", &f.reduced_pressures)?;
+        for &p in &f.reduced_pressures {
+            if !self.reduced_pressures.contains(&p) {
+                return Err(Error::invalid(
+                    "finer_grid.reduced_pressures",
+                    p,
+                    format!("one of reduced_pressures {:?}", self.reduced_pressures),
+                ));
+            }
+        }
+        Ok(())
     }
 }
 
@@ -157,6 +227,9 @@ impl Jobs for AreaScene {
         check_open("law_range.0", self.law_range.0, 0.0, 1.0)?;
         check_open("law_range.1", self.law_range.1, self.law_range.0, 1.0)?;
         check_positive("law_tolerance", self.law_tolerance)?;
+        if let Some(f) = &self.finer_grid {
+            self.validate_finer_grid(f)?;
+        }
         SolveOptions::with_tol(self.tol).validate()
     }
 
@@ -173,6 +246,17 @@ impl Jobs for AreaScene {
                 }
             }
         }
+        if let Some(f) = &self.finer_grid {
+            for &hurst in &f.hursts {
+                for &seed in &self.seeds {
+                    jobs.push(AreaJob {
+                        hurst,
+                        seed,
+                        refine: f.refine,
+                    });
+                }
+            }
+        }
         jobs
     }
 
@@ -182,7 +266,7 @@ impl Jobs for AreaScene {
         Work {
             points: n * n,
             searches: 0.0,
-            solves: self.reduced_pressures.len() as f64,
+            solves: self.pressures(job).len() as f64,
             shells: 0.0,
         }
     }
@@ -200,7 +284,7 @@ impl Jobs for AreaScene {
         );
         let mut contact_area = Vec::new();
         let mut max_residual = 0.0f64;
-        for &p in &self.reduced_pressures {
+        for &p in self.pressures(job) {
             let s = sweep.solve_at(zeta, p * g_bar * model.halfspace.e_star())?;
             contact_area.push(s.contact_area());
             max_residual = max_residual.max(s.stats.residual.value());
@@ -370,5 +454,41 @@ mod tests {
     #[test]
     fn shipped_scenes_are_valid() {
         crate::experiments::shipped_valid::<ContactArea>("contact_area");
+    }
+
+    #[test]
+    fn the_finer_grid_adds_its_jobs_at_its_loads_and_is_checked() {
+        let (_, full) = crate::experiments::shipped_valid::<ContactArea>("contact_area");
+        let f = full
+            .finer_grid
+            .clone()
+            .expect("the full scene has a finer grid");
+        let finer: Vec<AreaJob> = full
+            .jobs()
+            .into_iter()
+            .filter(|j| j.refine == f.refine)
+            .collect();
+        assert_eq!(finer.len(), f.hursts.len() * full.seeds.len());
+        assert_eq!(full.pressures(&finer[0]), &f.reduced_pressures[..]);
+        let coarse = AreaJob {
+            refine: 1,
+            ..finer[0].clone()
+        };
+        assert_eq!(full.pressures(&coarse), &full.reduced_pressures[..]);
+        let refused = |edit: fn(&mut FinerGrid), field: &str| {
+            let mut scene = full.clone();
+            edit(scene.finer_grid.as_mut().unwrap());
+            crate::experiments::assert_refused::<ContactArea>(&scene, field);
+        };
+        refused(|f| f.refine = 2, "finer_grid.refine");
+        refused(|f| f.hursts = vec![0.4], "finer_grid.hursts");
+        refused(
+            |f| f.reduced_pressures = vec![0.13],
+            "finer_grid.reduced_pressures",
+        );
+        refused(
+            |f| f.reduced_pressures = vec![0.5, 0.25],
+            "finer_grid.reduced_pressures",
+        );
     }
 }
