@@ -8,6 +8,7 @@ use super::tables::{bin_figure, bin_points, bin_table, common_account, level, tr
 use super::{TransitionResult, TransitionScene};
 use crate::error::Result;
 use crate::experiments::{Check, Detail, Experiment, Table};
+use crate::persson::moments;
 use crate::persson::Correction;
 use crate::plot::{Figure, Series, Style};
 use crate::stats::{decide, round_sig, Claim, Estimate};
@@ -54,6 +55,9 @@ impl DiffusionStats {
     }
 }
 
+/// Points of the scan over `Dp_n / p'` of eq. (approxDeltaPress)'s error.
+const ERROR_POINTS: usize = 2001;
+
 type Run<'a> = crate::experiments::Run<'a, Diffusion>;
 
 impl Experiment for Diffusion {
@@ -76,14 +80,19 @@ impl Experiment for Diffusion {
                 format!("D_n / D_P at p >= {} p0/a_r", run.scene.high_pressure),
                 s.high,
             )
-            .persson(1.0)
-            .paper(Some(1.0)),
+            .persson(1.0),
             Detail::new(
                 "s_corrected",
                 "corrected theory's S(a_r) (eq. gamma)",
                 Estimate::new(s.s_corrected, f64::NAN),
             )
             .persson(s.s_corrected),
+            Detail::new(
+                "approx_delta_p_error",
+                "largest relative error of eq. (approxDeltaPress) against the exact inversion \
+                 of eq. (2ndMoment), Dp_n / p' from 1e-3 to 1e3 (exact: no error bar)",
+                Estimate::new(moments::estimate_largest_error(ERROR_POINTS), 0.0),
+            ),
         ]
     }
 
