@@ -27,11 +27,13 @@
 //!   theories.
 //!
 //! Shared machinery: [`scene`] (the fields every scene repeats), [`ensemble`] (the
-//! seeds x contact areas job grid and the per-load ensemble statistics) and [`climb`] (the
-//! fixed-load magnification climb with optional checkpoints).
+//! seeds x contact areas job grid and the per-load ensemble statistics), [`climb`] (the
+//! fixed-load magnification climb with optional checkpoints) and [`contact_change`] (which
+//! points entered or left contact in a step).
 
 pub mod climb;
 pub mod contact_area;
+pub mod contact_change;
 pub mod ensemble;
 pub mod flux;
 pub mod modes;
