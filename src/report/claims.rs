@@ -54,6 +54,11 @@ fn statement(c: &ClaimOutcome) -> String {
     s
 }
 
+/// The claims of every outcome, in order.
+fn every_claim(outcomes: &[Outcome]) -> Vec<&ClaimOutcome> {
+    outcomes.iter().flat_map(|o| &o.claims).collect()
+}
+
 /// Counts of the results of `claims`.
 fn counts(claims: &[&ClaimOutcome]) -> String {
     let n = |r: ClaimResult| claims.iter().filter(|c| c.result == r).count();
@@ -154,7 +159,11 @@ pub fn table(full: &[Outcome], reduced: &[Outcome]) -> String {
             ]
         })
         .collect();
-    let mut s = String::new();
+    let mut s = format!(
+        "Full scale: {}. Reduced scenes: {}.\n\n",
+        counts(&every_claim(full)),
+        counts(&every_claim(reduced))
+    );
     push_table(
         &mut s,
         &[

@@ -35,6 +35,7 @@ fn outcome(name: &str, verdict: Verdict, reproduced: Option<bool>, scale: Scale)
         persson_text: "kappa = 1".into(),
         paper: "kappa ~ 2".into(),
         paper_value: Some(2.0),
+        paper_range: None,
         paper_verdict: Verdict::Violated,
         verdict,
         reproduced,
@@ -352,8 +353,12 @@ fn attention_names_the_reason_a_finding_is_not_reproduced() {
         "{lines:?}"
     );
     o.verdict = Verdict::Violated;
-    let lines = attention::attention(&[loaded(o)], &[GoldenMatch::FullScene]);
+    o.paper_range = Some((o.value + 10.0 * o.std_error, o.value + 20.0 * o.std_error));
+    let lines = attention::attention(&[loaded(o.clone())], &[GoldenMatch::FullScene]);
     assert!(lines[0].contains("outside the range"), "{lines:?}");
+    o.paper_range = None;
+    let lines = attention::attention(&[loaded(o)], &[GoldenMatch::FullScene]);
+    assert!(lines[0].contains("names no reason"), "{lines:?}");
 }
 
 #[test]

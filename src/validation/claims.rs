@@ -50,6 +50,9 @@ pub enum Rule {
     Within((f64, f64)),
     /// Larger than another measure.
     Exceeds(String),
+    /// Away from a value: the interval excludes it (a statement that a law is violated,
+    /// without a direction).
+    Differs(f64),
 }
 
 /// One statement of the paper: `[[claims]]` in a definition.
@@ -347,6 +350,7 @@ impl ClaimSpec {
             Rule::AtMost(t) => return !decide(e, Claim::Above(*t), z),
             Rule::AtLeast(t) => return !decide(e, Claim::Below(*t), z),
             Rule::Within((lo, hi)) => Claim::Overlaps(*lo, *hi),
+            Rule::Differs(t) => return !decide(e, Claim::Overlaps(*t, *t), z),
             Rule::Exceeds(other) => {
                 return match measures.get(other) {
                     Some(o) => decide(Estimate::difference(e, o), Claim::Above(0.0), z),
@@ -455,6 +459,12 @@ mod tests {
         assert_eq!(
             result(Rule::Within((1.2, 2.0)), None, e),
             ClaimResult::Reproduced
+        );
+        // Away from a value only when the interval excludes it.
+        assert_eq!(result(Rule::Differs(0.6), None, e), ClaimResult::Reproduced);
+        assert_eq!(
+            result(Rule::Differs(1.2), None, e),
+            ClaimResult::NotReproduced
         );
         let exceeds = |m: &str| Rule::Exceeds(m.into());
         assert_eq!(

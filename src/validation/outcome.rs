@@ -42,6 +42,9 @@ pub struct Outcome {
     pub paper: String,
     /// The paper's value, if stated.
     pub paper_value: Option<f64>,
+    /// The range of the headline that reproduces the paper, if the definition states one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub paper_range: Option<(f64, f64)>,
     /// The paper's verdict.
     pub paper_verdict: Verdict,
     /// The verdict of this run.

@@ -361,6 +361,7 @@ pub(crate) fn conclude<E: Experiment>(
         persson_text: def.persson.clone(),
         paper: def.paper.finding.clone(),
         paper_value: def.paper.value,
+        paper_range: def.paper.range,
         paper_verdict: def.paper.verdict,
         verdict,
         reproduced,

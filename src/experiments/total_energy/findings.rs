@@ -3,7 +3,7 @@
 
 use std::collections::BTreeMap;
 
-use super::stats::{original_area, window_mean, AtFullResolution, Headline, Load};
+use super::stats::{original_area, ratio, window_mean, AtFullResolution, Headline, Load, Theory};
 use super::{EnergyScene, FAILS_BELOW};
 use crate::experiments::{Check, Criteria, Detail};
 use crate::stats::{decide, realizations, round_sig, Claim};
@@ -79,6 +79,17 @@ fn load_details(
                 full.area.value
             ),
             full.corrected,
+        )
+        .persson(1.0),
+        Detail::new(
+            format!("corrected_start_ar{a}"),
+            format!(
+                "E_exa / E_c at the lowest magnification, zeta = {:.3}, a_r = {a} at full \
+                 resolution (p~0 = p0 / E* g_bar = {:.4}, g_bar at full resolution)",
+                zetas[0],
+                load.mean(|r| r.p0).value
+            ),
+            ratio(load, 0, Theory::Corrected),
         )
         .persson(1.0),
     ];

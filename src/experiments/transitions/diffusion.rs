@@ -3,7 +3,10 @@
 
 use std::collections::BTreeMap;
 
-use super::bins::{bin_rows, mean_of, over_realizations, region_mean, BinRow};
+use super::bins::{
+    bin_rows, mean_of, over_realizations, region_mean, small_pressure_exponent, BinRow,
+    SMALL_PRESSURE,
+};
 use super::tables::{bin_figure, bin_points, bin_table, common_account, level, transition_table};
 use super::{TransitionResult, TransitionScene};
 use crate::error::Result;
@@ -27,6 +30,8 @@ pub struct DiffusionStats {
     pub a_r: Estimate,
     /// The corrected theory's `S(a_r)`, eq. (gamma).
     pub s_corrected: f64,
+    /// The exponent of `Pr(p) ~ p^alpha` at small pressure, at `zeta`.
+    pub small_p_exponent: Estimate,
     /// Every analysed bin.
     pub rows: Vec<BinRow>,
 }
@@ -45,6 +50,12 @@ impl DiffusionStats {
             high: region(&|p| p >= scene.high_pressure),
             a_r,
             s_corrected: Correction::yang_persson().factor(a_r.value),
+            small_p_exponent: Estimate::mean_of(
+                &results
+                    .iter()
+                    .filter_map(|(_, r)| small_pressure_exponent(&r.bins, scene.bin_width))
+                    .collect::<Vec<_>>(),
+            ),
             rows: bin_rows(scene, results),
         }
     }
@@ -93,6 +104,15 @@ impl Experiment for Diffusion {
                  of eq. (2ndMoment), Dp_n / p' from 1e-3 to 1e3 (exact: no error bar)",
                 Estimate::new(moments::estimate_largest_error(ERROR_POINTS), 0.0),
             ),
+            Detail::new(
+                "small_p_exponent",
+                format!(
+                    "exponent alpha of Pr(p) ~ p^alpha at zeta, fitted over the bins below \
+                     {SMALL_PRESSURE} p0/a_r (Persson's eq. pressureDistOri: 1)"
+                ),
+                s.small_p_exponent,
+            )
+            .persson(1.0),
         ]
     }
 
