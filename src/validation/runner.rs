@@ -43,7 +43,8 @@ pub struct RunOptions {
     /// Show progress bars on stderr (when it is a terminal).
     pub progress: bool,
     /// The solvers to run every scene with, each at most once: the first gives the
-    /// headline statistic, each of the others a cross-check.
+    /// headline statistic, each of the others a cross-check. A scene that fixes its solver
+    /// ([`crate::experiments::Jobs::solver`]) runs with that one alone.
     pub solvers: Vec<SolverKind>,
     /// Run everything, one share of the jobs, or merge the shares' results.
     pub mode: Mode,
@@ -156,8 +157,11 @@ pub(crate) fn prepare<E: Experiment>(source: &Source, opts: &RunOptions) -> Resu
     let (scene, jobs) = checked_scene::<E>(source, &def, opts.scale)?;
     let scene_json = serde_json::to_value(scene).expect("scenes serialise");
     let state = jobs_dir(&opts.out, <E::Scene as Jobs>::FAMILY, opts.scale);
+    let solvers = scene
+        .solver()
+        .map_or_else(|| opts.solvers.clone(), |s| vec![s]);
     let mut units = Vec::new();
-    for (k, &solver) in opts.solvers.iter().enumerate() {
+    for (k, &solver) in solvers.iter().enumerate() {
         for job in &jobs {
             if k > 0 && <E::Scene as Jobs>::headline_only(job) {
                 continue;
