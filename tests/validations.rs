@@ -199,7 +199,7 @@ fn one_step_moves_points_out_of_the_zero_bin() {
     assert_eq!(full.len(), 6 * 4);
     assert!(full.iter().all(|u| u.solver == SolverKind::Cg));
     let o = run_reduced("c_source", &[SolverKind::Cg]);
-    assert!(o.cross_check.is_none());
+    assert!(o.cross_checks.is_empty());
     // Persson's absorbing boundary keeps every point at p = 0; points enter contact, beyond
     // three standard errors. The paper's "about 1%" is its large scene's: judged at full
     // scale only.
