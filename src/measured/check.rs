@@ -909,3 +909,86 @@ impl SurfaceCheck {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::engine::surface::{Surface, SurfaceParams};
+
+    /// A 32^2 window checked by hand: the headline's second load and the cross-check's
+    /// first are stopped at once (a time budget of zero), the rest solved.
+    #[test]
+    fn a_failed_solve_is_listed_by_solver_and_load_and_costs_only_its_own_load() {
+        let n = 32;
+        let s = Surface::generate(&SurfaceParams::new(n, 0.8, n as f64, 4.0, 3)).unwrap();
+        let fft = crate::engine::fft::Fft2::new(s.grid());
+        let heights = s.heights_at(f64::INFINITY, &fft);
+        let shape = Shape { rows: n, cols: n };
+        let scan = Scan {
+            shape,
+            heights: heights.clone(),
+            source: "window.npy".into(),
+            filled: 0,
+        };
+        let spectrum = ScanSpectrum::new(&heights, shape, 1.0, Boundary::Free).unwrap();
+        let theory = Theory::new(&spectrum.shells).unwrap();
+        let loads = [0.02, 0.05, 0.1];
+        let predicted = loads.iter().map(|&p| theory.at(p).unwrap()).collect();
+        let body = Body::new(&spectrum).unwrap();
+        let zero = Some(Duration::ZERO);
+        let curve = |solver, budget: &[Option<Duration>]| {
+            solve_curve(
+                &body,
+                &loads,
+                solver,
+                1e-6,
+                budget,
+                &mut |_, _| {},
+                &mut |_, _| {},
+            )
+            .unwrap()
+        };
+        let head = curve(SolverKind::Cg, &[None, zero, None]);
+        let cross = curve(SolverKind::Gfmd, &[zero, None, None]);
+        let measured = [Measured {
+            spectrum,
+            predicted,
+            curves: vec![head, cross],
+            reentry: None,
+        }];
+        let opts = CheckOptions::default();
+        let c = conclude(&[scan], &opts, 1.0, &loads, &measured, 0.0);
+        // The curve keeps the loads the headline reached, cross-checked where it was.
+        let kept: Vec<f64> = c.curve.iter().map(|p| p.p0).collect();
+        assert_eq!(kept, [0.02, 0.1]);
+        assert!(c.curve[0].a_r_cross_check.is_none() && c.curve[1].a_r_cross_check.is_some());
+        assert_eq!(c.solvers_agree, Some(true));
+        let listed: Vec<(SolverKind, bool, f64)> = c
+            .failures
+            .iter()
+            .map(|f| (f.solver, f.headline, f.p0))
+            .collect();
+        assert_eq!(
+            listed,
+            [
+                (SolverKind::Cg, true, 0.05),
+                (SolverKind::Gfmd, false, 0.02)
+            ]
+        );
+        let failed: Vec<usize> = c.solvers.iter().map(|w| w.failed).collect();
+        assert_eq!(failed, [1, 1]);
+        // Each message names its solver and load, and no flag.
+        let text = &c.failures[0].message;
+        assert!(
+            text.starts_with("cg at p0 = 5.000e-2 E* (load 2 of 3)"),
+            "{text}"
+        );
+        assert!(c.failures.iter().all(|f| !f.message.contains("--")));
+        // The page lists both.
+        let md = super::super::page::markdown(&c);
+        assert!(
+            md.contains("## Solves that failed") && md.contains("gfmd (cross-check)"),
+            "{md}"
+        );
+    }
+}
