@@ -991,4 +991,93 @@ mod tests {
             "{md}"
         );
     }
+
+    /// The `rows x cols` corner of a generated 64^2 surface (H = 0.8), scaled to an rms
+    /// slope of about `slope`.
+    fn window(rows: usize, cols: usize, slope: f64) -> Vec<f64> {
+        let s = Surface::generate(&SurfaceParams::new(64, 0.8, 32.0, 4.0, 5)).unwrap();
+        let fft = crate::engine::fft::Fft2::new(s.grid());
+        let full = s.heights_at(f64::INFINITY, &fft);
+        let h: Vec<f64> = (0..rows * cols)
+            .map(|k| full[(k / cols) * 64 + k % cols])
+            .collect();
+        let g = ScanSpectrum::new(&h, Shape { rows, cols }, 1.0, Boundary::Free)
+            .unwrap()
+            .slope_rms;
+        h.iter().map(|v| v * slope / g).collect()
+    }
+
+    fn warned(heights: Vec<f64>, rows: usize, cols: usize) -> Vec<(String, f64, f64)> {
+        let scan = Scan {
+            shape: Shape { rows, cols },
+            heights,
+            source: "scan.npy".into(),
+            filled: 0,
+        };
+        let opts = CheckOptions {
+            cross_check: false,
+            reentry: false,
+            ..CheckOptions::default()
+        };
+        let c = check(&[scan], &opts, &mut |_| {}).unwrap();
+        for w in &c.warnings {
+            assert!(
+                w.message.contains(&super::super::units::eng(w.value)),
+                "{}",
+                w.message
+            );
+        }
+        c.warnings
+            .iter()
+            .map(|w| (w.name.clone(), w.value, w.threshold))
+            .collect()
+    }
+
+    #[test]
+    fn warnings_name_the_statistic_that_crosses_its_threshold() {
+        let (rows, cols) = (48, 56);
+        let names = |w: &[(String, f64, f64)]| -> Vec<String> {
+            w.iter().map(|(n, _, _)| n.clone()).collect()
+        };
+        // A self-affine window of moderate slope lies inside every threshold.
+        assert_eq!(warned(window(rows, cols, 0.1), rows, cols), []);
+        // Stripes across the rows: a lay.
+        let striped: Vec<f64> = window(rows, cols, 0.02)
+            .iter()
+            .enumerate()
+            .map(|(k, v)| v + 0.5 * (0.9 * (k / cols) as f64).sin())
+            .collect();
+        let w = warned(striped, rows, cols);
+        assert_eq!(names(&w), ["anisotropy"]);
+        assert!(
+            w[0].1 < 0.2 && w[0].2 == warnings::ANISOTROPY.threshold,
+            "{w:?}"
+        );
+        // White noise over the roughness: the spectrum's high-q end flattens.
+        let mut x = 7u64;
+        let noisy: Vec<f64> = window(rows, cols, 0.05)
+            .iter()
+            .map(|v| {
+                x = x
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                v + 0.3 * ((x >> 11) as f64 / 2f64.powi(53) - 0.5)
+            })
+            .collect();
+        let w = warned(noisy, rows, cols);
+        assert!(names(&w).contains(&"noise_floor".to_string()), "{w:?}");
+        // Particles on a nearly flat window: far from Gaussian heights, and the load
+        // carried by their tips.
+        let mut dotted = window(rows, cols, 0.01);
+        for k in [300, 1111, 2000] {
+            dotted[k] += 3.0;
+        }
+        let w = names(&warned(dotted, rows, cols));
+        for name in ["skewness", "kurtosis", "contact_pressure"] {
+            assert!(w.contains(&name.to_string()), "{name}: {w:?}");
+        }
+        // Steep: beyond small slopes, and past yield at the top default load.
+        let w = names(&warned(window(rows, cols, 1.0), rows, cols));
+        assert_eq!(w, ["rms_slope", "contact_pressure"]);
+    }
 }
