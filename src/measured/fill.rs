@@ -72,11 +72,11 @@ impl Gaps {
     pub fn message(&self, ask: &str) -> String {
         let (row, col) = self.missing.first.unwrap_or((0, 0));
         let what = format!(
-            "{} of {} heights ({:.3}%) are undefined (NaN, infinite or masked: points the \
+            "{} of {} heights ({}) are undefined (NaN, infinite or masked: points the \
              instrument did not measure), the first at row {row}, column {col}",
             self.missing.count,
             self.points,
-            100.0 * self.share()
+            super::units::percent(self.share())
         );
         let limit = 100.0 * MAX_FILLED_SHARE;
         if self.asked {

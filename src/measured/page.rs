@@ -16,7 +16,7 @@ use super::check::{
 };
 use super::fill::{Fill, MAX_FILLED_SHARE};
 use super::psd::Boundary;
-use super::units::{eng, length, metres, SQUARE_PIXEL_TOLERANCE};
+use super::units::{eng, length, metres, percent, SQUARE_PIXEL_TOLERANCE};
 use super::warnings::{CONTACT_PRESSURE, LIMITS};
 use crate::error::Result;
 use crate::plot::{Axis, Figure, Series, Style};
@@ -137,8 +137,8 @@ fn missing(s: &mut String, c: &SurfaceCheck) {
         .filter(|(_, &k)| k > 0)
         .map(|(name, &k)| {
             format!(
-                "`{name}`: {k} of {points} points ({}%)",
-                eng(100.0 * k as f64 / points as f64)
+                "`{name}`: {k} of {points} points ({})",
+                percent(k as f64 / points as f64)
             )
         })
         .collect();

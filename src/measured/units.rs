@@ -35,6 +35,23 @@ pub fn eng(v: f64) -> String {
     }
 }
 
+/// A share as a percentage with three significant digits in plain decimals: `0.878%`,
+/// `12.3%`, `0%`.
+pub fn percent(share: f64) -> String {
+    let v = 100.0 * share;
+    if !v.is_finite() {
+        return "—".to_string();
+    }
+    if v == 0.0 {
+        return "0%".to_string();
+    }
+    let rounded: f64 = format!("{v:.2e}")
+        .parse()
+        .expect("a formatted float parses");
+    let decimals = (2 - rounded.abs().log10().floor() as i32).max(0) as usize;
+    format!("{rounded:.decimals$}%")
+}
+
 /// A length with its unit: `12.3 nm`, or `12.3 (length unit)` without one.
 pub fn length(v: f64, unit: Option<&str>) -> String {
     format!("{} {}", eng(v), unit.unwrap_or("(length unit)"))
@@ -84,10 +101,10 @@ pub fn square_pixel(sides: [f64; 2]) -> Result<f64> {
         return Err(Error::invalid(
             "pixel_size",
             format!(
-                "{} x {} (sides differ by {}%)",
+                "{} x {} (sides differ by {})",
                 eng(a),
                 eng(b),
-                eng(100.0 * differ)
+                percent(differ)
             ),
             format!(
                 "square pixels, sides within {}% of each other: resample the scan onto \
@@ -127,6 +144,16 @@ mod tests {
             assert_eq!(eng(v), text, "{v}");
         }
         assert_eq!(length(2.5e-9, Some("m")), "2.50e-9 m");
+        let shares = [
+            (0.00878, "0.878%"),
+            (0.0013, "0.130%"),
+            (0.123, "12.3%"),
+            (0.99996, "100%"),
+            (0.0, "0%"),
+        ];
+        for (share, text) in shares {
+            assert_eq!(percent(share), text, "{share}");
+        }
         assert_eq!(length(3.0, None), "3.00 (length unit)");
     }
 
