@@ -410,3 +410,17 @@ fn a_sphere_on_a_rectangular_free_boundary_gives_hertz_contact_area() {
         );
     }
 }
+
+/// The README's check-surface section names every warning the check can give.
+#[test]
+fn the_readme_names_every_warning() {
+    let readme =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    for limit in persson_check::measured::warnings::LIMITS {
+        assert!(
+            readme.contains(&format!("`{}`", limit.name)),
+            "README.md does not name the warning {}",
+            limit.name
+        );
+    }
+}
