@@ -10,6 +10,7 @@
 //! persson-check speed    [--n N] [--floor-n N ...] [--repeats K] --out DIR
 //! persson-check check-surface --heights FILE... --pixel-size DX [--periodic]
 //!                        [--loads P1,P2,...] [--solver gfmd|cg] [--no-cross-check] --out DIR
+//! persson-check claims   [--full DIR] [--reduced DIR] [--write FILE.md]
 //! ```
 //!
 //! Exit code 0 on success; otherwise a message on stderr and a non-zero code, and no
@@ -52,6 +53,8 @@ enum Command {
     Speed(commands::speed::Args),
     /// Check Persson's theory on measured height maps (contact area, pressures, energy).
     CheckSurface(commands::check_surface::Args),
+    /// The paper's claims, full and reduced scenes side by side (the README's table).
+    Claims(commands::claims::Args),
 }
 
 fn main() -> ExitCode {
@@ -72,6 +75,7 @@ fn main() -> ExitCode {
         Command::Report(args) => commands::report::run(args),
         Command::Speed(args) => commands::speed::run(args),
         Command::CheckSurface(args) => commands::check_surface::run(args),
+        Command::Claims(args) => commands::claims::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

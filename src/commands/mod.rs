@@ -3,6 +3,7 @@
 //! outputs only once everything has been computed.
 
 pub mod check_surface;
+pub mod claims;
 pub mod report;
 pub mod solve;
 pub mod speed;

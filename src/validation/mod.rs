@@ -16,6 +16,7 @@
 //! as `<name>.json`, `<name>.csv` and figures.
 //!
 //! * [`definition`]: verdict rule, the paper's finding, the two scenes;
+//! * [`claims`]: the paper's quantitative statements as data, each decided by one rule;
 //! * [`source`]: the built-in definitions and definition folders;
 //! * [`outcome`]: the record of a run;
 //! * [`store`]: job results and checkpoints on disk;
@@ -24,6 +25,7 @@
 //! * [`shard`] and [`plan`]: runs split into shares over many machines (a scheduler's job
 //!   array over a shared output folder) and merged into the outcomes of one run.
 
+pub mod claims;
 pub mod definition;
 pub mod outcome;
 pub mod plan;
@@ -33,6 +35,7 @@ pub mod shard;
 pub mod source;
 pub mod store;
 
+pub use claims::{ClaimOutcome, ClaimResult, ClaimSpec};
 pub use definition::{Definition, PaperFinding, Scale, Verdict, VerdictRule};
 pub use outcome::Outcome;
 pub use registry::{check, run, Registry};
