@@ -369,48 +369,6 @@ fn a_rectangular_partly_unmeasured_window_runs_with_fill_and_says_so() {
     assert!(e.contains("more than the 10%"), "{e}");
 }
 
-#[test]
-fn a_sphere_on_a_rectangular_free_boundary_gives_hertz_contact_area() {
-    use persson_check::engine::contact::{ContactProblem, Model};
-    use persson_check::engine::reference::Hertz;
-    use persson_check::engine::solver::{SolveOptions, SolverKind, Start};
-    // A 120 x 200 window, the sphere off its centre along the long side: the contact
-    // (radius 40) is far from the edges; the padded grid is square (400^2).
-    let (rows, cols, radius) = (120usize, 200usize, 1000.0);
-    let hertz = Hertz {
-        radius,
-        e_star: 1.0,
-    };
-    let model = Model::free_window(rows, cols, 1.0).unwrap();
-    let (cy, cx) = (60.0, 90.0);
-    let window: Vec<f64> = (0..rows * cols)
-        .map(|k| {
-            let (x, y) = ((k % cols) as f64 + 0.5 - cx, (k / cols) as f64 + 0.5 - cy);
-            -(x * x + y * y) / (2.0 * radius)
-        })
-        .collect();
-    let h = model.pad_heights(&window).unwrap();
-    for kind in [SolverKind::Cg, SolverKind::Gfmd] {
-        let a = 40.0;
-        let force = hertz.force_for_radius(a);
-        let problem = ContactProblem::new(&model, &h, force / model.grid.points() as f64).unwrap();
-        let s = kind
-            .build()
-            .solve(&problem, Start::Cold, &SolveOptions::with_tol(1e-8))
-            .unwrap();
-        assert!((0..h.len())
-            .filter(|&k| !model.under_wall(k))
-            .all(|k| s.pressure[k] == 0.0));
-        let area = s.pressure.iter().filter(|&&p| p > 0.0).count() as f64;
-        let exact = std::f64::consts::PI * a * a;
-        assert!(
-            (area / exact - 1.0).abs() < 0.03,
-            "{}: contact area {area} vs Hertz {exact:.1}",
-            kind.name()
-        );
-    }
-}
-
 /// The README's check-surface section names every warning the check can give.
 #[test]
 fn the_readme_names_every_warning() {

@@ -463,22 +463,12 @@ fn radial_average(modes: &[Mode], shape: Shape, pixel: f64) -> Vec<RadialBin> {
 /// Nyquist wavevector `pi / pixel` and the Nyquist wavevector.
 fn high_q_slope(radial: &[RadialBin], pixel: f64) -> Option<f64> {
     let nyquist = std::f64::consts::PI / pixel;
-    let points: Vec<(f64, f64)> = radial
+    let (ln_q, ln_c): (Vec<f64>, Vec<f64>) = radial
         .iter()
         .filter(|b| b.q >= 0.5 * nyquist && b.q <= nyquist && b.c > 0.0)
         .map(|b| (b.q.ln(), b.c.ln()))
-        .collect();
-    if points.len() < 2 {
-        return None;
-    }
-    let n = points.len() as f64;
-    let (mx, my) = points
-        .iter()
-        .fold((0.0, 0.0), |(a, b), (x, y)| (a + x / n, b + y / n));
-    let (sxy, sxx) = points.iter().fold((0.0, 0.0), |(a, b), (x, y)| {
-        (a + (x - mx) * (y - my), b + (x - mx) * (x - mx))
-    });
-    (sxx > 0.0).then(|| sxy / sxx)
+        .unzip();
+    crate::stats::LineFit::fit(&ln_q, &ln_c).map(|f| f.slope.value)
 }
 
 #[cfg(test)]

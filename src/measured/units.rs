@@ -9,21 +9,25 @@ use crate::error::{Error, Result};
 /// square (their geometric mean is used): instruments round their calibrations.
 pub const SQUARE_PIXEL_TOLERANCE: f64 = 1e-3;
 
-/// `v` with three significant digits in engineering notation: `123e-9`, `1.50`, `12.3e3`,
-/// `0`; `—` for a value that is not finite.
-pub fn eng(v: f64) -> String {
-    if !v.is_finite() {
-        return "—".to_string();
+/// `v` rounded to three significant digits, with the decimal exponent of the result
+/// (rounding first, so that a carry, 9.996 -> 10.0, moves the exponent); `None` for zero
+/// or a value that is not finite.
+fn three_digits(v: f64) -> Option<(f64, i32)> {
+    if !v.is_finite() || v == 0.0 {
+        return None;
     }
-    if v == 0.0 {
-        return "0".to_string();
-    }
-    // Round to three significant digits first, so that a carry (9.996 -> 10.0) moves the
-    // exponent.
     let rounded: f64 = format!("{v:.2e}")
         .parse()
         .expect("a formatted float parses");
-    let exponent = rounded.abs().log10().floor() as i32;
+    Some((rounded, rounded.abs().log10().floor() as i32))
+}
+
+/// `v` with three significant digits in engineering notation: `123e-9`, `1.50`, `12.3e3`,
+/// `0`; `—` for a value that is not finite.
+pub fn eng(v: f64) -> String {
+    let Some((rounded, exponent)) = three_digits(v) else {
+        return if v == 0.0 { "0" } else { "—" }.to_string();
+    };
     let e3 = exponent.div_euclid(3) * 3;
     let mantissa = rounded / 10f64.powi(e3);
     let decimals = (2 - (exponent - e3)).max(0) as usize;
@@ -39,16 +43,10 @@ pub fn eng(v: f64) -> String {
 /// `12.3%`, `0%`.
 pub fn percent(share: f64) -> String {
     let v = 100.0 * share;
-    if !v.is_finite() {
-        return "—".to_string();
-    }
-    if v == 0.0 {
-        return "0%".to_string();
-    }
-    let rounded: f64 = format!("{v:.2e}")
-        .parse()
-        .expect("a formatted float parses");
-    let decimals = (2 - rounded.abs().log10().floor() as i32).max(0) as usize;
+    let Some((rounded, exponent)) = three_digits(v) else {
+        return if v == 0.0 { "0%" } else { "—" }.to_string();
+    };
+    let decimals = (2 - exponent).max(0) as usize;
     format!("{rounded:.decimals$}%")
 }
 
