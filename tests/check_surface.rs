@@ -1,6 +1,8 @@
 //! `check-surface` on height maps: a periodic scan gives what `solve` gives, a measured
 //! (non-periodic) window gives a rising load curve beside Persson's predictions with a
-//! page, its figures and no NaN; bad scans and flags are refused with a word.
+//! page, its figures and no NaN; a rectangular, partly unmeasured window in a named unit
+//! runs with `--fill interpolate` and `--modulus`, saying so; a sphere on a rectangular
+//! free boundary gives Hertz's contact area; bad scans and flags are refused with a word.
 
 use std::path::Path;
 use std::process::Command;
@@ -104,18 +106,7 @@ fn a_measured_window_gives_a_rising_curve_beside_persson() {
             .map(|k| 0.25 * full.values[(i0 + k / 64) * 128 + j0 + k % 64])
             .collect()
     };
-    let a = window(0, 0);
-    let text: String = a
-        .chunks(64)
-        .map(|r| {
-            r.iter()
-                .map(|v| format!("{v:e}"))
-                .collect::<Vec<_>>()
-                .join(" ")
-                + "\n"
-        })
-        .collect();
-    std::fs::write(d.join("a.txt"), text).unwrap();
+    write_text(&d.join("a.txt"), &window(0, 0), 64);
     persson_check::io::npy::write_field(&d.join("b.npy"), 64, &window(64, 64)).unwrap();
     let stdout = run_ok(bin().current_dir(d).args([
         "check-surface",
@@ -145,9 +136,18 @@ fn a_measured_window_gives_a_rising_curve_beside_persson() {
         ] {
             assert!(f(p, k) > 0.0, "{k}");
         }
-        // GFMD and its CG cross-check on the same windows.
-        assert!((f(p, "a_r_cross_check") / f(p, "a_r") - 1.0).abs() < 0.01);
     }
+    // CG and its GFMD cross-check on the same windows, at the lowest, middle and highest
+    // load.
+    let crossed: Vec<f64> = curve
+        .iter()
+        .filter_map(|p| p["a_r_cross_check"].as_f64().map(|c| c / f(p, "a_r")))
+        .collect();
+    assert_eq!(crossed.len(), 3, "{crossed:?}");
+    assert!(
+        crossed.iter().all(|r| (r - 1.0).abs() < 0.01),
+        "{crossed:?}"
+    );
     assert_eq!(c["solvers_agree"], true);
     assert_eq!(c["comparisons"].as_array().unwrap().len(), 3);
     let md = std::fs::read_to_string(d.join("checked/surface.md")).unwrap();
@@ -194,8 +194,12 @@ fn bad_scans_and_flags_are_refused_with_a_word() {
     };
     let e = check(&["--heights", "holes.txt", "--pixel-size", "1"]);
     assert!(
-        e.contains("2 of 36 heights are not finite") && e.contains("row 2, column 2"),
+        e.contains("2 of 36 heights") && e.contains("undefined") && e.contains("row 2, column 2"),
         "{e}"
+    );
+    assert!(
+        e.contains("--fill interpolate"),
+        "the way to fill them is not named: {e}"
     );
     let e = check(&["--heights", "ok.npy", "--pixel-size", "0"]);
     assert!(e.contains("--pixel-size"), "{e}");
@@ -210,5 +214,171 @@ fn bad_scans_and_flags_are_refused_with_a_word() {
     assert!(e.contains("--loads"), "{e}");
     let e = check(&["--heights", "missing.npy", "--pixel-size", "1"]);
     assert!(e.contains("missing.npy"), "{e}");
+    // Pixels beyond the tolerance: refused with the way to resample.
+    let e = check(&["--heights", "ok.npy", "--pixel-size", "1,1.01"]);
+    assert!(e.contains("--pixel-size") && e.contains("resample"), "{e}");
+    for (flag, value) in [("--modulus", "-3"), ("--unit", "n m")] {
+        let e = check(&["--heights", "ok.npy", "--pixel-size", "1", flag, value]);
+        assert!(e.contains(flag), "{flag}: {e}");
+    }
     assert!(!d.join("o").exists(), "a refused check wrote output");
+}
+
+/// A `rows x cols` window at the corner of the generated 128^2 surface in `dir/full.npy`,
+/// heights and pixel scaled by `scale`.
+fn window(dir: &Path, rows: usize, cols: usize, scale: f64) -> Vec<f64> {
+    let full = persson_check::io::npy::read_field(&dir.join("full.npy"), 4..=1024).unwrap();
+    (0..rows * cols)
+        .map(|k| scale * full.values[(k / cols) * 128 + k % cols])
+        .collect()
+}
+
+/// `values` (`rows x cols`) as a text matrix, `nan` where not finite.
+fn write_text(path: &Path, values: &[f64], cols: usize) {
+    let text: String = values
+        .chunks(cols)
+        .map(|r| {
+            r.iter()
+                .map(|v| format!("{v:e}"))
+                .collect::<Vec<_>>()
+                .join(" ")
+                + "\n"
+        })
+        .collect();
+    std::fs::write(path, text).unwrap();
+}
+
+#[test]
+fn a_rectangular_partly_unmeasured_window_runs_with_fill_and_says_so() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    surface(d, "full.npy", 128, 5);
+    // A 48 x 80 window in nm (pixel 2.5 nm), 2% of it unmeasured: a block and scattered
+    // points.
+    let (rows, cols) = (48, 80);
+    let mut h = window(d, rows, cols, 2.5);
+    let mut holes = 0;
+    for k in (0..rows * cols)
+        .filter(|k| k % 97 == 3 || (k / cols == 20 && (30..40).contains(&(k % cols))))
+    {
+        h[k] = f64::NAN;
+        holes += 1;
+    }
+    write_text(&d.join("scan.txt"), &h, cols);
+    let base = [
+        "check-surface",
+        "--heights",
+        "scan.txt",
+        "--pixel-size",
+        "2.5",
+    ];
+    let e = run_err(bin().current_dir(d).args(base).args(["--out", "refused"]));
+    assert!(
+        e.contains(&format!("{holes} of {} heights", rows * cols)),
+        "{e}"
+    );
+    assert!(!d.join("refused").exists());
+    let out = bin()
+        .current_dir(d)
+        .args(base)
+        .args(["--fill", "interpolate", "--unit", "nm", "--modulus", "2e9"])
+        .args(["--no-cross-check", "--out", "checked"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let c = json(&d.join("checked/surface.json"));
+    assert_eq!(
+        (c["rows"].as_u64(), c["cols"].as_u64()),
+        (Some(48), Some(80))
+    );
+    assert_eq!(c["filled"][0].as_u64(), Some(holes as u64));
+    assert_eq!(c["unit"], "nm");
+    let curve = c["curve"].as_array().unwrap();
+    assert!(curve.len() >= 5, "{} loads", curve.len());
+    let f = |p: &serde_json::Value, k: &str| p[k].as_f64().unwrap();
+    for w in curve.windows(2) {
+        assert!(f(&w[1], "a_r") > f(&w[0], "a_r"), "the curve does not rise");
+    }
+    for p in curve {
+        assert_eq!(f(p, "p0_pa"), f(p, "p0") * 2e9);
+    }
+    // One progress line per load on stderr (not a terminal here).
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    let lines = stderr
+        .lines()
+        .filter(|l| l.starts_with("check-surface: scan 1/1, cg, load"))
+        .count();
+    assert_eq!(lines, c["loads"].as_array().unwrap().len(), "{stderr}");
+    // The page names the filled points, the unit and the pressures in Pa.
+    let md = std::fs::read_to_string(d.join("checked/surface.md")).unwrap();
+    assert!(
+        md.contains(&format!("{holes} of {} points", rows * cols)),
+        "{md}"
+    );
+    assert!(
+        md.contains("lengths in nm") && md.contains("rms height (nm)"),
+        "{md}"
+    );
+    assert!(
+        md.contains("p0 (Pa)") && md.contains("E_el (J/m^2)"),
+        "{md}"
+    );
+    assert!(
+        !md.contains("a_r (—)"),
+        "a column for a cross-check not run"
+    );
+    assert!(
+        md.contains("## Re-entry over magnification") && c["reentry"]["share"].as_f64().is_some()
+    );
+    // Every solve is in solves.jsonl, one line each.
+    let solves = std::fs::read_to_string(d.join("checked/solves.jsonl")).unwrap();
+    assert_eq!(solves.lines().count(), curve.len());
+    for text in [
+        &md,
+        &std::fs::read_to_string(d.join("checked/surface.json")).unwrap(),
+    ] {
+        assert!(
+            !text.contains("NaN") && !text.contains("nan"),
+            "a NaN in the output"
+        );
+    }
+    // A rectangle is not solved periodic: refused with a word.
+    let e = run_err(bin().current_dir(d).args(base).args([
+        "--fill",
+        "interpolate",
+        "--periodic",
+        "--out",
+        "o3",
+    ]));
+    assert!(e.contains("--periodic") && e.contains("square"), "{e}");
+    // More than a tenth unmeasured: refused even with --fill.
+    h.iter_mut()
+        .take(rows * cols / 9)
+        .for_each(|v| *v = f64::NAN);
+    write_text(&d.join("scan.txt"), &h, cols);
+    let e = run_err(
+        bin()
+            .current_dir(d)
+            .args(base)
+            .args(["--fill", "interpolate", "--out", "o2"]),
+    );
+    assert!(e.contains("more than the 10%"), "{e}");
+}
+
+/// The README's check-surface section names every warning the check can give.
+#[test]
+fn the_readme_names_every_warning() {
+    let readme =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    for limit in persson_check::measured::warnings::LIMITS {
+        assert!(
+            readme.contains(&format!("`{}`", limit.name)),
+            "README.md does not name the warning {}",
+            limit.name
+        );
+    }
 }

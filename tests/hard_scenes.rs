@@ -845,3 +845,85 @@ fn exhausted_budgets_on_hard_scenes_are_clean_errors() {
         }
     }
 }
+
+/// A levelled AFM scan of a flat sample: a terrace step of 0.1 grid spacings across a
+/// surface whose roughness is 0.03 spacings rms, with twelve particles 0.5 to 2.6 spacings
+/// tall and one to two wide (pixel-sharp: local slopes beyond 1), on `n x n` points,
+/// deterministic. The flat terrace comes into contact in thousands of points at once when
+/// the load rises, while the particle tips need pressures hundreds of times `p0`.
+fn terrace_with_particles(n: usize) -> Vec<f64> {
+    use rand::Rng;
+    use rand_chacha::rand_core::SeedableRng;
+    let params = SurfaceParams::new(n, 0.8, n as f64 / 4.0, 4.0, 2);
+    let (_, _, rough) = self_affine(&params);
+    let scale = 0.03 / field::std_dev(&rough);
+    let mut h: Vec<f64> = rough.iter().map(|v| v * scale).collect();
+    for (k, v) in h.iter_mut().enumerate() {
+        let (y, x) = ((k / n) as f64, (k % n) as f64);
+        if y > 0.4 * n as f64 + 0.1 * x {
+            *v -= 0.1;
+        }
+    }
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(2);
+    let mut uniform =
+        |lo: f64, hi: f64| lo + (hi - lo) * (rng.next_u64() >> 11) as f64 / 2f64.powi(53);
+    for _ in 0..12 {
+        let (cx, cy) = (uniform(0.0, n as f64), uniform(0.0, n as f64));
+        let (top, width) = (uniform(0.5, 2.6), uniform(0.7, 2.0));
+        for (k, v) in h.iter_mut().enumerate() {
+            let (y, x) = ((k / n) as f64, (k % n) as f64);
+            let r2 = (x - cx).powi(2) + (y - cy).powi(2);
+            *v += top * (-r2 / (2.0 * width * width)).exp();
+        }
+    }
+    h
+}
+
+/// The terrace with particles loaded step by step, each load warm-started from the last,
+/// on a free boundary (the measured window, as `check-surface` solves it) and periodic.
+/// With the full Polonsky-Keer step, CG fell into a cycle here (the contact set
+/// alternating between two sets thousands of points apart, the particle tips two spacings
+/// inside the wall) and ran out of any budget, where GFMD converges; the damped step
+/// ([`persson_check::engine::solver::ConstrainedCg`], "Stopping") must bring every load to
+/// the tolerance, and both solvers must agree. 128^2 shows the cycle at the sixth load.
+#[test]
+fn terrace_with_particles_warm_along_the_loads() {
+    let n = 128;
+    let h = terrace_with_particles(n);
+    let loads = [0.0002, 0.0004, 0.000654, 0.001, 0.0016, 0.0025, 0.004];
+    let free = Model::free_boundary(n, 1.0).unwrap();
+    let periodic = Model::new(Grid::new(n, 1.0).unwrap(), 1.0).unwrap();
+    for (boundary, model) in [("free", &free), ("periodic", &periodic)] {
+        let heights = model.pad_heights(&h).unwrap();
+        // The load over the window, as a mean over the model's grid.
+        let share = (n * n) as f64 / model.grid.points() as f64;
+        let mut last: Vec<Option<ContactSolution>> =
+            SolverKind::ALL.iter().map(|_| None).collect();
+        for &p0 in &loads {
+            let scene = format!("terrace, {boundary}, p0 = {p0}");
+            let problem = ContactProblem::new(model, &heights, p0 * share).unwrap();
+            let mut solved = Vec::new();
+            for (kind, prev) in SolverKind::ALL.iter().zip(&mut last) {
+                let start = prev.as_ref().map_or(Start::Cold, Start::Warm);
+                let s = run(
+                    &scene,
+                    *kind,
+                    kind.build().as_mut(),
+                    &problem,
+                    start,
+                    &opts(1e-8),
+                )
+                .unwrap_or_else(|r| panic!("{scene}, {}: residual {r:e}", kind.name()));
+                eprintln!(
+                    "{scene:<34} {:<4} iterations {:>5}  a_r {:.6}",
+                    kind.name(),
+                    s.stats.iterations,
+                    s.contact_area() / share
+                );
+                *prev = Some(s.clone());
+                solved.push(s);
+            }
+            assert_agree(&scene, &solved[0], &solved[1], 1e-8);
+        }
+    }
+}

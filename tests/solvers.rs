@@ -444,20 +444,61 @@ fn heights_whose_spread_overflows_are_rejected() {
     assert!(ContactProblem::new(&model, &h, 0.1).is_ok());
 }
 
-/// A sphere of radius `radius` (a paraboloid) centred on a `n x n` free-boundary window,
-/// pressed with `force`: the model, the padded heights and the doubled grid's `p0`.
-fn sphere_on_free_boundary(n: usize, radius: f64, force: f64) -> (Model, Vec<f64>, f64) {
-    let model = Model::free_boundary(n, 1.0).unwrap();
-    let c = 0.5 * n as f64;
-    let window: Vec<f64> = (0..n * n)
+/// A sphere of radius `radius` (a paraboloid) centred at `(row, column)` = `centre` of a
+/// `rows x cols` free-boundary window, pressed with `force`: the model, the padded heights
+/// and the padded grid's `p0`.
+fn sphere_on_free_window(
+    (rows, cols): (usize, usize),
+    centre: (f64, f64),
+    radius: f64,
+    force: f64,
+) -> (Model, Vec<f64>, f64) {
+    let model = Model::free_window(rows, cols, 1.0).unwrap();
+    let (cy, cx) = centre;
+    let window: Vec<f64> = (0..rows * cols)
         .map(|k| {
-            let (x, y) = ((k % n) as f64 + 0.5 - c, (k / n) as f64 + 0.5 - c);
+            let (x, y) = ((k % cols) as f64 + 0.5 - cx, (k / cols) as f64 + 0.5 - cy);
             -(x * x + y * y) / (2.0 * radius)
         })
         .collect();
     let heights = model.pad_heights(&window).unwrap();
     let p0 = force / model.grid.points() as f64;
     (model, heights, p0)
+}
+
+/// A sphere centred on a `n x n` free-boundary window (see [`sphere_on_free_window`]).
+fn sphere_on_free_boundary(n: usize, radius: f64, force: f64) -> (Model, Vec<f64>, f64) {
+    let c = 0.5 * n as f64;
+    sphere_on_free_window((n, n), (c, c), radius, force)
+}
+
+/// A rectangular window, the sphere off its centre along the long side: the padded grid
+/// is square (twice the longer side) and the contact (radius 40) far from the edges.
+#[test]
+fn a_sphere_on_a_rectangular_free_boundary_gives_hertz_contact_area() {
+    use persson_check::engine::reference::Hertz;
+    let radius = 1000.0;
+    let hertz = Hertz {
+        radius,
+        e_star: 1.0,
+    };
+    let a = 40.0;
+    let force = hertz.force_for_radius(a);
+    let (model, h, p0) = sphere_on_free_window((120, 200), (60.0, 90.0), radius, force);
+    assert_eq!(model.grid.n(), 400);
+    for kind in [SolverKind::Cg, SolverKind::Gfmd] {
+        let s = solve(kind, &model, &h, p0, 1e-8);
+        assert!((0..h.len())
+            .filter(|&k| !model.under_wall(k))
+            .all(|k| s.pressure[k] == 0.0));
+        let area = s.pressure.iter().filter(|&&p| p > 0.0).count() as f64;
+        let exact = std::f64::consts::PI * a * a;
+        assert!(
+            (area / exact - 1.0).abs() < 0.03,
+            "{}: contact area {area} vs Hertz {exact:.1}",
+            kind.name()
+        );
+    }
 }
 
 #[test]

@@ -62,7 +62,16 @@ __version__ = "0.1.0"
 
 
 def _heights(heights):
-    """``heights`` as a C-contiguous float64 array: no copy when it already is one."""
+    """``heights`` as a C-contiguous float64 array: no copy when it already is one. The
+    masked points of a masked array (undefined data) become NaN, which every function
+    refuses (or ``check_surface`` fills when asked), never heights."""
+    if _np.ma.isMaskedArray(heights):
+        a = _np.ma.asarray(heights)
+        if a.dtype.kind not in "fiu":
+            raise TypeError(
+                f"dtype is {a.dtype.str!r} ({a.dtype}), expected real numbers (float64 preferred)"
+            )
+        return _np.ascontiguousarray(_np.ma.filled(a.astype(_np.float64), _np.nan))
     a = _np.asarray(heights)
     if a.dtype.kind not in "fiu":
         raise TypeError(
@@ -168,50 +177,68 @@ def _is_topography(value):
     return callable(getattr(value, "heights", None)) and hasattr(value, "physical_sizes")
 
 
-def _scan(value, pixel_size, i):
-    """One scan's heights and the pixel size it implies (``None`` for an array)."""
+def _number(x):
+    """``x`` for a message: a plain float, never ``np.float64(...)``."""
+    return repr(float(x))
+
+
+def _scan(value, i):
+    """One scan's heights (NaN where undefined), the pixel sides it implies and its unit
+    (both ``None`` for an array)."""
     if not _is_topography(value):
-        return _heights(value), None
-    heights = _np.asarray(value.heights())
+        return _heights(value), None, None
+    heights = value.heights()
     sizes = _np.atleast_1d(_np.asarray(value.physical_sizes, dtype=float))
-    if heights.ndim != 2 or sizes.size != 2:
+    if _np.ndim(heights) != 2 or sizes.size != 2:
         # The library names the shape (a line scan is refused there, with its reason).
-        return _heights(heights), None
-    pixels = sizes / _np.asarray(heights.shape, dtype=float)
-    if not _np.isclose(pixels[0], pixels[1], rtol=1e-9, atol=0.0):
-        raise ValueError(
-            f"heights[{i}]: pixels of {pixels[0]!r} x {pixels[1]!r} (physical_sizes "
-            f"{tuple(sizes)} over {heights.shape} points): square pixels are needed"
-        )
-    return _heights(heights), float(pixels[0])
+        return _heights(heights), None, None
+    pixels = tuple(float(p) for p in sizes / _np.asarray(_np.shape(heights), dtype=float))
+    unit = getattr(value, "unit", None)
+    return _heights(heights), pixels, unit if isinstance(unit, str) else None
 
 
-def _scans(heights, pixel_size):
-    """The scans as float64 arrays and the one pixel size of them all."""
+def _same(a, b):
+    return all(_np.isclose(x, y, rtol=1e-9, atol=0.0) for x, y in zip(a, b))
+
+
+def _scans(heights, pixel_size, unit):
+    """The scans as float64 arrays, the pixel sides of them all and their length unit."""
     several = isinstance(heights, (list, tuple)) and any(
         isinstance(h, _np.ndarray) or _is_topography(h) for h in heights
     )
     values = list(heights) if several else [heights]
-    scans, pixels = [], []
+    scans, pixels, units = [], [], []
     for i, value in enumerate(values):
-        array, pixel = _scan(value, pixel_size, i)
+        array, pixel, scan_unit = _scan(value, i)
         scans.append(array)
         if pixel is not None:
             pixels.append(pixel)
+        if scan_unit is not None:
+            units.append((i, scan_unit))
     if pixel_size is None:
         if not pixels:
             raise ValueError(
                 "pixel_size: required for plain arrays (a positive length, in the heights' "
-                "unit); a topography brings its own"
+                "unit, or two: between rows, between columns); a topography brings its own"
             )
         pixel_size = pixels[0]
+    sides = tuple(float(p) for p in _np.broadcast_to(_np.asarray(pixel_size, dtype=float), (2,)))
     for pixel in pixels:
-        if not _np.isclose(pixel, pixel_size, rtol=1e-9, atol=0.0):
+        if not _same(pixel, sides):
             raise ValueError(
-                f"pixel_size: {pixel_size!r} given, but a topography's pixel is {pixel!r} "
+                f"pixel_size: {_number(sides[0])} x {_number(sides[1])} given, but a "
+                f"topography's pixel is {_number(pixel[0])} x {_number(pixel[1])} "
                 "(physical_sizes over points); give one or the other, or equal ones"
             )
-    return scans, float(pixel_size)
+    for i, scan_unit in units:
+        if unit is None:
+            unit = scan_unit
+        elif scan_unit != unit:
+            raise ValueError(
+                f"unit: {unit!r}, but heights[{i}] is in {scan_unit!r}; give scans in one "
+                "unit (SurfaceTopography: topography.to_unit(...))"
+            )
+    return scans, sides, unit
 
 
 def check_surface(
@@ -219,25 +246,37 @@ def check_surface(
     pixel_size=None,
     periodic=False,
     loads=None,
-    solver="gfmd",
+    solver="cg",
     cross_check=True,
     tol=1e-6,
     out=None,
     threads=None,
     progress=None,
+    unit=None,
+    modulus=None,
+    fill="none",
+    reentry=True,
+    verbose=True,
+    cross_check_all=False,
 ):
-    scans, pixel_size = _scans(heights, pixel_size)
+    scans, sides, unit = _scans(heights, pixel_size, unit)
     return _native.check_surface(
         scans,
-        pixel_size,
+        sides,
+        unit,
         periodic,
         None if loads is None else [float(p) for p in loads],
         solver,
         cross_check,
+        cross_check_all,
         tol,
+        fill,
+        None if modulus is None else float(modulus),
+        reentry,
         None if out is None else _os.fspath(out),
         threads,
         progress,
+        verbose,
     )
 
 
@@ -246,16 +285,28 @@ check-surface`` checks it; returns the dict of ``surface.json``.
 
 ``heights`` is a 2D height map (a numpy array with ``pixel_size`` in the heights' length
 unit, or a SurfaceTopography topography, anything with ``heights()`` and
-``physical_sizes``, whose pixel it brings), or a list of them: several scans of one
-surface, treated as realizations, from which the error bars come. Scans must be square.
-``periodic=False`` (a measured window) solves on a free-boundary half-space and detrends
-and windows the spectrum; ``periodic=True`` solves with the periodic kernel, as
-:func:`solve` does. ``loads`` are nominal pressures ``p0 / E*`` (default: eight loads
-giving contact areas of about 1% to 30%). ``solver`` heads the comparison, and
-``cross_check`` also solves with a second solver (CG for GFMD, GFMD for any other). ``out`` writes ``surface.json``,
-``surface.md`` and the figures there. The result's ``curve`` holds, per load, ``p0``,
-``a_r`` and Persson's ``a_r_persson`` and ``a_r_persson_corrected`` with the elastic
-energies; ``comparisons`` holds the verdicts. The GIL is released; Ctrl-C stops it.
+``physical_sizes``, whose pixel and ``unit`` it brings), or a list of them: several scans
+of one surface, treated as realizations, from which the error bars come. Scans may be
+rectangular. ``pixel_size`` is one length or two (between rows, between columns), equal
+within 0.1%. Undefined points (NaN, infinities, the masked points of a masked array or of
+a topography with undefined data) are refused with their count and the first one's
+position, unless ``fill="interpolate"`` fills them by harmonic interpolation (up to 10% of
+a scan; the result says how many). ``unit`` names the length unit (printed everywhere);
+``modulus`` is the contact modulus E* in pascals, for loads and pressures in Pa beside
+``p0 / E*``. ``periodic=False`` (a measured window) solves on a free-boundary half-space
+and detrends and windows the spectrum; ``periodic=True`` (square scans) solves with the
+periodic kernel, as :func:`solve` does. ``loads`` are nominal pressures ``p0 / E*``
+(default: eight loads giving contact areas of about 1% to 30%). ``solver`` heads the
+comparison, and ``cross_check`` also solves with a second solver (CG for GFMD, GFMD for
+any other) at the lowest, the middle
+and the highest load (every load with ``cross_check_all``), within a time budget per
+load; a failed solve is listed under ``failures``, never raised. ``reentry`` measures the
+re-entry share over magnification. ``out`` writes ``surface.json``, ``surface.md``,
+``solves.jsonl`` and the figures there; ``verbose`` writes one line per load to
+``sys.stderr`` as it ends. The result's ``curve`` holds, per load, ``p0``, ``a_r`` and
+Persson's ``a_r_persson`` and ``a_r_persson_corrected`` with the elastic energies;
+``warnings`` where the scan lies outside what the theory assumes; ``comparisons`` the
+verdicts. The GIL is released; Ctrl-C stops it.
 """
 
 

@@ -194,14 +194,20 @@ def report(
 
 def check_surface(
     heights: Union[npt.ArrayLike, Any, Sequence[Union[npt.ArrayLike, Any]]],
-    pixel_size: Optional[float] = None,
+    pixel_size: Optional[Union[float, tuple[float, float]]] = None,
     periodic: bool = False,
     loads: Optional[Sequence[float]] = None,
-    solver: SolverName = "gfmd",
+    solver: SolverName = "cg",
     cross_check: bool = True,
     tol: float = 1e-6,
     out: Optional[Path] = None,
     threads: Optional[int] = None,
     progress: Optional[Progress] = None,
+    unit: Optional[str] = None,
+    modulus: Optional[float] = None,
+    fill: Literal["none", "interpolate"] = "none",
+    reentry: bool = True,
+    verbose: bool = True,
+    cross_check_all: bool = False,
 ) -> dict[str, Any]:
     """Persson's theory checked on measured height maps (surface.json as a dict)."""

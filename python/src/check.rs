@@ -8,7 +8,8 @@ use numpy::{PyReadonlyArrayDyn, PyUntypedArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
-use persson_check::measured::check::CheckOptions;
+use persson_check::measured::check::{CheckOptions, Event};
+use persson_check::measured::fill::Fill;
 use persson_check::measured::psd::Boundary;
 use persson_check::measured::scan::Scan;
 use persson_check::tasks::check as task;
@@ -16,10 +17,10 @@ use persson_check::tasks::{parse, Keywords};
 
 use crate::conversions::record;
 use crate::errors::OrRaise;
-use crate::worker::run_blocking;
+use crate::worker::run_logged;
 
-/// The scans as the library's, checked as a file would be (2D, square, finite), each
-/// named `heights[i]` in messages.
+/// The scans as the library's, checked as a file would be (2D, each side in range; NaN
+/// where a point is missing), each named `heights[i]` in messages.
 fn scans(heights: &[PyReadonlyArrayDyn<'_, f64>]) -> PyResult<Vec<Scan>> {
     heights
         .iter()
@@ -34,29 +35,53 @@ fn scans(heights: &[PyReadonlyArrayDyn<'_, f64>]) -> PyResult<Vec<Scan>> {
         .collect()
 }
 
+/// The fill named `name` (`"none"`, `"interpolate"`).
+fn fill(name: &str) -> PyResult<Fill> {
+    Fill::ALL
+        .into_iter()
+        .find(|f| f.name() == name)
+        .ok_or_else(|| {
+            let names: Vec<String> = Fill::ALL
+                .iter()
+                .map(|f| format!("{:?}", f.name()))
+                .collect();
+            persson_check::Error::invalid("fill", format!("{name:?}"), names.join(" or "))
+        })
+        .or_raise()
+}
+
 /// Checks Persson's theory on the surface of `heights` (a list of 2D float64 arrays, the
-/// scans of one surface) with pixel size `pixel_size`, as `persson-check check-surface`
-/// does, and returns the dict of `surface.json`. `out` also writes the page and its
-/// figures there. The GIL is released; Ctrl-C stops the solve under way.
+/// scans of one surface, NaN where a point is missing) with pixel sides `pixel_size`
+/// (between rows, between columns), as `persson-check check-surface` does, and returns
+/// the dict of `surface.json`. `out` also writes the page and its files there; `verbose`
+/// writes one line per load to `sys.stderr` as it ends. The GIL is released; Ctrl-C
+/// stops the solve under way.
 #[pyfunction]
-#[pyo3(signature = (heights, pixel_size, periodic, loads, solver, cross_check, tol, out, threads, progress))]
+#[pyo3(signature = (heights, pixel_size, unit, periodic, loads, solver, cross_check, cross_check_all, tol, fill, modulus, reentry, out, threads, progress, verbose))]
 #[allow(clippy::too_many_arguments)]
 pub fn check_surface<'py>(
     py: Python<'py>,
     heights: Vec<PyReadonlyArrayDyn<'py, f64>>,
-    pixel_size: f64,
+    pixel_size: (f64, f64),
+    unit: Option<String>,
     periodic: bool,
     loads: Option<Vec<f64>>,
     solver: &str,
     cross_check: bool,
+    cross_check_all: bool,
     tol: f64,
+    fill: &str,
+    modulus: Option<f64>,
+    reentry: bool,
     out: Option<PathBuf>,
     threads: Option<i64>,
     progress: Option<Bound<'py, PyAny>>,
+    verbose: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
     let solver = parse::solver(solver).or_raise()?;
     let opts = CheckOptions {
-        pixel_size,
+        pixel_size: [pixel_size.0, pixel_size.1],
+        unit,
         boundary: if periodic {
             Boundary::Periodic
         } else {
@@ -65,12 +90,24 @@ pub fn check_surface<'py>(
         loads,
         solver,
         cross_check,
+        cross_check_all,
         tol,
+        fill: self::fill(fill)?,
+        modulus,
+        reentry,
     };
     let scans = scans(&heights)?;
-    let checked = run_blocking(py, threads, progress.as_ref(), |hook| {
-        let mut monitor = |_scan, _solver, _load, p| hook.iteration(p);
-        task::check_surface(&scans, &opts, out.as_deref(), &Keywords, &mut monitor)
+    let count = scans.len();
+    let checked = run_logged(py, threads, progress.as_ref(), verbose, |hook| {
+        let mut events = |e: Event| match e {
+            Event::Iteration { progress, .. } => hook.iteration(progress),
+            Event::Load { .. } => {
+                if let Some(line) = task::load_line(count, &e) {
+                    hook.line(format!("check_surface: {line}"));
+                }
+            }
+        };
+        task::check_surface(&scans, &opts, out.as_deref(), &Keywords, &mut events)
     })?;
     record(py, &checked)
 }

@@ -272,6 +272,7 @@ pub fn sweep(
     let hook = Hook {
         cancel: cancel.clone(),
         progress: progress.is_some().then(|| out_tx.clone()),
+        lines: None,
     };
     let job = SweepJob {
         surface,

@@ -42,6 +42,8 @@ pub enum Event {
     Done,
     /// A step of a sweep.
     Step(Box<Result<SweepStep, Failure>>),
+    /// A line for Python's `sys.stderr` (only when the caller asked for lines).
+    Line(String),
 }
 
 /// What a worker shares with the thread that waits for it.
@@ -51,6 +53,8 @@ pub struct Hook {
     pub cancel: Arc<AtomicBool>,
     /// Where progress goes, when a callback wants it.
     pub progress: Option<Sender<Event>>,
+    /// Where lines for `sys.stderr` go, when the caller wants them.
+    pub lines: Option<Sender<Event>>,
 }
 
 impl Hook {
@@ -72,6 +76,14 @@ impl Hook {
     pub fn stop_if_cancelled(&self) {
         if self.cancelled() {
             resume_unwind(Box::new(Cancelled));
+        }
+    }
+
+    /// Sends `text` to be written to Python's `sys.stderr` (a notebook shows it), when the
+    /// caller asked for lines.
+    pub fn line(&self, text: String) {
+        if let Some(tx) = &self.lines {
+            let _ = tx.send(Event::Line(text));
         }
     }
 
@@ -166,6 +178,17 @@ pub fn wait<T>(
                     }
                 }
             }
+            Ok(Event::Line(text)) => {
+                if raised.is_none() {
+                    let written = py
+                        .import("sys")
+                        .and_then(|sys| sys.getattr("stderr"))
+                        .and_then(|err| err.call_method1("write", (text + "\n",)));
+                    if let Err(e) = written {
+                        raise(e, &mut raised);
+                    }
+                }
+            }
             Ok(event) => {
                 if let Some(value) = take(event) {
                     return (Some(value), raised);
@@ -192,11 +215,24 @@ pub fn run_blocking<T: Send>(
     progress: Option<&Bound<'_, PyAny>>,
     work: impl FnOnce(&Hook) -> persson_check::Result<T> + Send,
 ) -> PyResult<T> {
+    run_logged(py, threads, progress, false, work)
+}
+
+/// [`run_blocking`], with the lines the worker sends ([`Hook::line`]) written to Python's
+/// `sys.stderr` as they come when `lines` is true.
+pub fn run_logged<T: Send>(
+    py: Python<'_>,
+    threads: Option<i64>,
+    progress: Option<&Bound<'_, PyAny>>,
+    lines: bool,
+    work: impl FnOnce(&Hook) -> persson_check::Result<T> + Send,
+) -> PyResult<T> {
     let pool = pool(threads)?;
     let (tx, rx) = mpsc::channel();
     let hook = Hook {
         cancel: Arc::new(AtomicBool::new(false)),
         progress: progress.map(|_| tx.clone()),
+        lines: lines.then(|| tx.clone()),
     };
     // A Receiver is not Sync: it enters the GIL-free waits through a Mutex.
     let rx = Mutex::new(rx);

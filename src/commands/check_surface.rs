@@ -1,27 +1,46 @@
 //! `check-surface`: Persson's theory checked on measured height maps.
 
+use std::io::IsTerminal;
 use std::path::PathBuf;
 
 use clap::Args as ClapArgs;
 use indicatif::{ProgressBar, ProgressStyle};
 use persson_check::engine::solver::SolverKind;
-use persson_check::error::Result;
-use persson_check::measured::check::CheckOptions;
+use persson_check::error::{Error, Result};
+use persson_check::measured::check::{CheckOptions, Event};
+use persson_check::measured::fill::Fill;
 use persson_check::measured::psd::Boundary;
-use persson_check::tasks::check::{check_surface, read_scans};
+use persson_check::tasks::check::{check_surface, load_line, read_scans};
 
 use super::FLAGS;
 
 /// Arguments of `check-surface`.
 #[derive(ClapArgs, Debug)]
 pub struct Args {
-    /// Height maps (.npy, 2D float, or a plain-text matrix), square; several files are
-    /// several scans of one surface (the error bars come from them).
+    /// Height maps (.npy, 2D float, or a plain-text matrix), square or rectangular; several
+    /// files are several scans of one surface (the error bars come from them).
     #[arg(long, num_args = 1.., required = true)]
     heights: Vec<PathBuf>,
-    /// Pixel size, in the heights' length unit.
-    #[arg(long = "pixel-size", allow_negative_numbers = true)]
-    pixel_size: f64,
+    /// Pixel size, in the heights' length unit: one value, or two (between rows, between
+    /// columns) that differ by at most 0.1%.
+    #[arg(
+        long = "pixel-size",
+        allow_negative_numbers = true,
+        value_delimiter = ',',
+        num_args = 1..=2,
+        required = true
+    )]
+    pixel_size: Vec<f64>,
+    /// The heights' length unit (m, mm, µm, nm, ...), printed with every length.
+    #[arg(long)]
+    unit: Option<String>,
+    /// The contact modulus E* in pascals: loads and pressures also in Pa.
+    #[arg(long, allow_negative_numbers = true)]
+    modulus: Option<f64>,
+    /// Points the instrument did not measure (NaN): refused (none), or filled by harmonic
+    /// interpolation from their neighbours, up to 10% of a scan.
+    #[arg(long, value_enum, default_value_t = Fill::None)]
+    fill: Fill,
     /// The scans are periodic (default: measured windows, solved with a free boundary).
     #[arg(long)]
     periodic: bool,
@@ -30,23 +49,41 @@ pub struct Args {
     #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
     loads: Option<Vec<f64>>,
     /// The headline solver.
-    #[arg(long, value_enum, default_value_t = SolverKind::Gfmd)]
+    #[arg(long, value_enum, default_value_t = SolverKind::Cg)]
     solver: SolverKind,
     /// Skip the cross-check with a second solver (CG for GFMD, GFMD for any other).
     #[arg(long = "no-cross-check")]
     no_cross_check: bool,
+    /// Cross-check every load (default: the lowest, the middle and the highest).
+    #[arg(long = "cross-check-all")]
+    cross_check_all: bool,
+    /// Skip the re-entry share over magnification.
+    #[arg(long = "no-reentry")]
+    no_reentry: bool,
     /// Residual tolerance of every solve.
     #[arg(long, default_value_t = 1e-6, allow_negative_numbers = true)]
     tol: f64,
-    /// Output folder: surface.json, surface.md, figures/.
+    /// Output folder: surface.json, surface.md, solves.jsonl, figures/.
     #[arg(long)]
     out: PathBuf,
 }
 
 pub fn run(args: Args) -> Result<()> {
     let scans = read_scans(&args.heights, &FLAGS)?;
+    let pixel_size = match args.pixel_size[..] {
+        [p] => [p, p],
+        [a, b] => [a, b],
+        _ => {
+            return Err(Error::invalid(
+                "--pixel-size",
+                format!("{:?}", args.pixel_size),
+                "one value, or two separated by a comma",
+            ))
+        }
+    };
     let opts = CheckOptions {
-        pixel_size: args.pixel_size,
+        pixel_size,
+        unit: args.unit,
         boundary: if args.periodic {
             Boundary::Periodic
         } else {
@@ -55,35 +92,62 @@ pub fn run(args: Args) -> Result<()> {
         loads: args.loads,
         solver: args.solver,
         cross_check: !args.no_cross_check,
+        cross_check_all: args.cross_check_all,
         tol: args.tol,
+        fill: args.fill,
+        modulus: args.modulus,
+        reentry: !args.no_reentry,
     };
-    let solves = scans.len() * if opts.cross_check { 2 } else { 1 };
-    let bar = ProgressBar::new(solves as u64);
-    bar.set_style(
-        ProgressStyle::with_template(
-            "{prefix:>16} [{elapsed_precise}] {bar:30} {pos}/{len} curves {msg}",
-        )
-        .expect("static template"),
-    );
-    bar.set_prefix("check-surface");
-    let mut last = None;
-    let mut progress = |scan: usize, solver: SolverKind, load: usize, _| {
-        let key = (scan, solver);
-        if last.is_some_and(|k| k != key) {
-            bar.inc(1);
-        }
-        last = Some(key);
-        bar.set_message(format!(
-            "scan {}, {}, load {}",
-            scan + 1,
-            solver.name(),
-            load + 1
-        ));
+    let count = scans.len();
+    let result = if std::io::stderr().is_terminal() {
+        let solves = count * if opts.cross_check { 2 } else { 1 };
+        let bar = ProgressBar::new(solves as u64);
+        bar.set_style(
+            ProgressStyle::with_template(
+                "{prefix:>16} [{elapsed_precise}] {bar:30} {pos}/{len} curves {msg}",
+            )
+            .expect("static template"),
+        );
+        bar.set_prefix("check-surface");
+        let mut events = |e: Event| match e {
+            Event::Iteration {
+                scan, solver, load, ..
+            } => bar.set_message(format!(
+                "scan {}, {}, load {}",
+                scan + 1,
+                solver.name(),
+                load + 1
+            )),
+            Event::Load { load, loads, .. } => {
+                if let Some(line) = load_line(count, &e) {
+                    bar.println(line);
+                }
+                // Both curves end at the last load.
+                if load + 1 == loads {
+                    bar.inc(1);
+                }
+            }
+        };
+        let result = check_surface(&scans, &opts, Some(&args.out), &FLAGS, &mut events);
+        bar.finish_and_clear();
+        result?
+    } else {
+        // A log, a notebook, a batch job: one line per load as it ends.
+        let mut events = |e: Event| {
+            if let Some(line) = load_line(count, &e) {
+                eprintln!("check-surface: {line}");
+            }
+        };
+        check_surface(&scans, &opts, Some(&args.out), &FLAGS, &mut events)?
     };
-    let result = check_surface(&scans, &opts, Some(&args.out), &FLAGS, &mut progress)?;
-    bar.finish_and_clear();
     for c in &result.comparisons {
         println!("{:24} {} : {}", c.name, c.statistic, c.verdict);
+    }
+    for w in &result.warnings {
+        println!("warning: {}: {}", w.name, w.message);
+    }
+    for f in &result.failures {
+        println!("failed: {}", f.message);
     }
     println!("wrote {}", args.out.join("surface.md").display());
     Ok(())

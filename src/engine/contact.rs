@@ -81,9 +81,9 @@ pub struct Model {
     pub compliance: Kernel,
     /// The inverse masses, made on first use ([`Model::inverse_mass`]).
     inverse_mass: OnceLock<Kernel>,
-    /// For a free boundary, the side of the window at the grid's origin that the hard wall
-    /// covers; `None`: the wall covers the whole (periodic) grid.
-    pub window: Option<usize>,
+    /// For a free boundary, the rows and columns of the window at the grid's origin that
+    /// the hard wall covers; `None`: the wall covers the whole (periodic) grid.
+    pub window: Option<(usize, usize)>,
 }
 
 impl Model {
@@ -98,14 +98,39 @@ impl Model {
     /// of [`crate::engine::boussinesq`], the wall over the window only. Heights for it come
     /// from [`Model::pad_heights`].
     pub fn free_boundary(window: usize, e_star: f64) -> Result<Self> {
-        let grid = Grid::new(2 * window, 1.0)?;
+        Self::free_window(window, window, e_star)
+    }
+
+    /// A free-boundary model for a `rows x cols` surface: the square grid of twice the
+    /// longer side, zero-padded (no image of the window reaches it along either axis), the
+    /// wall over the window only.
+    pub fn free_window(rows: usize, cols: usize, e_star: f64) -> Result<Self> {
+        let grid = Grid::new(2 * rows.max(cols), 1.0)?;
         let fft = Fft2::new(&grid);
         let table = crate::engine::boussinesq::padded_stiffness(&grid, &fft, e_star)?;
         let halfspace = HalfSpace::with_stiffness(e_star, table)?;
-        Ok(Self::with_halfspace(grid, halfspace, fft, Some(window)))
+        Ok(Self::with_halfspace(
+            grid,
+            halfspace,
+            fft,
+            Some((rows, cols)),
+        ))
     }
 
-    fn with_halfspace(grid: Grid, halfspace: HalfSpace, fft: Fft2, window: Option<usize>) -> Self {
+    /// Points under the wall: the window's, or every point of a periodic grid.
+    pub fn wall_points(&self) -> usize {
+        match self.window {
+            None => self.grid.points(),
+            Some((rows, cols)) => rows * cols,
+        }
+    }
+
+    fn with_halfspace(
+        grid: Grid,
+        halfspace: HalfSpace,
+        fft: Fft2,
+        window: Option<(usize, usize)>,
+    ) -> Self {
         let stiffness = fft.kernel(halfspace.stiffness());
         let compliance = stiffness.inverse();
         Self {
@@ -125,36 +150,36 @@ impl Model {
     pub fn under_wall(&self, k: usize) -> bool {
         match self.window {
             None => true,
-            Some(w) => {
+            Some((rows, cols)) => {
                 let n = self.grid.n();
-                k / n < w && k % n < w
+                k / n < rows && k % n < cols
             }
         }
     }
 
     /// The heights of a free-boundary problem on the doubled grid: the window's heights
-    /// (`window x window`, row-major) at the origin, and outside it a floor so far below
-    /// them that no displacement under a load `p0/E* < 10` reaches it (the window's height
-    /// range plus a thousand times its side). A periodic model takes the heights as they
-    /// are.
+    /// (`rows x cols`, row-major) at the origin, and outside it a floor so far below them
+    /// that no displacement under a load `p0/E* < 10` reaches it (the window's height
+    /// range plus a thousand times its longer side). A periodic model takes the heights as
+    /// they are.
     pub fn pad_heights(&self, heights: &[f64]) -> Result<Vec<f64>> {
-        let Some(w) = self.window else {
+        let Some((rows, cols)) = self.window else {
             return Ok(heights.to_vec());
         };
-        if heights.len() != w * w {
+        if heights.len() != rows * cols {
             return Err(Error::invalid(
                 "heights",
                 format!("{} values", heights.len()),
-                format!("window^2 = {} values", w * w),
+                format!("rows x columns = {} values", rows * cols),
             ));
         }
         let lo = heights.iter().copied().fold(f64::INFINITY, f64::min);
         let hi = heights.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        let floor = lo - FLOOR_DEPTH * ((hi - lo) + w as f64);
+        let floor = lo - FLOOR_DEPTH * ((hi - lo) + rows.max(cols) as f64);
         let n = self.grid.n();
         let mut padded = vec![floor; n * n];
-        for (row, src) in padded.chunks_mut(n).zip(heights.chunks(w)) {
-            row[..w].copy_from_slice(src);
+        for (row, src) in padded.chunks_mut(n).zip(heights.chunks(cols)) {
+            row[..cols].copy_from_slice(src);
         }
         Ok(padded)
     }
@@ -232,15 +257,16 @@ impl<'a> ContactProblem<'a> {
         let window: Vec<f64>;
         let (heights_seen, side) = match model.window {
             None => (heights, model.grid.length()),
-            Some(w) => {
+            Some((rows, cols)) => {
                 let n = model.grid.n();
                 window = heights
                     .chunks(n)
-                    .take(w)
-                    .flat_map(|r| &r[..w])
+                    .take(rows)
+                    .flat_map(|r| &r[..cols])
                     .copied()
                     .collect();
-                (&window[..], w as f64 * model.grid.spacing())
+                let side = ((rows * cols) as f64).sqrt();
+                (&window[..], side * model.grid.spacing())
             }
         };
         // One pass for the mean (finite exactly when every height is, barring overflow),
@@ -286,8 +312,9 @@ impl<'a> ContactProblem<'a> {
     pub fn cold_pressure(&self, p: &mut [f64]) {
         match self.model.window {
             None => p.fill(self.p0),
-            Some(w) => {
-                let under = self.p0 * self.model.grid.points() as f64 / (w * w) as f64;
+            Some(_) => {
+                let under =
+                    self.p0 * self.model.grid.points() as f64 / self.model.wall_points() as f64;
                 for (k, v) in p.iter_mut().enumerate() {
                     *v = if self.model.under_wall(k) { under } else { 0.0 };
                 }

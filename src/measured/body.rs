@@ -4,8 +4,15 @@
 //! from the last.
 //!
 //! What a solve gives the check, all over the scan's own window: the relative contact
-//! area (points with `p > 0`), the elastic energy per unit area of the roughness and, at
-//! one load, the window's pressures.
+//! area (points with `p > 0`), the elastic energy per unit area of the roughness and the
+//! window's pressures. A solve that fails (no convergence, or over its time budget) is
+//! recorded as such, with the solver and the load, and the curve goes on from the last
+//! load that converged: one load never costs the others.
+//!
+//! A time budget stops a solve from its per-iteration monitor: past the deadline the
+//! monitor unwinds out of the solver's loop with a private payload ([`OutOfTime`]), which
+//! [`solve_bounded`] catches (the Python package stops a solve on Ctrl-C the same way);
+//! the solver is then built afresh for the next load.
 //!
 //! The energy of the roughness is that of the pressure beyond a flat punch's: with
 //! `p_f` the pressure under a flat rigid punch of the window's shape at unit nominal load,
@@ -20,12 +27,13 @@
 //! `p0^2 L / E*`, with the pressure rising towards the window's edges), is left out: an
 //! infinite rough surface under a uniform load has none.
 
-use std::time::Instant;
+use std::panic::{catch_unwind, resume_unwind, AssertUnwindSafe};
+use std::time::{Duration, Instant};
 
 use rustfft::num_complex::Complex64;
 use serde::{Deserialize, Serialize};
 
-use super::psd::{Boundary, ScanSpectrum};
+use super::psd::{Boundary, ScanSpectrum, Shape};
 use super::theory::E_STAR;
 use crate::engine::contact::{ContactProblem, ContactSolution, Model};
 use crate::engine::grid::Grid;
@@ -38,8 +46,8 @@ pub struct Body {
     pub model: Model,
     /// The heights on the model's grid (pixels), padded for a free boundary.
     pub heights: Vec<f64>,
-    /// The scan's side (pixels).
-    pub n: usize,
+    /// The scan's shape (pixels).
+    pub shape: Shape,
     /// For a free boundary: the half spectrum of `M^2 G`, the Boussinesq response on the
     /// doubled grid, for the elastic displacement with its mean.
     response: Option<Vec<Complex64>>,
@@ -52,17 +60,18 @@ const PUNCH_TOL: f64 = 1e-10;
 
 impl Body {
     /// The contact problem of `spectrum`'s heights (detrended for a free boundary).
-    pub fn new(spectrum: &ScanSpectrum, n: usize) -> Result<Self> {
+    pub fn new(spectrum: &ScanSpectrum) -> Result<Self> {
+        let shape = spectrum.shape;
         match spectrum.boundary {
             Boundary::Periodic => Ok(Self {
-                model: Model::new(Grid::new(n, 1.0)?, E_STAR)?,
+                model: Model::new(Grid::new(shape.rows, 1.0)?, E_STAR)?,
                 heights: spectrum.heights.clone(),
-                n,
+                shape,
                 response: None,
                 punch: Vec::new(),
             }),
             Boundary::Free => {
-                let model = Model::free_boundary(n, E_STAR)?;
+                let model = Model::free_window(shape.rows, shape.cols, E_STAR)?;
                 let heights = model.pad_heights(&spectrum.heights)?;
                 let m = model.grid.n();
                 let g = crate::engine::boussinesq::padded_response(m, 1.0, E_STAR);
@@ -70,11 +79,11 @@ impl Body {
                 model.fft.forward(&g, &mut spec);
                 let scale = (m * m) as f64;
                 spec.iter_mut().for_each(|v| *v *= scale);
-                let punch = flat_punch(&model, n)?;
+                let punch = flat_punch(&model, shape)?;
                 Ok(Self {
                     model,
                     heights,
-                    n,
+                    shape,
                     response: Some(spec),
                     punch,
                 })
@@ -82,8 +91,8 @@ impl Body {
         }
     }
 
-    /// Puts the heights of `spectrum`, another scan of the same size and boundary, on this
-    /// body: its half-space, response and flat punch depend on the size alone.
+    /// Puts the heights of `spectrum`, another scan of the same shape and boundary, on
+    /// this body: its half-space, response and flat punch depend on the shape alone.
     pub fn set_heights(&mut self, spectrum: &ScanSpectrum) -> Result<()> {
         self.heights = match spectrum.boundary {
             Boundary::Periodic => spectrum.heights.clone(),
@@ -93,19 +102,13 @@ impl Body {
     }
 
     /// The window's share of the model's grid (1 for a periodic scan).
-    fn window_share(&self) -> f64 {
-        (self.n * self.n) as f64 / self.model.grid.points() as f64
+    pub fn window_share(&self) -> f64 {
+        self.shape.points() as f64 / self.model.grid.points() as f64
     }
 
     /// The window's values of a field on the model's grid, row-major.
     pub fn window(&self, field: &[f64]) -> Vec<f64> {
-        let m = self.model.grid.n();
-        field
-            .chunks(m)
-            .take(self.n)
-            .flat_map(|row| &row[..self.n])
-            .copied()
-            .collect()
+        window_of(&self.model, self.shape, field)
     }
 
     /// The elastic energy per unit area of the window under `solution` (see the module
@@ -131,16 +134,28 @@ impl Body {
         let mut u = vec![0.0; self.model.grid.points()];
         fft.inverse(&spec, &mut u, &mut Vec::new());
         let work: f64 = dp.iter().zip(&u).map(|(p, u)| p * u).sum();
-        0.5 * work / (self.n * self.n) as f64
+        0.5 * work / self.shape.points() as f64
     }
+}
+
+/// The values of a field on `model`'s grid over the `shape` window at its origin,
+/// row-major (the whole field for a periodic model of that shape).
+pub fn window_of(model: &Model, shape: Shape, field: &[f64]) -> Vec<f64> {
+    let m = model.grid.n();
+    field
+        .chunks(m)
+        .take(shape.rows)
+        .flat_map(|row| &row[..shape.cols])
+        .copied()
+        .collect()
 }
 
 /// The pressure under a flat rigid punch of the window's shape at unit nominal load (mean
 /// 1 over the window, zero outside), on `model`'s free boundary: the whole window in
 /// contact with a flat wall, solved by CG to [`PUNCH_TOL`].
-fn flat_punch(model: &Model, n: usize) -> Result<Vec<f64>> {
-    let flat = model.pad_heights(&vec![0.0; n * n])?;
-    let share = (n * n) as f64 / model.grid.points() as f64;
+fn flat_punch(model: &Model, shape: Shape) -> Result<Vec<f64>> {
+    let flat = model.pad_heights(&vec![0.0; shape.points()])?;
+    let share = shape.points() as f64 / model.grid.points() as f64;
     let problem = ContactProblem::new(model, &flat, share)?;
     let solution =
         SolverKind::Cg
@@ -166,28 +181,108 @@ pub struct Solved {
     pub wall_s: f64,
 }
 
-/// A load curve: every load's numbers, and the window's pressures at one load.
+/// A solve that ended without a solution: the solver, the load and why.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Failed {
+    /// The solver.
+    pub solver: SolverKind,
+    /// The load, `p0 / E*` over the window.
+    pub p0: f64,
+    /// What happened, naming the solver and the load.
+    pub message: String,
+    /// Wall time spent on it, seconds.
+    pub wall_s: f64,
+}
+
+/// A load of a curve: solved, or failed.
+pub type Outcome = std::result::Result<Solved, Failed>;
+
+/// A load curve: every load's outcome, and the window's pressures at every load solved.
 #[derive(Debug, Clone)]
 pub struct Curve {
     /// The solver.
     pub solver: SolverKind,
-    /// One entry per load, in the order of the loads.
-    pub points: Vec<Solved>,
-    /// The window's pressures over the load at the load `kept` (`p / p0`).
-    pub pressures: Vec<f64>,
+    /// Which of the check's loads each entry is (`0..n` for a curve over every load).
+    pub index: Vec<usize>,
+    /// One entry per load solved, in the order of the loads.
+    pub points: Vec<Outcome>,
+    /// The window's pressures over the load (`p / p0`) at every load solved.
+    pub pressures: Vec<Option<Vec<f32>>>,
     /// Wall time of the whole curve, seconds.
     pub wall_s: f64,
 }
 
-/// Solves `body` at `loads` (increasing) with `solver` to `tol`, warm-starting each load
-/// from the last; keeps the pressures at load index `kept`. `monitor` sees every
-/// iteration.
+impl Curve {
+    /// The check's load `i`, if this curve solved it.
+    pub fn solved(&self, i: usize) -> Option<&Solved> {
+        let k = self.index.iter().position(|&j| j == i)?;
+        self.points[k].as_ref().ok()
+    }
+}
+
+/// The payload a solve over its time budget unwinds with (never printed:
+/// `resume_unwind` skips the panic hook).
+struct OutOfTime;
+
+/// `engine.solve_monitored`, stopped once `deadline` has passed: then the error says so,
+/// with the iterations done and the last residual estimate.
+pub fn solve_bounded(
+    engine: &mut dyn Solver,
+    problem: &ContactProblem,
+    start: Start,
+    opts: &SolveOptions,
+    deadline: Option<Instant>,
+    monitor: &mut dyn FnMut(Progress),
+) -> std::result::Result<ContactSolution, SolveEnd> {
+    let mut last = Progress {
+        iteration: 0,
+        residual: f64::NAN,
+    };
+    let run = catch_unwind(AssertUnwindSafe(|| {
+        engine.solve_monitored(problem, start, opts, &mut |p| {
+            last = p;
+            monitor(p);
+            if deadline.is_some_and(|d| Instant::now() > d) {
+                resume_unwind(Box::new(OutOfTime));
+            }
+        })
+    }));
+    match run {
+        Ok(Ok(solution)) => Ok(solution),
+        Ok(Err(e)) => Err(SolveEnd::Error(e)),
+        Err(payload) if payload.is::<OutOfTime>() => Err(SolveEnd::OutOfTime(last)),
+        Err(payload) => resume_unwind(payload),
+    }
+}
+
+/// How a bounded solve ended without a solution.
+#[derive(Debug)]
+pub enum SolveEnd {
+    /// The solver's own error.
+    Error(Error),
+    /// Over the time budget, at this iteration and estimate.
+    OutOfTime(Progress),
+}
+
+/// Whether an error ends one solve only (the solver stopped), rather than the check (bad
+/// input, files).
+fn ends_the_solve(e: &Error) -> bool {
+    matches!(
+        e,
+        Error::NotConverged { .. } | Error::NonFinite { .. } | Error::LostContact { .. }
+    )
+}
+
+/// Solves `body` at `loads` (increasing) with `solver` to `tol`, each load warm-started
+/// from the last that converged; `budget[i]` bounds the time of load `i` (`None`: no
+/// bound). `on_load` sees every load's outcome as it ends, `monitor` every iteration.
 pub fn solve_curve(
     body: &Body,
     loads: &[f64],
     solver: SolverKind,
     tol: f64,
-    kept: usize,
+    budget: &[Option<Duration>],
+    on_load: &mut dyn FnMut(usize, &Outcome),
     monitor: &mut dyn FnMut(usize, Progress),
 ) -> Result<Curve> {
     let timer = Instant::now();
@@ -195,56 +290,83 @@ pub fn solve_curve(
     let mut engine: Box<dyn Solver + Send> = solver.build();
     let mut last: Option<ContactSolution> = None;
     let mut points = Vec::with_capacity(loads.len());
-    let mut pressures = Vec::new();
+    let mut pressures = Vec::with_capacity(loads.len());
     for (i, &p0) in loads.iter().enumerate() {
         let problem = ContactProblem::new(&body.model, &body.heights, p0 * body.window_share())?;
         let start = last.as_ref().map_or(Start::Cold, Start::Warm);
-        let solution = engine
-            .solve_monitored(&problem, start, &opts, &mut |p| monitor(i, p))
-            .map_err(|e| at_load(e, p0))?;
-        let window = body.window(&solution.pressure);
-        let touched = (0..solution.pressure.len())
-            .filter(|&k| !body.model.under_wall(k))
-            .any(|k| solution.pressure[k] > 0.0);
-        if touched {
-            return Err(Error::invalid(
-                "loads",
-                p0,
-                "loads under which the surface stays clear of the floor outside the scan",
-            ));
-        }
-        let contact = window.iter().filter(|&&p| p > 0.0).count();
-        points.push(Solved {
+        let began = Instant::now();
+        let allowed = budget.get(i).copied().flatten();
+        let deadline = allowed.map(|d| began + d);
+        let run = solve_bounded(
+            engine.as_mut(),
+            &problem,
+            start,
+            &opts,
+            deadline,
+            &mut |p| monitor(i, p),
+        );
+        let fail = |message: String| Failed {
+            solver,
             p0,
-            contact_area: contact as f64 / window.len() as f64,
-            energy: body.elastic_energy(&solution),
-            iterations: solution.stats.iterations,
-            residual: solution.stats.residual.value(),
-            wall_s: solution.stats.wall_s,
-        });
-        if i == kept {
-            pressures = window.iter().map(|p| p / p0).collect();
+            message,
+            wall_s: began.elapsed().as_secs_f64(),
+        };
+        let at = format!(
+            "{} at p0 = {p0:.3e} E* (load {} of {})",
+            solver.name(),
+            i + 1,
+            loads.len()
+        );
+        let outcome = match run {
+            Ok(solution) => {
+                let touched = (0..solution.pressure.len())
+                    .filter(|&k| !body.model.under_wall(k))
+                    .any(|k| solution.pressure[k] > 0.0);
+                if touched {
+                    Err(fail(format!(
+                        "{at}: the surface touched the floor outside the scan"
+                    )))
+                } else {
+                    let window = body.window(&solution.pressure);
+                    let contact = window.iter().filter(|&&p| p > 0.0).count();
+                    let solved = Solved {
+                        p0,
+                        contact_area: contact as f64 / window.len() as f64,
+                        energy: body.elastic_energy(&solution),
+                        iterations: solution.stats.iterations,
+                        residual: solution.stats.residual.value(),
+                        wall_s: solution.stats.wall_s,
+                    };
+                    pressures.push(Some(window.iter().map(|p| (p / p0) as f32).collect()));
+                    last = Some(solution);
+                    Ok(solved)
+                }
+            }
+            Err(SolveEnd::Error(e)) if ends_the_solve(&e) => Err(fail(format!("{at}: {e}"))),
+            Err(SolveEnd::Error(e)) => return Err(e),
+            Err(SolveEnd::OutOfTime(p)) => Err(fail(format!(
+                "{at}: stopped over its time budget of {:.1} s, after {} iterations, \
+                 residual estimate {:.3e} > tolerance {tol:.1e}",
+                allowed.map_or(0.0, |d| d.as_secs_f64()),
+                p.iteration,
+                p.residual
+            ))),
+        };
+        if outcome.is_err() {
+            pressures.push(None);
+            // The solver's state is the failed solve's: the next load starts afresh.
+            engine = solver.build();
         }
-        last = Some(solution);
+        on_load(i, &outcome);
+        points.push(outcome);
     }
     Ok(Curve {
         solver,
+        index: (0..loads.len()).collect(),
         points,
         pressures,
         wall_s: timer.elapsed().as_secs_f64(),
     })
-}
-
-/// A solve's error with the load it failed at.
-fn at_load(e: Error, p0: f64) -> Error {
-    match e {
-        Error::InvalidInput { .. } | Error::BadFile { .. } | Error::Io { .. } => e,
-        other => Error::invalid(
-            "loads",
-            p0,
-            format!("a load the solver converges at ({other})"),
-        ),
-    }
 }
 
 #[cfg(test)]
@@ -255,7 +377,8 @@ mod tests {
     fn scan(n: usize, boundary: Boundary) -> ScanSpectrum {
         let s = Surface::generate(&SurfaceParams::new(n, 0.8, n as f64, 4.0, 3)).unwrap();
         let fft = crate::engine::fft::Fft2::new(s.grid());
-        ScanSpectrum::new(&s.heights_at(f64::INFINITY, &fft), n, 1.0, boundary).unwrap()
+        let shape = Shape { rows: n, cols: n };
+        ScanSpectrum::new(&s.heights_at(f64::INFINITY, &fft), shape, 1.0, boundary).unwrap()
     }
 
     /// `(1/2) sum_ab x_a G_ab y_b / n^2` over the window's points, by the direct sum of
@@ -280,7 +403,7 @@ mod tests {
     #[test]
     fn the_free_boundary_energy_is_the_work_beyond_the_flat_punch() {
         let n = 8;
-        let body = Body::new(&scan(n, Boundary::Free), n).unwrap();
+        let body = Body::new(&scan(n, Boundary::Free)).unwrap();
         let m = body.model.grid.n();
         // The flat punch presses its whole window, with mean 1, and displaces it uniformly.
         let pf = &body.punch;
@@ -347,27 +470,63 @@ mod tests {
     #[test]
     fn a_curve_rises_with_the_load_on_both_boundaries() {
         for boundary in [Boundary::Periodic, Boundary::Free] {
-            let body = Body::new(&scan(32, boundary), 32).unwrap();
+            let body = Body::new(&scan(32, boundary)).unwrap();
+            let mut seen = Vec::new();
             let curve = solve_curve(
                 &body,
                 &[0.02, 0.05, 0.1],
                 SolverKind::Cg,
                 1e-8,
-                1,
+                &[],
+                &mut |i, o| seen.push((i, o.is_ok())),
                 &mut |_, _| {},
             )
             .unwrap();
-            let areas: Vec<f64> = curve.points.iter().map(|s| s.contact_area).collect();
+            assert_eq!(seen, vec![(0, true), (1, true), (2, true)]);
+            let areas: Vec<f64> = (0..3)
+                .map(|i| curve.solved(i).unwrap().contact_area)
+                .collect();
             assert!(
                 areas.windows(2).all(|w| w[0] < w[1]),
                 "{boundary:?}: {areas:?}"
             );
-            assert_eq!(curve.pressures.len(), 32 * 32);
-            let mean = curve.pressures.iter().sum::<f64>() / curve.pressures.len() as f64;
+            let kept = curve.pressures[1].as_ref().unwrap();
+            assert_eq!(kept.len(), 32 * 32);
+            let mean = kept.iter().map(|&p| f64::from(p)).sum::<f64>() / kept.len() as f64;
             assert!(
                 (mean - 1.0).abs() < 1e-6,
                 "{boundary:?}: mean p/p0 = {mean}"
             );
         }
+    }
+
+    #[test]
+    fn a_load_over_its_time_budget_is_recorded_and_the_next_load_is_solved() {
+        let body = Body::new(&scan(32, Boundary::Free)).unwrap();
+        let budget = [Some(Duration::ZERO), None];
+        let curve = solve_curve(
+            &body,
+            &[0.02, 0.05],
+            SolverKind::Gfmd,
+            1e-8,
+            &budget,
+            &mut |_, _| {},
+            &mut |_, _| {},
+        )
+        .unwrap();
+        let failed = curve.points[0].as_ref().unwrap_err();
+        assert_eq!((failed.solver, failed.p0), (SolverKind::Gfmd, 0.02));
+        assert!(
+            failed
+                .message
+                .starts_with("gfmd at p0 = 2.000e-2 E* (load 1 of 2)")
+                && failed.message.contains("time budget"),
+            "{}",
+            failed.message
+        );
+        assert!(curve.pressures[0].is_none());
+        // The second load starts cold and converges.
+        let solved = curve.solved(1).unwrap();
+        assert!(solved.contact_area > 0.0 && solved.residual <= 1e-8);
     }
 }

@@ -16,13 +16,25 @@
 //!
 //! A comparison's verdict over the loads: violated when any load's is, holds when every
 //! load's holds, inconclusive otherwise.
+//!
+//! A solve that fails is a finding, not the end of the check: the curve keeps the loads
+//! every scan's headline solve reached, the failures are listed with their solver, load
+//! and message, and a cross-check solve gets a time budget of [`CROSS_CHECK_TIME`] times
+//! the headline's time at its load (at least [`CROSS_CHECK_MIN_S`]). Warnings
+//! ([`super::warnings`]) say where the scan lies outside what the theory assumes.
 
 use serde::{Deserialize, Serialize};
 
-use super::body::{solve_curve, Body, Curve};
-use super::psd::{Boundary, RadialBin, ScanSpectrum};
+use std::time::Duration;
+
+use super::body::{solve_curve, Body, Curve, Outcome, Solved};
+use super::fill::Fill;
+use super::psd::{Boundary, RadialBin, ScanSpectrum, Shape};
+use super::reentry::{reentry_share, Reentry};
 use super::scan::Scan;
 use super::theory::{loads, Predicted, Theory};
+use super::units::{check_unit, square_pixel};
+use super::warnings::{self, Warning};
 use crate::engine::solver::{Progress, SolverKind};
 use crate::error::{check_positive, Error, Result};
 use crate::stats::Estimate;
@@ -37,11 +49,27 @@ pub const RULE: VerdictRule = VerdictRule {
 /// Solvers agree when their contact areas and energies differ by less than this, relative.
 pub const SOLVER_AGREEMENT: f64 = 0.01;
 
+/// The cross-check's time budget at a load, in multiples of the headline solve's time
+/// there: a cross-check that would take longer is stopped and recorded as failed.
+pub const CROSS_CHECK_TIME: f64 = 20.0;
+
+/// The least time budget of a cross-check solve, seconds (a headline solve of a few
+/// milliseconds says little about what the other solver needs).
+pub const CROSS_CHECK_MIN_S: f64 = 2.0;
+
+/// The loads cross-checked unless every load is asked for: the lowest, the middle and
+/// the highest (GFMD, the cross-check of the default, takes some three times CG's time
+/// per load on measured scans: the README's speed section).
+pub const CROSS_CHECKED_LOADS: usize = 3;
+
 /// How a surface is checked.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CheckOptions {
-    /// Pixel size, in the heights' length unit.
-    pub pixel_size: f64,
+    /// Pixel sides in the heights' length unit: along axis 0 (between rows) and axis 1
+    /// (between columns); equal within [`super::units::SQUARE_PIXEL_TOLERANCE`].
+    pub pixel_size: [f64; 2],
+    /// The heights' length unit (`None`: unnamed).
+    pub unit: Option<String>,
     /// Periodic scans, or measured windows with a free boundary.
     pub boundary: Boundary,
     /// Loads `p0 / E*` (none: the defaults of [`super::theory::default_areas`]).
@@ -50,19 +78,33 @@ pub struct CheckOptions {
     pub solver: SolverKind,
     /// Also solve with the other solver.
     pub cross_check: bool,
+    /// Cross-check every load (else [`CROSS_CHECKED_LOADS`] of them).
+    pub cross_check_all: bool,
     /// Residual tolerance of every solve.
     pub tol: f64,
+    /// Whether the points a scan lacks are filled ([`super::fill`]).
+    pub fill: Fill,
+    /// The contact modulus `E*` in pascals, for pressures in pascals beside `p0 / E*`.
+    pub modulus: Option<f64>,
+    /// Whether the re-entry share over magnification is measured
+    /// ([`super::reentry`]).
+    pub reentry: bool,
 }
 
 impl Default for CheckOptions {
     fn default() -> Self {
         Self {
-            pixel_size: 1.0,
+            pixel_size: [1.0, 1.0],
+            unit: None,
             boundary: Boundary::Free,
             loads: None,
-            solver: SolverKind::Gfmd,
+            solver: SolverKind::Cg,
             cross_check: true,
+            cross_check_all: false,
             tol: 1e-6,
+            fill: Fill::None,
+            modulus: None,
+            reentry: true,
         }
     }
 }
@@ -95,11 +137,13 @@ impl Mean {
 pub struct CurvePoint {
     /// The load, `p0 / E*`.
     pub p0: f64,
+    /// The load in pascals (with `--modulus`).
+    pub p0_pa: Option<f64>,
     /// Contact area (headline solver), mean over scans.
     pub a_r: f64,
     /// Its standard error over scans (absent with one scan).
     pub a_r_std_error: Option<f64>,
-    /// Contact area by the cross-check solver.
+    /// Contact area by the cross-check solver (absent where it failed).
     pub a_r_cross_check: Option<f64>,
     /// Persson's original theory.
     pub a_r_persson: f64,
@@ -109,6 +153,11 @@ pub struct CurvePoint {
     pub area_ratio: Mean,
     /// The contact-area verdict at this load.
     pub area_verdict: Verdict,
+    /// The mean pressure in contact, `p0 / a_r`, in units of `E*`.
+    pub contact_pressure: f64,
+    /// Whether it is far past the yield of any material
+    /// ([`warnings::CONTACT_PRESSURE`]).
+    pub past_yield: bool,
     /// Elastic energy per unit area (`E*` times the length unit).
     pub energy: f64,
     /// Its standard error over scans.
@@ -155,11 +204,30 @@ pub struct Comparison {
 pub struct SolverWork {
     /// The solver.
     pub solver: SolverKind,
-    /// Iterations over every load and scan.
+    /// Iterations over every load and scan solved.
     pub iterations: usize,
-    /// The largest residual.
+    /// The largest residual of the solves that converged.
     pub max_residual: f64,
+    /// Solves that failed.
+    pub failed: usize,
     /// Wall time of its curves, seconds.
+    pub wall_s: f64,
+}
+
+/// A solve that failed: where, and why.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Failure {
+    /// The scan.
+    pub scan: String,
+    /// The solver.
+    pub solver: SolverKind,
+    /// Whether it was the headline solve (else the cross-check).
+    pub headline: bool,
+    /// The load, `p0 / E*`.
+    pub p0: f64,
+    /// The solver's message, naming the solver and the load.
+    pub message: String,
+    /// Wall time spent on it, seconds.
     pub wall_s: f64,
 }
 
@@ -172,6 +240,14 @@ pub struct Statistics {
     pub slope_rms: Mean,
     /// Rms slope from the spectrum (Persson's `g_bar`).
     pub slope_rms_spectral: Mean,
+    /// Skewness of the heights.
+    pub skewness: Mean,
+    /// Excess kurtosis of the heights.
+    pub kurtosis: Mean,
+    /// `sqrt(l_min / l_max)` of the slope tensor.
+    pub anisotropy: Mean,
+    /// Log-log slope of `C(q)` over the highest octave (absent where too few bins).
+    pub high_q_slope: Option<Mean>,
     /// The radially averaged power spectrum, mean over scans.
     pub psd: Vec<RadialBin>,
 }
@@ -181,26 +257,47 @@ pub struct Statistics {
 pub struct SurfaceCheck {
     /// The scans' files.
     pub scans: Vec<String>,
-    /// Points per side.
-    pub n: usize,
-    /// Pixel size.
+    /// Rows of every scan.
+    pub rows: usize,
+    /// Columns of every scan.
+    pub cols: usize,
+    /// The pixel size used (the geometric mean of the sides given).
     pub pixel_size: f64,
+    /// The pixel sides given, along axis 0 and axis 1.
+    pub pixel_sides: [f64; 2],
+    /// The length unit (absent: unnamed).
+    pub unit: Option<String>,
+    /// The contact modulus in pascals, when given.
+    pub modulus: Option<f64>,
     /// The boundary.
     pub boundary: Boundary,
+    /// How missing points were treated.
+    pub fill: Fill,
+    /// Points filled by interpolation, per scan.
+    pub filled: Vec<usize>,
     /// How the spectrum was taken.
     pub spectrum_method: String,
     /// The surface's statistics.
     pub statistics: Statistics,
+    /// Where the scan lies outside what the theory assumes.
+    pub warnings: Vec<Warning>,
     /// The headline solver.
     pub solver: SolverKind,
     /// The cross-check solver, if run.
     pub cross_check: Option<SolverKind>,
-    /// Whether the two solvers agree at every load (within [`SOLVER_AGREEMENT`]).
+    /// Whether the two solvers agree at every load both solved (within
+    /// [`SOLVER_AGREEMENT`]).
     pub solvers_agree: Option<bool>,
-    /// The load curve.
+    /// The loads asked for (`p0 / E*`).
+    pub loads: Vec<f64>,
+    /// The load curve: the loads every scan's headline solve reached.
     pub curve: Vec<CurvePoint>,
-    /// The pressure distribution at the middle load.
-    pub pressure_distribution: Distribution,
+    /// Solves that failed.
+    pub failures: Vec<Failure>,
+    /// The pressure distribution at the middle load of the curve.
+    pub pressure_distribution: Option<Distribution>,
+    /// The re-entry share over magnification at the middle load.
+    pub reentry: Option<Reentry>,
     /// The comparisons' verdicts.
     pub comparisons: Vec<Comparison>,
     /// The solvers' work.
@@ -216,31 +313,58 @@ struct Measured {
     spectrum: ScanSpectrum,
     predicted: Vec<Predicted>,
     curves: Vec<Curve>,
+    reentry: Option<Reentry>,
 }
 
-/// Checks the surface of `scans` (one surface, several scans of it). `progress` sees the
-/// scan, the solver, the load and every iteration.
+/// What the check reports while it runs.
+#[derive(Debug, Clone, Copy)]
+pub enum Event<'a> {
+    /// An iteration of a solve.
+    Iteration {
+        /// The scan (index).
+        scan: usize,
+        /// The solver.
+        solver: SolverKind,
+        /// The load (index).
+        load: usize,
+        /// The solve's progress.
+        progress: Progress,
+    },
+    /// A load's solve ended.
+    Load {
+        /// The scan (index).
+        scan: usize,
+        /// The solver.
+        solver: SolverKind,
+        /// Whether it is the headline solver.
+        headline: bool,
+        /// The load (index) and the number of loads.
+        load: usize,
+        loads: usize,
+        /// How it ended.
+        outcome: &'a Outcome,
+    },
+}
+
+/// Checks the surface of `scans` (one surface, several scans of it; every point
+/// measured or filled, see [`super::fill`]). `events` sees every iteration and every
+/// load's end.
 pub fn check(
     scans: &[Scan],
     opts: &CheckOptions,
-    progress: &mut dyn FnMut(usize, SolverKind, usize, Progress),
+    events: &mut dyn FnMut(Event),
 ) -> Result<SurfaceCheck> {
     let timer = std::time::Instant::now();
-    validate(scans, opts)?;
-    let n = scans[0].n;
+    let pixel = validate(scans, opts)?;
+    let shape = scans[0].shape;
     let spectra: Vec<ScanSpectrum> = scans
         .iter()
-        .map(|s| ScanSpectrum::new(&s.heights, n, opts.pixel_size, opts.boundary))
+        .map(|s| ScanSpectrum::new(&s.heights, shape, pixel, opts.boundary))
         .collect::<Result<_>>()?;
     // The loads come from the first scan's spectrum: common to every scan.
     let loads = loads(&Theory::new(&spectra[0].shells)?, opts.loads.as_deref())?;
-    let kept = loads.len() / 2;
-    let mut solvers = vec![opts.solver];
-    if opts.cross_check {
-        solvers.push(other(opts.solver));
-    }
     let mut measured = Vec::with_capacity(scans.len());
-    // One body for every scan: its half-space depends on the size alone.
+    // One body for every scan: its half-space depends on the shape alone.
     let mut body: Option<Body> = None;
     for (k, spectrum) in spectra.into_iter().enumerate() {
         let theory = Theory::new(&spectrum.shells)?;
@@ -250,34 +374,138 @@ pub fn check(
                 b.set_heights(&spectrum)?;
                 b
             }
-            None => body.insert(Body::new(&spectrum, n)?),
+            None => body.insert(Body::new(&spectrum)?),
         };
-        let mut curves = Vec::new();
-        for &solver in &solvers {
-            let mut monitor = |i: usize, p: Progress| progress(k, solver, i, p);
-            curves.push(solve_curve(
-                body,
-                &loads,
-                solver,
-                opts.tol,
-                kept,
-                &mut monitor,
-            )?);
+        let every: Vec<usize> = (0..loads.len()).collect();
+        let head = run_curve(
+            body,
+            &loads,
+            (&every, loads.len()),
+            opts.solver,
+            opts,
+            &[],
+            k,
+            events,
+        )?;
+        let mut curves = vec![head];
+        if opts.cross_check {
+            let index = if opts.cross_check_all {
+                every
+            } else {
+                sample(loads.len(), CROSS_CHECKED_LOADS)
+            };
+            let budget = cross_check_budget(&curves[0], &index);
+            let at: Vec<f64> = index.iter().map(|&i| loads[i]).collect();
+            let other = other(opts.solver);
+            let of = (&index[..], loads.len());
+            let mut cross = run_curve(body, &at, of, other, opts, &budget, k, events)?;
+            cross.index = index;
+            curves.push(cross);
         }
+        let reentry = if opts.reentry {
+            middle_solved(&curves[0])
+                .map(|i| reentry_share(&spectrum, loads[i], SolverKind::Cg, opts.tol))
+                .transpose()?
+        } else {
+            None
+        };
         measured.push(Measured {
             spectrum,
             predicted,
             curves,
+            reentry,
         });
     }
     Ok(conclude(
         scans,
         opts,
+        pixel,
         &loads,
-        kept,
         &measured,
         timer.elapsed().as_secs_f64(),
     ))
+}
+
+/// `count` of `n` load indices, evenly spread from the first to the last.
+fn sample(n: usize, count: usize) -> Vec<usize> {
+    let mut index: Vec<usize> = (0..count.min(n))
+        .map(|k| {
+            if count > 1 {
+                (k * (n - 1) + (count - 1) / 2) / (count - 1)
+            } else {
+                n / 2
+            }
+        })
+        .collect();
+    index.dedup();
+    index
+}
+
+/// One scan's curve by one solver at `loads`, the check's loads `index` of `of`, with its
+/// events (the headline solver's when `budget` is empty).
+#[allow(clippy::too_many_arguments)]
+fn run_curve(
+    body: &Body,
+    loads: &[f64],
+    (index, of): (&[usize], usize),
+    solver: SolverKind,
+    opts: &CheckOptions,
+    budget: &[Option<Duration>],
+    scan: usize,
+    events: &mut dyn FnMut(Event),
+) -> Result<Curve> {
+    let headline = budget.is_empty();
+    let events = std::cell::RefCell::new(events);
+    solve_curve(
+        body,
+        loads,
+        solver,
+        opts.tol,
+        budget,
+        &mut |load, outcome| {
+            (events.borrow_mut())(Event::Load {
+                scan,
+                solver,
+                headline,
+                load: index[load],
+                loads: of,
+                outcome,
+            })
+        },
+        &mut |load, progress| {
+            (events.borrow_mut())(Event::Iteration {
+                scan,
+                solver,
+                load: index[load],
+                progress,
+            })
+        },
+    )
+}
+
+/// The cross-check's time at each of the loads `index`: [`CROSS_CHECK_TIME`] times the
+/// headline's time there, at least [`CROSS_CHECK_MIN_S`].
+fn cross_check_budget(head: &Curve, index: &[usize]) -> Vec<Option<Duration>> {
+    index
+        .iter()
+        .map(|&i| {
+            let spent = match &head.points[i] {
+                Ok(s) => s.wall_s,
+                Err(f) => f.wall_s,
+            };
+            Some(Duration::from_secs_f64(
+                (CROSS_CHECK_TIME * spent).max(CROSS_CHECK_MIN_S),
+            ))
+        })
+        .collect()
+}
+
+/// The middle one of the loads a curve solved.
+fn middle_solved(curve: &Curve) -> Option<usize> {
+    let solved: Vec<usize> = (0..curve.points.len())
+        .filter(|&i| curve.solved(i).is_some())
+        .collect();
+    solved.get(solved.len() / 2).copied()
 }
 
 /// The other solver: CG for GFMD, GFMD for any other.
@@ -289,9 +517,19 @@ fn other(solver: SolverKind) -> SolverKind {
     }
 }
 
-fn validate(scans: &[Scan], opts: &CheckOptions) -> Result<()> {
-    check_positive("pixel_size", opts.pixel_size)?;
+/// Checks the options and the scans (before any work); returns the pixel size.
+pub fn validate(scans: &[Scan], opts: &CheckOptions) -> Result<f64> {
+    let pixel = square_pixel(opts.pixel_size)?;
     crate::engine::solver::SolveOptions::with_tol(opts.tol).validate()?;
+    if let Some(given) = &opts.loads {
+        super::theory::check_loads(given)?;
+    }
+    if let Some(unit) = &opts.unit {
+        check_unit(unit)?;
+    }
+    if let Some(modulus) = opts.modulus {
+        check_positive("modulus", modulus)?;
+    }
     let Some(first) = scans.first() else {
         return Err(Error::invalid(
             "heights",
@@ -299,40 +537,65 @@ fn validate(scans: &[Scan], opts: &CheckOptions) -> Result<()> {
             "at least one height map",
         ));
     };
+    if opts.boundary == Boundary::Periodic && !first.shape.is_square() {
+        return Err(Error::invalid(
+            "periodic",
+            format!("a {} scan (rows x columns)", first.shape),
+            "square scans (the periodic solvers' grid is square): solve a rectangular \
+             scan with a free boundary (without periodic), or crop it to a square",
+        ));
+    }
     for s in scans {
-        if s.n != first.n {
+        if s.shape != first.shape {
             return Err(Error::bad_file(
                 &s.source,
                 format!(
-                    "{} x {} points, the first scan ({}) has {} x {}: scans of one surface share \
-                     their size",
-                    s.n,
-                    s.n,
+                    "{} points (rows x columns), the first scan ({}) has {}: scans of one \
+                     surface share their shape",
+                    s.shape,
                     first.source.display(),
-                    first.n,
-                    first.n
+                    first.shape
+                ),
+            ));
+        }
+        let missing = s.missing();
+        if let Some((row, col)) = missing.first {
+            return Err(Error::bad_file(
+                &s.source,
+                format!(
+                    "{} of {} heights are undefined, the first at row {row}, column {col}: \
+                     fill them first (see measured::fill)",
+                    missing.count,
+                    s.heights.len()
                 ),
             ));
         }
     }
-    Ok(())
+    Ok(pixel)
 }
 
 /// From the scans' measurements to the check's findings.
 fn conclude(
     scans: &[Scan],
     opts: &CheckOptions,
+    pixel: f64,
     loads: &[f64],
-    kept: usize,
     measured: &[Measured],
     wall_s: f64,
 ) -> SurfaceCheck {
-    let curve: Vec<CurvePoint> = (0..loads.len())
-        .map(|i| curve_point(measured, i, opts.pixel_size))
+    // The loads every scan's headline solve reached.
+    let reached: Vec<usize> = (0..loads.len())
+        .filter(|&i| measured.iter().all(|m| m.curves[0].solved(i).is_some()))
         .collect();
-    let distribution = distribution(measured, loads, kept);
+    let curve: Vec<CurvePoint> = reached
+        .iter()
+        .map(|&i| curve_point(measured, i, pixel, opts.modulus))
+        .collect();
+    let distribution = reached
+        .get(reached.len() / 2)
+        .map(|&i| distribution(measured, loads[i], i));
     let over = |f: fn(&CurvePoint) -> Verdict| combine(curve.iter().map(f));
-    let comparisons = vec![
+    let mut comparisons = vec![
         Comparison {
             name: "contact_area".into(),
             statistic: "a_r / a_r,Persson at each load (original theory)".into(),
@@ -343,63 +606,119 @@ fn conclude(
             statistic: "E_el / E_Persson at each load (original theory)".into(),
             verdict: over(|c| c.energy_verdict),
         },
-        Comparison {
+    ];
+    if let Some(d) = &distribution {
+        comparisons.push(Comparison {
             name: "pressure_distribution".into(),
             statistic: format!(
-                "rms pressure over Persson's at p0 = {:.4e} E*",
-                distribution.p0
+                "rms pressure over Persson's at p0 = {} E*",
+                super::units::eng(d.p0)
             ),
-            verdict: distribution.verdict,
-        },
-    ];
+            verdict: d.verdict,
+        });
+    }
     let solvers_agree = opts.cross_check.then(|| {
         measured.iter().all(|m| {
-            m.curves[0]
-                .points
-                .iter()
-                .zip(&m.curves[1].points)
-                .all(|(a, b)| {
+            (0..loads.len()).all(|i| match (m.curves[0].solved(i), m.curves[1].solved(i)) {
+                (Some(a), Some(b)) => {
                     relative(a.contact_area, b.contact_area) <= SOLVER_AGREEMENT
                         && relative(a.energy, b.energy) <= SOLVER_AGREEMENT
-                })
+                }
+                _ => true,
+            })
         })
     });
     let solvers = (0..measured[0].curves.len())
-        .map(|k| SolverWork {
-            solver: measured[0].curves[k].solver,
-            iterations: measured
-                .iter()
-                .flat_map(|m| &m.curves[k].points)
-                .map(|s| s.iterations)
-                .sum(),
-            max_residual: measured
-                .iter()
-                .flat_map(|m| &m.curves[k].points)
-                .map(|s| s.residual)
-                .fold(0.0, f64::max),
-            wall_s: measured.iter().map(|m| m.curves[k].wall_s).sum(),
+        .map(|k| {
+            let solved = || {
+                measured
+                    .iter()
+                    .flat_map(|m| m.curves[k].points.iter().filter_map(|o| o.as_ref().ok()))
+            };
+            SolverWork {
+                solver: measured[0].curves[k].solver,
+                iterations: solved().map(|s| s.iterations).sum(),
+                max_residual: solved().map(|s| s.residual).fold(0.0, f64::max),
+                failed: measured
+                    .iter()
+                    .map(|m| m.curves[k].points.iter().filter(|o| o.is_err()).count())
+                    .sum(),
+                wall_s: measured.iter().map(|m| m.curves[k].wall_s).sum(),
+            }
         })
         .collect();
+    let failures = scans
+        .iter()
+        .zip(measured)
+        .flat_map(|(scan, m)| {
+            m.curves.iter().enumerate().flat_map(move |(k, c)| {
+                c.points.iter().filter_map(move |o| {
+                    o.as_ref().err().map(|f| Failure {
+                        scan: scan.source.display().to_string(),
+                        solver: f.solver,
+                        headline: k == 0,
+                        p0: f.p0,
+                        message: f.message.clone(),
+                        wall_s: f.wall_s,
+                    })
+                })
+            })
+        })
+        .collect();
+    let statistics = statistics(measured);
+    let warnings = warnings(&statistics, &curve, opts.loads.is_none());
+    let reentry = measured[0].reentry.clone();
     SurfaceCheck {
         scans: scans
             .iter()
             .map(|s| s.source.display().to_string())
             .collect(),
-        n: scans[0].n,
-        pixel_size: opts.pixel_size,
+        rows: scans[0].shape.rows,
+        cols: scans[0].shape.cols,
+        pixel_size: pixel,
+        pixel_sides: opts.pixel_size,
+        unit: opts.unit.clone(),
+        modulus: opts.modulus,
         boundary: opts.boundary,
+        fill: opts.fill,
+        filled: scans.iter().map(|s| s.filled).collect(),
         spectrum_method: spectrum_method(opts.boundary),
-        statistics: statistics(measured),
+        statistics,
+        warnings,
         solver: opts.solver,
         cross_check: opts.cross_check.then(|| other(opts.solver)),
         solvers_agree,
+        loads: loads.to_vec(),
         curve,
+        failures,
         pressure_distribution: distribution,
+        reentry,
         comparisons,
         solvers,
         tol: opts.tol,
         wall_s,
     }
+}
+
+/// The warnings of [`warnings::LIMITS`] that the surface's statistics and the curve
+/// cross (the contact-area range only at the default loads).
+fn warnings(st: &Statistics, curve: &[CurvePoint], default_loads: bool) -> Vec<Warning> {
+    let areas = || curve.iter().map(|c| c.a_r);
+    let mut found = vec![
+        warnings::ANISOTROPY.check(st.anisotropy.value),
+        st.high_q_slope
+            .and_then(|s| warnings::NOISE_FLOOR.check(s.value)),
+        warnings::SKEWNESS.check(st.skewness.value),
+        warnings::KURTOSIS.check(st.kurtosis.value),
+        warnings::RMS_SLOPE.check(st.slope_rms.value),
+    ];
+    if default_loads && !curve.is_empty() {
+        found.push(warnings::AREA_LOW.check(areas().fold(f64::INFINITY, f64::min)));
+        found.push(warnings::AREA_HIGH.check(areas().fold(0.0, f64::max)));
+    }
+    let pressure = curve.iter().map(|c| c.contact_pressure).fold(0.0, f64::max);
+    found.push(warnings::CONTACT_PRESSURE.check(pressure));
+    found.into_iter().flatten().collect()
 }
 
 /// `|a - b| / max(|a|, |b|)`, 0 when both are 0.
@@ -412,17 +731,19 @@ fn relative(a: f64, b: f64) -> f64 {
     }
 }
 
-/// Violated when any is, holds when all hold, inconclusive otherwise.
+/// Violated when any is, holds when all hold, inconclusive otherwise (also with none).
 fn combine(verdicts: impl Iterator<Item = Verdict>) -> Verdict {
     let mut all_hold = true;
+    let mut any = false;
     for v in verdicts {
+        any = true;
         match v {
             Verdict::Violated => return Verdict::Violated,
             Verdict::Inconclusive => all_hold = false,
             Verdict::Holds => {}
         }
     }
-    if all_hold {
+    if all_hold && any {
         Verdict::Holds
     } else {
         Verdict::Inconclusive
@@ -433,8 +754,9 @@ fn spectrum_method(boundary: Boundary) -> String {
     match boundary {
         Boundary::Periodic => "periodic scan: mean removed, no window".into(),
         Boundary::Free => "non-periodic scan: least-squares plane removed, separable Hann \
-                           window (scaled to keep the mean square); contact solved on the \
-                           detrended heights with a free boundary"
+                           window (scaled to keep the mean square), physical wavevectors \
+                           along each side; contact solved on the detrended heights with a \
+                           free boundary"
             .into(),
     }
 }
@@ -444,27 +766,33 @@ fn mean_over(measured: &[Measured], f: impl Fn(&Measured) -> f64) -> Mean {
     Mean::of(&measured.iter().map(f).collect::<Vec<_>>())
 }
 
-/// Load `i` of the curve; energies converted from pixels to the length unit (`pixel`).
-fn curve_point(measured: &[Measured], i: usize, pixel: f64) -> CurvePoint {
-    fn head(m: &Measured, i: usize) -> &super::body::Solved {
-        &m.curves[0].points[i]
-    }
-    fn cross(m: &Measured, i: usize) -> Option<&super::body::Solved> {
-        m.curves.get(1).map(|c| &c.points[i])
-    }
-    let area = mean_over(measured, |m| head(m, i).contact_area);
+/// Load `i` of the curve, which every scan's headline solve reached; energies converted
+/// from pixels to the length unit (`pixel`), the load to pascals with `modulus`.
+fn curve_point(measured: &[Measured], i: usize, pixel: f64, modulus: Option<f64>) -> CurvePoint {
+    let head = |m: &Measured| -> Solved { m.curves[0].solved(i).expect("reached").clone() };
+    let area = mean_over(measured, |m| head(m).contact_area);
     let area_ratio = mean_over(measured, |m| {
-        head(m, i).contact_area / m.predicted[i].contact_area
+        head(m).contact_area / m.predicted[i].contact_area
     });
-    let energy_ratio = mean_over(measured, |m| head(m, i).energy / m.predicted[i].energy);
-    let energy = mean_over(measured, |m| head(m, i).energy);
-    let cross_mean = |f: fn(&super::body::Solved) -> f64| -> Option<f64> {
-        let v: Option<Vec<f64>> = measured.iter().map(|m| cross(m, i).map(f)).collect();
+    let energy_ratio = mean_over(measured, |m| head(m).energy / m.predicted[i].energy);
+    let energy = mean_over(measured, |m| head(m).energy);
+    let cross_mean = |f: fn(&Solved) -> f64| -> Option<f64> {
+        let v: Option<Vec<f64>> = measured
+            .iter()
+            .map(|m| m.curves.get(1).and_then(|c| c.solved(i)).map(f))
+            .collect();
         v.map(|v| v.iter().sum::<f64>() / v.len() as f64)
     };
     let persson = |f: fn(&Predicted) -> f64| mean_over(measured, |m| f(&m.predicted[i])).value;
+    let p0 = measured[0].predicted[i].p0;
+    let contact_pressure = if area.value > 0.0 {
+        p0 / area.value
+    } else {
+        f64::INFINITY
+    };
     CurvePoint {
-        p0: measured[0].predicted[i].p0,
+        p0,
+        p0_pa: modulus.map(|e| p0 * e),
         a_r: area.value,
         a_r_std_error: area.std_error,
         a_r_cross_check: cross_mean(|s| s.contact_area),
@@ -472,6 +800,8 @@ fn curve_point(measured: &[Measured], i: usize, pixel: f64) -> CurvePoint {
         a_r_persson_corrected: persson(|p| p.contact_area_corrected),
         area_ratio,
         area_verdict: RULE.judge(area_ratio.estimate(), 1.0),
+        contact_pressure,
+        past_yield: warnings::CONTACT_PRESSURE.crossed(contact_pressure),
         energy: pixel * energy.value,
         energy_std_error: energy.std_error.map(|e| pixel * e),
         energy_cross_check: cross_mean(|s| s.energy).map(|e| pixel * e),
@@ -485,22 +815,22 @@ fn curve_point(measured: &[Measured], i: usize, pixel: f64) -> CurvePoint {
 /// Histogram bins of `p / p0` in the distribution figure.
 const HISTOGRAM_BINS: usize = 40;
 
-fn distribution(measured: &[Measured], loads: &[f64], kept: usize) -> Distribution {
-    let p0 = loads[kept];
-    let all: Vec<&[f64]> = measured
+/// The pressure distribution at load `kept` (`p0`), which every scan's headline reached.
+fn distribution(measured: &[Measured], p0: f64, kept: usize) -> Distribution {
+    let all: Vec<&[f32]> = measured
         .iter()
-        .map(|m| &m.curves[0].pressures[..])
+        .map(|m| m.curves[0].pressures[kept].as_deref().expect("reached"))
         .collect();
     let top = all
         .iter()
         .flat_map(|p| p.iter())
-        .copied()
+        .map(|&x| f64::from(x))
         .fold(0.0, f64::max)
         .max(1.0);
     let width = top / HISTOGRAM_BINS as f64;
     let total: usize = all.iter().map(|p| p.len()).sum();
     let mut counts = vec![0usize; HISTOGRAM_BINS];
-    for &x in all.iter().flat_map(|p| p.iter()) {
+    for x in all.iter().flat_map(|p| p.iter()).map(|&x| f64::from(x)) {
         if x > 0.0 {
             counts[((x / width) as usize).min(HISTOGRAM_BINS - 1)] += 1;
         }
@@ -531,8 +861,8 @@ fn distribution(measured: &[Measured], loads: &[f64], kept: usize) -> Distributi
         })
         .collect();
     let rms_ratio = mean_over(measured, |m| {
-        let p = &m.curves[0].pressures;
-        let rms = (p.iter().map(|x| x * x).sum::<f64>() / p.len() as f64).sqrt();
+        let p = m.curves[0].pressures[kept].as_deref().expect("reached");
+        let rms = (p.iter().map(|&x| f64::from(x).powi(2)).sum::<f64>() / p.len() as f64).sqrt();
         let persson = m.predicted[kept].distribution.second_moment().sqrt() / p0;
         rms / persson
     });
@@ -556,10 +886,198 @@ fn statistics(measured: &[Measured]) -> Statistics {
             }
         })
         .collect();
+    let slopes: Option<Vec<f64>> = measured.iter().map(|m| m.spectrum.high_q_slope).collect();
     Statistics {
         h_rms: mean_over(measured, |m| m.spectrum.h_rms),
         slope_rms: mean_over(measured, |m| m.spectrum.slope_rms),
         slope_rms_spectral: mean_over(measured, |m| m.spectrum.slope_rms_spectral),
+        skewness: mean_over(measured, |m| m.spectrum.skewness),
+        kurtosis: mean_over(measured, |m| m.spectrum.kurtosis),
+        anisotropy: mean_over(measured, |m| m.spectrum.anisotropy),
+        high_q_slope: slopes.map(|s| Mean::of(&s)),
         psd,
+    }
+}
+
+/// The shape of the scans, for callers that hold only the result.
+impl SurfaceCheck {
+    /// Rows and columns of the scans.
+    pub fn shape(&self) -> Shape {
+        Shape {
+            rows: self.rows,
+            cols: self.cols,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::engine::surface::{Surface, SurfaceParams};
+
+    /// A 32^2 window checked by hand: the headline's second load and the cross-check's
+    /// first are stopped at once (a time budget of zero), the rest solved.
+    #[test]
+    fn a_failed_solve_is_listed_by_solver_and_load_and_costs_only_its_own_load() {
+        let n = 32;
+        let s = Surface::generate(&SurfaceParams::new(n, 0.8, n as f64, 4.0, 3)).unwrap();
+        let fft = crate::engine::fft::Fft2::new(s.grid());
+        let heights = s.heights_at(f64::INFINITY, &fft);
+        let shape = Shape { rows: n, cols: n };
+        let scan = Scan {
+            shape,
+            heights: heights.clone(),
+            source: "window.npy".into(),
+            filled: 0,
+        };
+        let spectrum = ScanSpectrum::new(&heights, shape, 1.0, Boundary::Free).unwrap();
+        let theory = Theory::new(&spectrum.shells).unwrap();
+        let loads = [0.02, 0.05, 0.1];
+        let predicted = loads.iter().map(|&p| theory.at(p).unwrap()).collect();
+        let body = Body::new(&spectrum).unwrap();
+        let zero = Some(Duration::ZERO);
+        let curve = |solver, budget: &[Option<Duration>]| {
+            solve_curve(
+                &body,
+                &loads,
+                solver,
+                1e-6,
+                budget,
+                &mut |_, _| {},
+                &mut |_, _| {},
+            )
+            .unwrap()
+        };
+        let head = curve(SolverKind::Cg, &[None, zero, None]);
+        let cross = curve(SolverKind::Gfmd, &[zero, None, None]);
+        let measured = [Measured {
+            spectrum,
+            predicted,
+            curves: vec![head, cross],
+            reentry: None,
+        }];
+        let opts = CheckOptions::default();
+        let c = conclude(&[scan], &opts, 1.0, &loads, &measured, 0.0);
+        // The curve keeps the loads the headline reached, cross-checked where it was.
+        let kept: Vec<f64> = c.curve.iter().map(|p| p.p0).collect();
+        assert_eq!(kept, [0.02, 0.1]);
+        assert!(c.curve[0].a_r_cross_check.is_none() && c.curve[1].a_r_cross_check.is_some());
+        assert_eq!(c.solvers_agree, Some(true));
+        let listed: Vec<(SolverKind, bool, f64)> = c
+            .failures
+            .iter()
+            .map(|f| (f.solver, f.headline, f.p0))
+            .collect();
+        assert_eq!(
+            listed,
+            [
+                (SolverKind::Cg, true, 0.05),
+                (SolverKind::Gfmd, false, 0.02)
+            ]
+        );
+        let failed: Vec<usize> = c.solvers.iter().map(|w| w.failed).collect();
+        assert_eq!(failed, [1, 1]);
+        // Each message names its solver and load, and no flag.
+        let text = &c.failures[0].message;
+        assert!(
+            text.starts_with("cg at p0 = 5.000e-2 E* (load 2 of 3)"),
+            "{text}"
+        );
+        assert!(c.failures.iter().all(|f| !f.message.contains("--")));
+        // The page lists both.
+        let md = super::super::page::markdown(&c);
+        assert!(
+            md.contains("## Solves that failed") && md.contains("gfmd (cross-check)"),
+            "{md}"
+        );
+    }
+
+    /// The `rows x cols` corner of a generated 64^2 surface (H = 0.8), scaled to an rms
+    /// slope of about `slope`.
+    fn window(rows: usize, cols: usize, slope: f64) -> Vec<f64> {
+        let s = Surface::generate(&SurfaceParams::new(64, 0.8, 32.0, 4.0, 5)).unwrap();
+        let fft = crate::engine::fft::Fft2::new(s.grid());
+        let full = s.heights_at(f64::INFINITY, &fft);
+        let h: Vec<f64> = (0..rows * cols)
+            .map(|k| full[(k / cols) * 64 + k % cols])
+            .collect();
+        let g = ScanSpectrum::new(&h, Shape { rows, cols }, 1.0, Boundary::Free)
+            .unwrap()
+            .slope_rms;
+        h.iter().map(|v| v * slope / g).collect()
+    }
+
+    fn warned(heights: Vec<f64>, rows: usize, cols: usize) -> Vec<(String, f64, f64)> {
+        let scan = Scan {
+            shape: Shape { rows, cols },
+            heights,
+            source: "scan.npy".into(),
+            filled: 0,
+        };
+        let opts = CheckOptions {
+            cross_check: false,
+            reentry: false,
+            ..CheckOptions::default()
+        };
+        let c = check(&[scan], &opts, &mut |_| {}).unwrap();
+        for w in &c.warnings {
+            assert!(
+                w.message.contains(&super::super::units::eng(w.value)),
+                "{}",
+                w.message
+            );
+        }
+        c.warnings
+            .iter()
+            .map(|w| (w.name.clone(), w.value, w.threshold))
+            .collect()
+    }
+
+    #[test]
+    fn warnings_name_the_statistic_that_crosses_its_threshold() {
+        let (rows, cols) = (48, 56);
+        let names = |w: &[(String, f64, f64)]| -> Vec<String> {
+            w.iter().map(|(n, _, _)| n.clone()).collect()
+        };
+        // A self-affine window of moderate slope lies inside every threshold.
+        assert_eq!(warned(window(rows, cols, 0.1), rows, cols), []);
+        // Stripes across the rows: a lay.
+        let striped: Vec<f64> = window(rows, cols, 0.02)
+            .iter()
+            .enumerate()
+            .map(|(k, v)| v + 0.5 * (0.9 * (k / cols) as f64).sin())
+            .collect();
+        let w = warned(striped, rows, cols);
+        assert_eq!(names(&w), ["anisotropy"]);
+        assert!(
+            w[0].1 < 0.2 && w[0].2 == warnings::ANISOTROPY.threshold,
+            "{w:?}"
+        );
+        // White noise over the roughness: the spectrum's high-q end flattens.
+        let mut x = 7u64;
+        let noisy: Vec<f64> = window(rows, cols, 0.05)
+            .iter()
+            .map(|v| {
+                x = x
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                v + 0.3 * ((x >> 11) as f64 / 2f64.powi(53) - 0.5)
+            })
+            .collect();
+        let w = warned(noisy, rows, cols);
+        assert!(names(&w).contains(&"noise_floor".to_string()), "{w:?}");
+        // Particles on a nearly flat window: far from Gaussian heights, and the load
+        // carried by their tips.
+        let mut dotted = window(rows, cols, 0.01);
+        for k in [300, 1111, 2000] {
+            dotted[k] += 3.0;
+        }
+        let w = names(&warned(dotted, rows, cols));
+        for name in ["skewness", "kurtosis", "contact_pressure"] {
+            assert!(w.contains(&name.to_string()), "{name}: {w:?}");
+        }
+        // Steep: beyond small slopes, and past yield at the top default load.
+        let w = names(&warned(window(rows, cols, 1.0), rows, cols));
+        assert_eq!(w, ["rms_slope", "contact_pressure"]);
     }
 }

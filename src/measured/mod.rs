@@ -1,9 +1,17 @@
 //! Persson's theory checked on a measured surface: the user's own height maps, read and
-//! checked ([`scan`]), their statistics and spectrum ([`psd`]).
+//! checked ([`scan`]), their missing points refused or filled ([`fill`]), their units
+//! ([`units`]), statistics and spectrum ([`psd`]), the contact problem along a load curve
+//! ([`body`]), Persson's predictions ([`theory`]), the re-entry share over magnification
+//! ([`reentry`]), the words where the theory does not apply ([`warnings`]), the check
+//! ([`check`]) and its page ([`page`]).
 
 pub mod body;
 pub mod check;
+pub mod fill;
 pub mod page;
 pub mod psd;
+pub mod reentry;
 pub mod scan;
 pub mod theory;
+pub mod units;
+pub mod warnings;

@@ -2,12 +2,22 @@
 //! page for people) and its figures under `figures/`: the power spectrum, the
 //! contact-area curve, the pressure distribution and the elastic energy, each beside
 //! Persson's original and corrected predictions. Every file is written atomically.
+//!
+//! Numbers are written with three significant digits in engineering notation
+//! ([`super::units::eng`]), lengths with their unit, pressures in units of `E*` and, with
+//! a modulus, in pascals. In every figure a series keeps its colour: the headline
+//! simulation first, then Persson's original and corrected theory, then the cross-check.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use super::check::{CurvePoint, Mean, SurfaceCheck, RULE, SOLVER_AGREEMENT};
+use super::check::{
+    CurvePoint, Mean, SurfaceCheck, CROSS_CHECK_MIN_S, CROSS_CHECK_TIME, RULE, SOLVER_AGREEMENT,
+};
+use super::fill::{Fill, MAX_FILLED_SHARE};
 use super::psd::Boundary;
+use super::units::{eng, length, metres, percent, SQUARE_PIXEL_TOLERANCE};
+use super::warnings::{CONTACT_PRESSURE, LIMITS};
 use crate::error::Result;
 use crate::plot::{Axis, Figure, Series, Style};
 use crate::validation::Verdict;
@@ -29,31 +39,82 @@ pub fn write(check: &SurfaceCheck, dir: &Path) -> Result<Vec<PathBuf>> {
 }
 
 /// `value ± error`, or the value and "(one scan: no error bar)".
-fn mean_text(m: &Mean, digits: usize) -> String {
+fn mean_text(m: &Mean) -> String {
     match m.std_error {
-        Some(e) => format!("{:.*} ± {:.*}", digits, m.value, digits, e),
-        None => format!("{:.*} (one scan: no error bar)", digits, m.value),
+        Some(e) => format!("{} ± {}", eng(m.value), eng(e)),
+        None => format!("{} (one scan: no error bar)", eng(m.value)),
     }
+}
+
+/// The unit of lengths, for text: `nm`, or `length unit`.
+fn unit(c: &SurfaceCheck) -> &str {
+    c.unit.as_deref().unwrap_or("length unit")
 }
 
 /// The page.
 pub fn markdown(c: &SurfaceCheck) -> String {
     let mut s = String::new();
-    let scans = c.scans.len();
     let _ = writeln!(s, "# Persson's theory on a measured surface\n");
+    header(&mut s, c);
+    missing(&mut s, c);
+    warnings(&mut s, c);
+    failures(&mut s, c);
+    verdicts(&mut s, c);
+    surface(&mut s, c);
+    curve(&mut s, c);
+    distribution(&mut s, c);
+    energy(&mut s, c);
+    reentry(&mut s, c);
+    solvers(&mut s, c);
     let _ = writeln!(
         s,
-        "{} of {} x {} points, pixel size {} (heights in the same unit), {} boundary; \
-         pressures in units of the contact modulus E*. Persson's theory is evaluated on \
-         each scan's own spectrum. Solved with {}{}, residual tolerance {:e}.\n",
+        "## Files\n\n`surface.json` holds every number of this page; `solves.jsonl` one line \
+         per solve, written as each ended; the figures are in `figures/` as SVG and PNG. \
+         Scans: {}.",
+        c.scans
+            .iter()
+            .map(|p| format!("`{p}`"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    s
+}
+
+fn header(s: &mut String, c: &SurfaceCheck) {
+    let scans = c.scans.len();
+    let [a, b] = c.pixel_sides;
+    let pixel = if a == b {
+        format!("pixel size {}", length(c.pixel_size, c.unit.as_deref()))
+    } else {
+        format!(
+            "pixel size {} (the geometric mean of the sides given, {} x {}, which differ by \
+             less than the {}% taken as square)",
+            length(c.pixel_size, c.unit.as_deref()),
+            eng(a),
+            eng(b),
+            100.0 * SQUARE_PIXEL_TOLERANCE
+        )
+    };
+    let pressures = match c.modulus {
+        Some(e) => format!(
+            "pressures in units of the contact modulus E* and in pascals with E* = {} Pa",
+            eng(e)
+        ),
+        None => "pressures in units of the contact modulus E*".to_string(),
+    };
+    let _ = writeln!(
+        s,
+        "{} of {} x {} points (rows x columns), {pixel}, heights and lengths in {}, {} \
+         boundary; {pressures}. Persson's theory is evaluated on each scan's own spectrum. \
+         Solved with {}{}, residual tolerance {}.\n",
         if scans == 1 {
             "One scan".to_string()
         } else {
             format!("{scans} scans (realizations of one surface)")
         },
-        c.n,
-        c.n,
-        c.pixel_size,
+        c.rows,
+        c.cols,
+        unit(c),
         match c.boundary {
             Boundary::Periodic => "periodic",
             Boundary::Free => "free (non-periodic)",
@@ -63,25 +124,84 @@ pub fn markdown(c: &SurfaceCheck) -> String {
             ", cross-checked with {}",
             k.name().to_uppercase()
         )),
-        c.tol
+        eng(c.tol)
     );
-    verdicts(&mut s, c);
-    surface(&mut s, c);
-    curve(&mut s, c);
-    distribution(&mut s, c);
-    energy(&mut s, c);
-    solvers(&mut s, c);
+}
+
+fn missing(s: &mut String, c: &SurfaceCheck) {
+    let points = c.rows * c.cols;
+    let filled: Vec<String> = c
+        .scans
+        .iter()
+        .zip(&c.filled)
+        .filter(|(_, &k)| k > 0)
+        .map(|(name, &k)| {
+            format!(
+                "`{name}`: {k} of {points} points ({})",
+                percent(k as f64 / points as f64)
+            )
+        })
+        .collect();
+    if filled.is_empty() {
+        let _ = writeln!(s, "Every point of every scan was measured.\n");
+    } else {
+        let _ = writeln!(
+            s,
+            "**Undefined points filled** by harmonic interpolation from their neighbours \
+             (the discrete Laplace equation solved on them, the measured points fixed; at \
+             most {}% of a scan is filled): {}.\n",
+            100.0 * MAX_FILLED_SHARE,
+            filled.join("; ")
+        );
+    }
+    debug_assert!(c.fill == Fill::Interpolate || filled.is_empty());
+}
+
+fn warnings(s: &mut String, c: &SurfaceCheck) {
+    let _ = writeln!(s, "## Warnings\n");
+    if c.warnings.is_empty() {
+        let _ = writeln!(s, "None: no threshold below is crossed.\n");
+    } else {
+        for w in &c.warnings {
+            let _ = writeln!(s, "- **{}**: {}.", w.name, w.message);
+        }
+        s.push('\n');
+    }
+    let thresholds: Vec<String> = LIMITS
+        .iter()
+        .map(|l| format!("{} {} (`{}`)", l.statistic, l.condition(), l.name))
+        .collect();
+    let _ = writeln!(s, "Thresholds: {}.\n", thresholds.join("; "));
+}
+
+fn failures(s: &mut String, c: &SurfaceCheck) {
+    if c.failures.is_empty() {
+        return;
+    }
     let _ = writeln!(
         s,
-        "## Files\n\n`surface.json` holds every number of this page; the figures are in \
-         `figures/` as SVG and PNG. Scans: {}.",
-        c.scans
-            .iter()
-            .map(|p| format!("`{p}`"))
-            .collect::<Vec<_>>()
-            .join(", ")
+        "## Solves that failed\n\nThe curve keeps the loads that every scan's {} solve \
+         reached; a cross-check solve gets {} times the headline solve's time at its load \
+         (at least {} s).\n",
+        c.solver.name(),
+        CROSS_CHECK_TIME,
+        CROSS_CHECK_MIN_S
     );
-    s
+    for f in &c.failures {
+        let _ = writeln!(
+            s,
+            "- `{}`, {} ({}): {}",
+            f.scan,
+            f.solver.name(),
+            if f.headline {
+                "headline"
+            } else {
+                "cross-check"
+            },
+            f.message
+        );
+    }
+    s.push('\n');
 }
 
 fn verdicts(s: &mut String, c: &SurfaceCheck) {
@@ -104,14 +224,22 @@ fn verdicts(s: &mut String, c: &SurfaceCheck) {
 
 fn surface(s: &mut String, c: &SurfaceCheck) {
     let st = &c.statistics;
+    let u = unit(c);
     let _ = writeln!(
         s,
-        "## The surface\n\n| statistic | value |\n|---|---|\n| rms height | {} |\n| rms \
-         slope (finite differences) | {} |\n| rms slope from the spectrum (Persson's g) | {} \
-         |\n\nSpectrum: {}.\n\n![power spectrum](figures/psd.png)\n",
-        mean_text(&st.h_rms, 4),
-        mean_text(&st.slope_rms, 4),
-        mean_text(&st.slope_rms_spectral, 4),
+        "## The surface\n\n| statistic | value |\n|---|---|\n| rms height ({u}) | {} |\n| \
+         rms slope (finite differences) | {} |\n| rms slope from the spectrum (Persson's \
+         g) | {} |\n| skewness of the heights | {} |\n| excess kurtosis of the heights | {} \
+         |\n| spectral isotropy sqrt(l_min / l_max) | {} |\n| log-log slope of C(q), highest \
+         octave | {} |\n\nSpectrum: {}.\n\n![power spectrum](figures/psd.png)\n",
+        mean_text(&st.h_rms),
+        mean_text(&st.slope_rms),
+        mean_text(&st.slope_rms_spectral),
+        mean_text(&st.skewness),
+        mean_text(&st.kurtosis),
+        mean_text(&st.anisotropy),
+        st.high_q_slope
+            .map_or("— (too few bins)".to_string(), |m| mean_text(&m)),
         c.spectrum_method
     );
 }
@@ -120,11 +248,11 @@ fn surface(s: &mut String, c: &SurfaceCheck) {
 struct CurveTable {
     /// Section heading and the text under it.
     heading: &'static str,
-    note: &'static str,
-    /// The quantity's symbol in the column heads.
-    symbol: &'static str,
-    /// Numbers in scientific notation (else fixed).
-    scientific: bool,
+    note: String,
+    /// The quantity's symbol and unit in the column heads.
+    symbol: String,
+    /// The factor from the JSON's numbers to the table's.
+    factor: f64,
     /// [value, error, cross-check, Persson, corrected] of a point.
     pick: fn(&CurvePoint) -> [Option<f64>; 5],
     /// The ratio to Persson and its verdict.
@@ -134,37 +262,66 @@ struct CurveTable {
 }
 
 fn curve_table(s: &mut String, c: &SurfaceCheck, t: &CurveTable) {
-    let num = |v: f64| {
-        if t.scientific {
-            format!("{v:.5e}")
-        } else {
-            format!("{v:.5}")
-        }
-    };
+    let num = |v: Option<f64>| v.map_or_else(|| "—".into(), |v| eng(t.factor * v));
+    let sym = &t.symbol;
+    let pa = c.modulus.is_some();
+    let mut head = vec!["p0 / E*".to_string()];
+    if pa {
+        head.push("p0 (Pa)".into());
+    }
+    head.push(format!("{sym}, {}", c.solver.name()));
+    if let Some(k) = c.cross_check {
+        head.push(format!("{sym}, {}", k.name()));
+    }
+    head.extend([
+        "Persson".to_string(),
+        "Persson, corrected".into(),
+        "ratio to Persson".into(),
+        "verdict".into(),
+    ]);
     let _ = writeln!(
         s,
-        "## {}\n\n{}| p0 / E* | {sym} ({}) | {sym} ({}) | Persson | Persson, corrected \
-         | {sym} / Persson | verdict |\n|---|---|---|---|---|---|---|",
+        "## {}\n\n{}| {} |\n|{}",
         t.heading,
         t.note,
-        c.solver.name(),
-        c.cross_check.map_or("—", |k| k.name()),
-        sym = t.symbol,
+        head.join(" | "),
+        "---|".repeat(head.len())
     );
+    let mut marked = false;
     for p in &c.curve {
         let [value, error, cross, persson, corrected] = (t.pick)(p);
         let (ratio, verdict) = (t.ratio)(p);
+        let mut row = vec![format!(
+            "{}{}",
+            eng(p.p0),
+            if p.past_yield { " ‡" } else { "" }
+        )];
+        marked |= p.past_yield;
+        if pa {
+            row.push(p.p0_pa.map_or("—".into(), eng));
+        }
+        row.push(format!(
+            "{}{}",
+            num(value),
+            error.map_or(String::new(), |e| format!(" ± {}", num(Some(e))))
+        ));
+        if c.cross_check.is_some() {
+            row.push(num(cross));
+        }
+        row.extend([
+            num(persson),
+            num(corrected),
+            mean_text(ratio),
+            verdict.to_string(),
+        ]);
+        let _ = writeln!(s, "| {} |", row.join(" | "));
+    }
+    if marked {
         let _ = writeln!(
             s,
-            "| {:.4e} | {}{} | {} | {} | {} | {} | {} |",
-            p.p0,
-            value.map_or_else(|| "—".into(), num),
-            error.map_or(String::new(), |e| format!(" ± {}", num(e))),
-            cross.map_or_else(|| "—".into(), num),
-            persson.map_or_else(|| "—".into(), num),
-            corrected.map_or_else(|| "—".into(), num),
-            mean_text(ratio, 3),
-            verdict
+            "\n‡ far past the yield of any material: the mean pressure in contact p0 / a_r \
+             is {} E*.",
+            CONTACT_PRESSURE.condition()
         );
     }
     let _ = writeln!(s, "\n![{}](figures/{}.png)\n", t.figure.1, t.figure.0);
@@ -198,9 +355,9 @@ fn curve(s: &mut String, c: &SurfaceCheck) {
         c,
         &CurveTable {
             heading: "Contact area",
-            note: "",
-            symbol: "a_r",
-            scientific: false,
+            note: String::new(),
+            symbol: "a_r".into(),
+            factor: 1.0,
             pick: area_of,
             ratio: |p| (&p.area_ratio, p.area_verdict),
             figure: ("contact_area", "contact area"),
@@ -209,39 +366,56 @@ fn curve(s: &mut String, c: &SurfaceCheck) {
 }
 
 fn distribution(s: &mut String, c: &SurfaceCheck) {
-    let d = &c.pressure_distribution;
+    let Some(d) = &c.pressure_distribution else {
+        let _ = writeln!(
+            s,
+            "## Pressure distribution\n\nNo load was solved: no distribution.\n"
+        );
+        return;
+    };
     let _ = writeln!(
         s,
-        "## Pressure distribution\n\nAt p0 = {:.4e} E*: the rms pressure over Persson's is \
+        "## Pressure distribution\n\nAt p0 = {} E*{}: the rms pressure over Persson's is \
          {} ({}). The histogram counts every point of the window, so that it integrates to \
          the contact area, as Persson's Pr(p) does (the delta function at p = 0 left \
          out).\n\n![pressure distribution](figures/pressure_distribution.png)\n",
-        d.p0,
-        mean_text(&d.rms_ratio, 3),
+        eng(d.p0),
+        c.modulus
+            .map_or(String::new(), |e| format!(" ({} Pa)", eng(d.p0 * e))),
+        mean_text(&d.rms_ratio),
         d.verdict
     );
 }
 
+/// The energy's unit and the factor to it: J/m^2 with a modulus and a known unit, else
+/// `E*` (or `Pa`) times the length unit.
+fn energy_unit(c: &SurfaceCheck) -> (String, f64) {
+    let u = unit(c);
+    match (c.modulus, c.unit.as_deref().and_then(metres)) {
+        (Some(e), Some(m)) => ("J/m^2".to_string(), e * m),
+        (Some(e), None) => (format!("Pa {u}"), e),
+        (None, _) => (format!("E* {u}"), 1.0),
+    }
+}
+
 fn energy(s: &mut String, c: &SurfaceCheck) {
+    let (energy_unit, factor) = energy_unit(c);
+    let what = match c.boundary {
+        Boundary::Periodic => "the energy of the pressure's fluctuation p - p0",
+        Boundary::Free => {
+            "free boundary: the work of the contact pressure on the half-space beyond that \
+             of a flat punch of the window's shape at the same load, which a finite window \
+             needs and an infinite surface has not"
+        }
+    };
     curve_table(
         s,
         c,
         &CurveTable {
             heading: "Elastic energy",
-            note: match c.boundary {
-                Boundary::Periodic => {
-                    "Per unit area, in E* times the length unit (the energy of the \
-                     pressure's fluctuation p - p0).\n\n"
-                }
-                Boundary::Free => {
-                    "Per unit area, in E* times the length unit (free boundary: the work of \
-                     the contact pressure on the half-space beyond that of a flat punch of \
-                     the window's shape at the same load, which a finite window needs and \
-                     an infinite surface has not).\n\n"
-                }
-            },
-            symbol: "E_el",
-            scientific: true,
+            note: format!("Per unit area, in {energy_unit} ({what}).\n\n"),
+            symbol: format!("E_el ({energy_unit})"),
+            factor,
             pick: energy_of,
             ratio: |p| (&p.energy_ratio, p.energy_verdict),
             figure: ("elastic_energy", "elastic energy"),
@@ -249,26 +423,61 @@ fn energy(s: &mut String, c: &SurfaceCheck) {
     );
 }
 
+fn reentry(s: &mut String, c: &SurfaceCheck) {
+    let _ = writeln!(s, "## Re-entry over magnification\n");
+    let Some(r) = &c.reentry else {
+        let _ = writeln!(s, "Not measured (no load solved, or not asked for).\n");
+        return;
+    };
+    let _ = writeln!(
+        s,
+        "The first scan's spectrum truncated at zeta_max = {} (lambda_s = L / {}, L the \
+         longer side: four points of the sweep's {} x {} grid), every one of its {} shells \
+         added one at a time at p0 = {} E*, each solve warm-started from the last, as the \
+         c_reentry validation sweeps its surfaces: of the {} points in contact at zeta_max \
+         (a_r = {}), **{}** had been out of contact at a lower magnification (Persson's \
+         theory: 0); {} left contact after the first shell and came back. {} solver \
+         iterations, {} s.{}\n",
+        r.zeta_max,
+        r.zeta_max,
+        r.grid[0],
+        r.grid[1],
+        r.shells,
+        eng(r.p0),
+        r.contact_points,
+        eng(r.a_r),
+        eng(r.share),
+        eng(r.share_after_first),
+        r.iterations,
+        eng(r.wall_s),
+        r.failed
+            .as_ref()
+            .map_or(String::new(), |m| format!(" The sweep stopped early: {m}."))
+    );
+}
+
 fn solvers(s: &mut String, c: &SurfaceCheck) {
     let _ = writeln!(
         s,
-        "## Solvers\n\n| solver | iterations | largest residual | wall time |\n|---|---|---|---|"
+        "## Solvers\n\n| solver | iterations | largest residual | failed solves | wall time (s) \
+         |\n|---|---|---|---|---|"
     );
     for w in &c.solvers {
         let _ = writeln!(
             s,
-            "| {} | {} | {:.2e} | {:.1} s |",
+            "| {} | {} | {} | {} | {} |",
             w.solver.name(),
             w.iterations,
-            w.max_residual,
-            w.wall_s
+            eng(w.max_residual),
+            w.failed,
+            eng(w.wall_s)
         );
     }
     if let Some(agree) = c.solvers_agree {
         let _ = writeln!(
             s,
             "\nThe two solvers {} (contact area and energy within {}% at every load and \
-             scan).",
+             scan both solved).",
             if agree { "agree" } else { "DISAGREE" },
             100.0 * SOLVER_AGREEMENT
         );
@@ -276,51 +485,58 @@ fn solvers(s: &mut String, c: &SurfaceCheck) {
     s.push('\n');
 }
 
-/// A load curve's series: the cross-check's points when there are any, joined by a line
-/// and drawn first (so that both stay visible where they agree), the headline solver's points with
-/// their error bars over scans, and Persson's two predictions; `pick` reads a point's
-/// [value, error, cross-check, Persson, corrected].
-fn curve_series(c: &SurfaceCheck, pick: fn(&CurvePoint) -> [Option<f64>; 5]) -> Vec<Series> {
+/// A load curve's series, in the order that keeps every series' colour across figures:
+/// the headline solver's points with their error bars over scans, Persson's two
+/// predictions, and the cross-check as a line through its loads where there is one;
+/// `pick` reads a point's [value, error, cross-check, Persson, corrected].
+fn curve_series(
+    c: &SurfaceCheck,
+    pick: fn(&CurvePoint) -> [Option<f64>; 5],
+    factor: f64,
+) -> Vec<Series> {
     let line = |k: usize| -> Vec<(f64, f64)> {
         c.curve
             .iter()
-            .filter_map(|p| Some((p.p0, pick(p)[k]?)))
+            .filter_map(|p| Some((p.p0, factor * pick(p)[k]?)))
             .collect()
     };
-    let mut series = Vec::new();
+    let mut series = vec![
+        Series::with_errors(
+            format!("simulation ({})", c.solver.name()),
+            Style::Points,
+            c.curve.iter().map(|p| {
+                let v = pick(p);
+                (
+                    p.p0,
+                    factor * v[0].unwrap_or(f64::NAN),
+                    factor * v[1].unwrap_or(f64::NAN),
+                )
+            }),
+        ),
+        Series::xy("Persson", Style::Line, line(3)),
+        Series::xy("Persson, corrected", Style::Dashed, line(4)),
+    ];
     let cross = line(2);
     if let (Some(k), false) = (c.cross_check, cross.is_empty()) {
         series.push(Series::xy(
             format!("cross-check ({})", k.name()),
-            Style::LinePoints,
+            Style::Line,
             cross,
         ));
     }
-    series.push(Series::with_errors(
-        format!("simulation ({})", c.solver.name()),
-        Style::Points,
-        c.curve.iter().map(|p| {
-            let v = pick(p);
-            (p.p0, v[0].unwrap_or(f64::NAN), v[1].unwrap_or(f64::NAN))
-        }),
-    ));
-    series.push(Series::xy("Persson", Style::Line, line(3)));
-    series.push(Series::xy("Persson, corrected", Style::Dashed, line(4)));
     series
 }
 
 /// The page's figures.
 pub fn figures(c: &SurfaceCheck) -> Vec<Figure> {
-    let area = curve_series(c, area_of);
-    let energy = curve_series(c, energy_of);
-    let d = &c.pressure_distribution;
-    let col = |k: usize| -> Vec<(f64, f64)> { d.bins.iter().map(|b| (b[0], b[k])).collect() };
-    vec![
+    let u = unit(c);
+    let (energy_unit, energy_factor) = energy_unit(c);
+    let mut figures = vec![
         Figure {
             name: "psd".into(),
             title: "Radially averaged power spectrum".into(),
-            x: Axis::log("q (1 / length unit)"),
-            y: Axis::log("C(q) (length unit^4)"),
+            x: Axis::log(format!("q (1/{u})")),
+            y: Axis::log(format!("C(q) ({u}^4)")),
             y2: None,
             series: vec![Series::xy(
                 "C(q)",
@@ -334,11 +550,22 @@ pub fn figures(c: &SurfaceCheck) -> Vec<Figure> {
             x: Axis::log("p0 / E*"),
             y: Axis::log("a_r"),
             y2: None,
-            series: area,
+            series: curve_series(c, area_of, 1.0),
         },
         Figure {
+            name: "elastic_energy".into(),
+            title: "Elastic energy per unit area against the load".into(),
+            x: Axis::log("p0 / E*"),
+            y: Axis::log(format!("E_el ({energy_unit})")),
+            y2: None,
+            series: curve_series(c, energy_of, energy_factor),
+        },
+    ];
+    if let Some(d) = &c.pressure_distribution {
+        let col = |k: usize| -> Vec<(f64, f64)> { d.bins.iter().map(|b| (b[0], b[k])).collect() };
+        figures.push(Figure {
             name: "pressure_distribution".into(),
-            title: format!("Pressure distribution at p0 = {:.3e} E*", d.p0),
+            title: format!("Pressure distribution at p0 = {} E*", eng(d.p0)),
             x: Axis::linear("p / p0"),
             y: Axis::linear("Pr(p / p0)"),
             y2: None,
@@ -351,14 +578,7 @@ pub fn figures(c: &SurfaceCheck) -> Vec<Figure> {
                 Series::xy("Persson", Style::Line, col(2)),
                 Series::xy("Persson, corrected", Style::Dashed, col(3)),
             ],
-        },
-        Figure {
-            name: "elastic_energy".into(),
-            title: "Elastic energy per unit area against the load".into(),
-            x: Axis::log("p0 / E*"),
-            y: Axis::log("E_el (E* length unit)"),
-            y2: None,
-            series: energy,
-        },
-    ]
+        });
+    }
+    figures
 }

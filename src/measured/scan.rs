@@ -1,27 +1,40 @@
 //! A measured height map: read from a `.npy` file (2D, float32 or float64) or a plain-text
 //! matrix, and checked before anything is computed from it.
 //!
-//! Instruments leave gaps (NaN where a point was not measured) and write files in many
-//! shapes; each problem is refused with a message that names it: missing points (their
-//! count and the first one's row and column), a one-dimensional profile, an empty file, a
-//! ragged text matrix, a rectangular map (not supported: the message says how to crop it),
-//! and sizes outside the grid's range. Heights keep the file's length unit; the pixel size
-//! is given in the same unit.
+//! Instruments write files in many shapes; each problem is refused with a message that
+//! names it: a one-dimensional profile, an empty file, a ragged text matrix, and sides
+//! outside the grid's range. Rectangular maps are read as they are. Instruments also leave
+//! gaps: points not measured are NaN (or infinite) in the map and stay so here, counted by
+//! [`Scan::missing`]; [`super::fill`] refuses or fills them before anything is computed.
+//! Heights keep the file's length unit; the pixel size is given in the same unit.
 
 use std::path::{Path, PathBuf};
 
+use super::psd::Shape;
 use crate::engine::grid::{MAX_N, MIN_N};
 use crate::error::{Error, Result};
 
-/// One scan: a square height map and where it came from.
+/// One scan: a height map and where it came from.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Scan {
-    /// Points per side.
-    pub n: usize,
-    /// Heights, row-major, in the file's length unit.
+    /// Rows and columns.
+    pub shape: Shape,
+    /// Heights, row-major, in the file's length unit; NaN (or infinite) where the
+    /// instrument measured nothing.
     pub heights: Vec<f64>,
     /// The file it was read from (or a name given by the caller).
     pub source: PathBuf,
+    /// Points filled by interpolation ([`super::fill`]); 0 as read.
+    pub filled: usize,
+}
+
+/// The points a scan lacks: how many, and the first (row, column) in row-major order.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Missing {
+    /// Points that are not finite.
+    pub count: usize,
+    /// The first of them, `(row, column)`.
+    pub first: Option<(usize, usize)>,
 }
 
 /// A height map's shape and values, before its checks.
@@ -84,54 +97,41 @@ impl Scan {
                 ),
             ));
         }
-        if rows != cols {
-            let side = rows.min(cols);
-            return Err(Error::bad_file(
-                source,
-                format!(
-                    "the height map is {rows} x {cols} (rows x columns): rectangular scans are \
-                     not supported; crop it to a square, e.g. its first {side} x {side} points \
-                     (numpy: h[:{side}, :{side}])"
-                ),
-            ));
-        }
-        let n = rows;
-        if !(MIN_N..=MAX_N / 2).contains(&n) {
-            return Err(Error::bad_file(
-                source,
-                format!(
-                    "the height map is {n} x {n}: the side must be in [{MIN_N}, {}] (a free \
-                     boundary doubles it)",
-                    MAX_N / 2
-                ),
-            ));
-        }
-        let bad: Vec<usize> = values
-            .iter()
-            .enumerate()
-            .filter(|(_, v)| !v.is_finite())
-            .map(|(k, _)| k)
-            .collect();
-        if let Some(&first) = bad.first() {
-            return Err(Error::bad_file(
-                source,
-                format!(
-                    "{} of {} heights are not finite (NaN or infinity: points the instrument \
-                     did not measure?), the first at row {}, column {} ({}); fill or crop \
-                     them before checking the surface",
-                    bad.len(),
-                    values.len(),
-                    first / n,
-                    first % n,
-                    values[first]
-                ),
-            ));
+        for (side, what) in [(rows, "rows"), (cols, "columns")] {
+            if !(MIN_N..=MAX_N / 2).contains(&side) {
+                return Err(Error::bad_file(
+                    source,
+                    format!(
+                        "the height map is {rows} x {cols} (rows x columns): {side} {what}, \
+                         each side must be in [{MIN_N}, {}] (a free boundary doubles it)",
+                        MAX_N / 2
+                    ),
+                ));
+            }
         }
         Ok(Self {
-            n,
+            shape: Shape { rows, cols },
             heights: values,
             source: source.to_path_buf(),
+            filled: 0,
         })
+    }
+
+    /// The points that are not finite (not measured).
+    pub fn missing(&self) -> Missing {
+        let mut missing = Missing {
+            count: 0,
+            first: None,
+        };
+        for (k, v) in self.heights.iter().enumerate() {
+            if !v.is_finite() {
+                missing.count += 1;
+                missing
+                    .first
+                    .get_or_insert((k / self.shape.cols, k % self.shape.cols));
+            }
+        }
+        missing
     }
 }
 
@@ -246,19 +246,26 @@ mod tests {
             text.push('\n');
         }
         let s = Scan::read(&write(dir.path(), "h.txt", &text)).unwrap();
-        assert_eq!(s.n, 4);
+        assert_eq!(s.shape, Shape { rows: 4, cols: 4 });
         assert_eq!(s.heights[6], 6.0);
+        // A rectangle is read as it is.
+        let rect = "1 2 3 4 5\n1 2 3 4 5\n1 2 3 4 5\n1 2 3 4 5\n";
+        let s = Scan::read(&write(dir.path(), "rect.txt", rect)).unwrap();
+        assert_eq!(s.shape, Shape { rows: 4, cols: 5 });
     }
 
     #[test]
     fn missing_points_are_counted_and_the_first_is_named() {
         let dir = tempfile::tempdir().unwrap();
-        let text = "1 2 3 4\n5 nan 7 8\n9 10 NaN 12\n13 14 15 inf\n";
-        let e = Scan::read(&write(dir.path(), "h.txt", text))
-            .unwrap_err()
-            .to_string();
-        assert!(e.contains("3 of 16 heights are not finite"), "{e}");
-        assert!(e.contains("row 1, column 1"), "{e}");
+        let text = "1 2 3 4 5\n5 6 nan 7 8\n9 10 NaN 12 1\n13 14 15 inf 1\n";
+        let s = Scan::read(&write(dir.path(), "h.txt", text)).unwrap();
+        assert_eq!(
+            s.missing(),
+            Missing {
+                count: 3,
+                first: Some((1, 2))
+            }
+        );
     }
 
     #[test]
@@ -269,11 +276,6 @@ mod tests {
             ("comments.txt", "# nothing\n\n", "empty"),
             ("line.txt", "1 2 3 4 5 6\n", "one-dimensional profile"),
             ("ragged.txt", "1 2 3 4\n1 2 3\n1 2 3 4\n1 2 3 4\n", "ragged"),
-            (
-                "rect.txt",
-                "1 2 3 4 5\n1 2 3 4 5\n1 2 3 4 5\n1 2 3 4 5\n",
-                "rectangular",
-            ),
             ("words.txt", "1 2 x 4\n", "not a number"),
             ("tiny.txt", "1 2\n3 4\n", "must be in"),
             ("bad.npy", "hello", "not a valid .npy"),
@@ -304,7 +306,7 @@ mod tests {
         w.finish().unwrap();
         drop(file);
         let s = Scan::read(&path).unwrap();
-        assert_eq!((s.n, s.heights[7]), (6, 3.5));
+        assert_eq!((s.shape.rows, s.heights[7]), (6, 3.5));
         let path64 = dir.path().join("h64.npy");
         let v64: Vec<f64> = values.iter().map(|&v| f64::from(v)).collect();
         crate::io::npy::write_field(&path64, 6, &v64).unwrap();

@@ -92,6 +92,23 @@ pub fn default_areas() -> Vec<f64> {
         .collect()
 }
 
+/// Checks loads given: at least one, each `p0/E*` in `(0, 10)`.
+pub fn check_loads(loads: &[f64]) -> Result<()> {
+    if loads.is_empty() {
+        return Err(Error::invalid("loads", "[]", "at least one load p0/E*"));
+    }
+    for &p in loads {
+        if !(p.is_finite() && p > 0.0 && p < 10.0) {
+            return Err(Error::invalid(
+                "loads",
+                p,
+                "nominal pressures p0/E* in (0, 10) (the small-slope model's range)",
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// A load curve's loads, increasing: the given ones (checked) or the defaults.
 pub fn loads(theory: &Theory, given: Option<&[f64]>) -> Result<Vec<f64>> {
     let mut loads = match given {
@@ -101,18 +118,7 @@ pub fn loads(theory: &Theory, given: Option<&[f64]>) -> Result<Vec<f64>> {
             .map(|a| theory.load_for_area(a))
             .collect(),
     };
-    if loads.is_empty() {
-        return Err(Error::invalid("loads", "[]", "at least one load p0/E*"));
-    }
-    for &p in &loads {
-        if !(p.is_finite() && p > 0.0 && p < 10.0) {
-            return Err(Error::invalid(
-                "loads",
-                p,
-                "nominal pressures p0/E* in (0, 10) (the small-slope model's range)",
-            ));
-        }
-    }
+    check_loads(&loads)?;
     loads.sort_by(f64::total_cmp);
     loads.dedup();
     Ok(loads)

@@ -1,21 +1,27 @@
-//! Persson checked on the user's own surface: read the scans, solve their load curves,
-//! compare with Persson's predictions and write `surface.json`, `surface.md` and the
-//! figures ([`crate::measured`]). The command line's `check-surface` and Python's
-//! `check_surface` both call [`check_surface`].
+//! Persson checked on the user's own surface: read the scans, refuse or fill their
+//! missing points, solve their load curves, compare with Persson's predictions and write
+//! `surface.json`, `surface.md` and the figures ([`crate::measured`]), with every solve's
+//! outcome appended to `solves.jsonl` as it ends. The command line's `check-surface` and
+//! Python's `check_surface` both call [`check_surface`].
 
+use std::io::Write as _;
 use std::path::Path;
 
 use super::Spelling;
-use crate::engine::solver::{Progress, SolverKind};
-use crate::error::Result;
-use crate::measured::check::{check, CheckOptions, SurfaceCheck};
+use crate::error::{Error, Result};
+use crate::measured::check::{check, CheckOptions, Event, SurfaceCheck};
+use crate::measured::fill::{fill, Fill};
 use crate::measured::page;
 use crate::measured::scan::Scan;
+use crate::measured::units::eng;
+
+/// The file of every solve's outcome, one JSON line each, written as it ends.
+pub const SOLVES_FILE: &str = "solves.jsonl";
 
 /// Reads the scans in `paths` (one surface, several scans).
 pub fn read_scans(paths: &[impl AsRef<Path>], s: &dyn Spelling) -> Result<Vec<Scan>> {
     if paths.is_empty() {
-        return Err(s.rename(crate::error::Error::invalid(
+        return Err(s.rename(Error::invalid(
             "heights",
             "no file",
             "at least one height map (.npy or a text matrix)",
@@ -24,21 +30,133 @@ pub fn read_scans(paths: &[impl AsRef<Path>], s: &dyn Spelling) -> Result<Vec<Sc
     paths.iter().map(|p| Scan::read(p.as_ref())).collect()
 }
 
+/// `scans` with their missing points filled as `how` says, or the refusal that names
+/// the first scan with gaps, their count and first position, and how to fill them.
+pub fn fill_scans(scans: &[Scan], how: Fill, s: &dyn Spelling) -> Result<Vec<Scan>> {
+    scans
+        .iter()
+        .map(|scan| {
+            fill(scan, how).map(|(filled, _)| filled).map_err(|gaps| {
+                Error::bad_file(
+                    &scan.source,
+                    gaps.message(&s.given("fill", Fill::Interpolate.name())),
+                )
+            })
+        })
+        .collect()
+}
+
 /// Checks the surface of `scans` with `opts`; writes the page and its files into `out`
-/// when given. `progress` sees the scan, the solver, the load and every iteration.
+/// when given (and `solves.jsonl` there as the solves end). `events` sees every
+/// iteration and every load's end.
 pub fn check_surface(
     scans: &[Scan],
     opts: &CheckOptions,
     out: Option<&Path>,
     s: &dyn Spelling,
-    progress: &mut dyn FnMut(usize, SolverKind, usize, Progress),
+    events: &mut dyn FnMut(Event),
 ) -> Result<SurfaceCheck> {
     if let Some(dir) = out {
         super::check_out_dir(dir, s)?;
     }
-    let result = check(scans, opts, progress).map_err(|e| s.rename(e))?;
+    let scans = fill_scans(scans, opts.fill, s)?;
+    crate::measured::check::validate(&scans, opts).map_err(|e| s.rename(e))?;
+    let names: Vec<String> = scans
+        .iter()
+        .map(|s| s.source.display().to_string())
+        .collect();
+    let mut log = match out {
+        Some(dir) => Some(SolveLog::create(dir)?),
+        None => None,
+    };
+    let mut logged = Ok(());
+    let result = check(&scans, opts, &mut |e| {
+        if let (Some(log), Event::Load { .. }) = (log.as_mut(), &e) {
+            if logged.is_ok() {
+                logged = log.append(&names, &e);
+            }
+        }
+        events(e);
+    })
+    .map_err(|e| s.rename(e))?;
+    logged?;
     if let Some(dir) = out {
         page::write(&result, dir)?;
     }
     Ok(result)
+}
+
+/// `solves.jsonl`: one line per solve, flushed as it ends, so that a check stopped
+/// midway leaves what it found.
+struct SolveLog {
+    path: std::path::PathBuf,
+    file: std::fs::File,
+}
+
+impl SolveLog {
+    fn create(dir: &Path) -> Result<Self> {
+        std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+        let path = dir.join(SOLVES_FILE);
+        let file = std::fs::File::create(&path).map_err(|e| Error::io(&path, e))?;
+        Ok(Self { path, file })
+    }
+
+    fn append(&mut self, scans: &[String], e: &Event) -> Result<()> {
+        let Event::Load {
+            scan,
+            solver,
+            headline,
+            load,
+            outcome,
+            ..
+        } = *e
+        else {
+            return Ok(());
+        };
+        let line = serde_json::json!({
+            "scan": scans[scan],
+            "solver": solver,
+            "headline": headline,
+            "load": load,
+            "p0": outcome.as_ref().map_or_else(|f| f.p0, |s| s.p0),
+            "solved": outcome.as_ref().ok(),
+            "failed": outcome.as_ref().err(),
+        });
+        writeln!(self.file, "{line}")
+            .and_then(|()| self.file.flush())
+            .map_err(|err| Error::io(&self.path, err))
+    }
+}
+
+/// One line for a load's end (`None` for other events), for logs and progress where no
+/// progress bar is drawn: `scan 1/2, gfmd, load 3/8, p0 = 1.23e-3 E*: a_r = 45.6e-3, 123
+/// iterations, 456e-3 s`.
+pub fn load_line(scans: usize, e: &Event) -> Option<String> {
+    let Event::Load {
+        scan,
+        solver,
+        load,
+        loads,
+        outcome,
+        ..
+    } = *e
+    else {
+        return None;
+    };
+    let at = format!(
+        "scan {}/{scans}, {}, load {}/{loads}",
+        scan + 1,
+        solver.name(),
+        load + 1
+    );
+    Some(match outcome {
+        Ok(s) => format!(
+            "{at}, p0 = {} E*: a_r = {}, {} iterations, {} s",
+            eng(s.p0),
+            eng(s.contact_area),
+            s.iterations,
+            eng(s.wall_s)
+        ),
+        Err(f) => format!("{at}: FAILED: {}", f.message),
+    })
 }

@@ -5,7 +5,7 @@
 use rayon::prelude::*;
 
 use super::sums::View;
-use super::{Solve, STAGNATION};
+use super::{Solve, DAMPING, STAGNATION};
 use crate::engine::contact::ContactSolution;
 use crate::engine::solver::executor::Verdict;
 use crate::error::{Result, Termination};
@@ -56,14 +56,21 @@ impl Stopping {
 }
 
 impl Solve<'_> {
-    /// The safeguard of "Stopping": when the estimate stops improving, a preconditioned
+    /// The safeguards of "Stopping", when the estimate stops improving: first, if the
+    /// estimate has never met the tolerance (a cycle, not the rounding floor), the step
+    /// length is damped ([`DAMPING`]: the full step may cycle); then a preconditioned
     /// solve goes on with plain Polonsky-Keer, which always converges (slowly); an
     /// unpreconditioned one whose full residual has already failed has stalled (true).
-    pub(super) fn stalled(&mut self, it: usize, estimate: f64) -> bool {
+    pub(super) fn safeguard(&mut self, it: usize, estimate: f64) -> bool {
         if !self.stopping.stagnant(it, estimate) {
             return false;
         }
-        if self.precond {
+        if self.damping == 1.0 && self.stopping.target == self.stopping.tol {
+            self.damping = DAMPING;
+            self.conjugate = false;
+            self.stopping.best_at = it;
+            false
+        } else if self.precond {
             self.precond = false;
             self.conjugate = false;
             self.stopping.best_at = it;

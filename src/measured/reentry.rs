@@ -1,0 +1,259 @@
+//! The re-entry share over magnification on a scan's own shells: assumption (c) of the
+//! validations (`p = 0` absorbs), measured as the `c_reentry` validation measures it
+//! ([`crate::experiments::reentry`]), on the scan instead of a generated surface.
+//!
+//! The scan's spectrum is truncated as that validation truncates its surfaces: at
+//! `zeta_max = L / lambda_s` with the long-wavelength cutoff at the scan's longer side
+//! `L` and `lambda_s` four points of the grid the sweep is solved on ([`REENTRY_ZETA`],
+//! at most a quarter of the scan's points per side). The truncated surface is
+//! band-limited, so it is solved on the grid of `4 zeta_max` points along the longer
+//! side that holds it exactly (its modes placed on that grid's own wavevectors). Every
+//! distinct shell `|q|` up to `zeta_max` is then added one at a time, from the first, at
+//! the fixed load of the check's middle load, each solve warm-started from the last; the
+//! history of every point of the window ([`History`], the validation's own record) gives
+//! the share of the points in contact at `zeta_max` that were out of contact at a lower
+//! magnification (Persson: 0), and the share that left after the first shell and came
+//! back. A free scan is swept on the free boundary, its heights the detrended scan's
+//! modes (truncating a non-periodic window's spectrum rings at its edges as the window's
+//! periodic images step; the share counts the whole window).
+
+use std::collections::BTreeMap;
+use std::time::Instant;
+
+use rustfft::num_complex::Complex64;
+use serde::{Deserialize, Serialize};
+
+use super::body::window_of;
+use super::psd::{dft2, idft2, Boundary, ScanSpectrum, Shape};
+use super::theory::E_STAR;
+use crate::engine::contact::{ContactProblem, ContactSolution, Model};
+use crate::engine::grid::{signed_index, Grid};
+use crate::engine::solver::{SolveOptions, SolverKind, Start};
+use crate::error::{Error, Result};
+use crate::experiments::reentry::history::History;
+
+/// The magnification the sweep climbs to, `L / lambda_s`: the reduced `c_reentry` scene's
+/// `zeta_max` (`lambda_l / lambda_s = 64 / 4`), with the scan's side as `lambda_l`. On a
+/// square scan this is some ninety shells, on a grid of 64^2 points: about a second.
+pub const REENTRY_ZETA: f64 = 16.0;
+
+/// Points per shortest wavelength on the sweep's grid (the validations' `lambda_s = 4`).
+const POINTS_PER_LAMBDA_S: f64 = 4.0;
+
+/// The re-entry share of a scan.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Reentry {
+    /// The fixed load, `p0 / E*`.
+    pub p0: f64,
+    /// The magnification climbed to (`L / lambda_s`).
+    pub zeta_max: f64,
+    /// Shells added, one at a time.
+    pub shells: usize,
+    /// The sweep's grid (rows x columns of the window).
+    pub grid: [usize; 2],
+    /// The contact area at `zeta_max` on the sweep's grid.
+    pub a_r: f64,
+    /// Points in contact at `zeta_max`.
+    pub contact_points: u64,
+    /// Of those, the share that was out of contact at a lower magnification (the first
+    /// shell included).
+    pub share: f64,
+    /// Of those, the share that left contact after the first shell and came back.
+    pub share_after_first: f64,
+    /// Solver iterations of the sweep.
+    pub iterations: u64,
+    /// Wall time, seconds.
+    pub wall_s: f64,
+    /// Why the sweep stopped before `zeta_max`, if it did (then the shares are those of
+    /// the last shell reached).
+    pub failed: Option<String>,
+}
+
+/// The modes of `spectrum`'s heights up to `zeta_max`, on the grid that holds them: the
+/// sweep's shape, its modes by shell (each `(shell |q|/q_l, index, amplitude)`), and the
+/// heights' scale from the scan's pixels to the sweep's.
+struct Truncated {
+    shape: Shape,
+    modes: Vec<(f64, usize, Complex64)>,
+}
+
+fn truncate(spectrum: &ScanSpectrum, zeta_max: f64) -> Truncated {
+    let Shape { rows, cols } = spectrum.shape;
+    let longer = spectrum.shape.longer() as f64;
+    let coarse = POINTS_PER_LAMBDA_S * zeta_max;
+    let side = |n: usize| ((n as f64 * coarse / longer).ceil() as usize).max(4);
+    let shape = Shape {
+        rows: side(rows),
+        cols: side(cols),
+    };
+    // Heights in the sweep's pixels: the scan's pixel over the sweep's.
+    let scale = coarse / longer;
+    let spec = dft2(&spectrum.heights, spectrum.shape);
+    let q_l = 1.0 / longer;
+    let mut modes = Vec::new();
+    for ky in 0..rows {
+        let my = signed_index(ky, rows);
+        for kx in 0..cols {
+            let mx = signed_index(kx, cols);
+            if mx == 0 && my == 0 {
+                continue;
+            }
+            // |q| / q_l with q = (mx / cols, my / rows) in cycles per scan pixel.
+            let q = ((mx as f64 / cols as f64).powi(2) + (my as f64 / rows as f64).powi(2)).sqrt();
+            let zeta = q / q_l;
+            if zeta > zeta_max * (1.0 + 1e-12) {
+                continue;
+            }
+            let at = wrap(my, shape.rows) * shape.cols + wrap(mx, shape.cols);
+            modes.push((zeta, at, spec[ky * cols + kx] * scale));
+        }
+    }
+    modes.sort_by(|a, b| a.0.total_cmp(&b.0));
+    Truncated { shape, modes }
+}
+
+/// The index of signed wavenumber `m` on a side of `n` points.
+fn wrap(m: i64, n: usize) -> usize {
+    m.rem_euclid(n as i64) as usize
+}
+
+/// The distinct shells' magnifications, increasing (equal within `1e-12` are one shell).
+fn shells(modes: &[(f64, usize, Complex64)]) -> Vec<f64> {
+    let mut zetas: BTreeMap<u64, f64> = BTreeMap::new();
+    for &(z, _, _) in modes {
+        zetas.entry((z * 1e9).round() as u64).or_insert(z);
+    }
+    zetas.into_values().collect()
+}
+
+/// Sweeps the shells of `spectrum` at load `p0` with `solver` to `tol` (see the module
+/// docs). `Ok(Err(message))` is a sweep a solve ended; the error, bad input.
+pub fn reentry_share(
+    spectrum: &ScanSpectrum,
+    p0: f64,
+    solver: SolverKind,
+    tol: f64,
+) -> Result<Reentry> {
+    let timer = Instant::now();
+    let zeta_max = REENTRY_ZETA.min(spectrum.shape.longer() as f64 / POINTS_PER_LAMBDA_S);
+    let truncated = truncate(spectrum, zeta_max);
+    let shape = truncated.shape;
+    let model = match spectrum.boundary {
+        Boundary::Periodic => Model::new(Grid::new(shape.rows, 1.0)?, E_STAR)?,
+        Boundary::Free => Model::free_window(shape.rows, shape.cols, E_STAR)?,
+    };
+    let share = shape.points() as f64 / model.grid.points() as f64;
+    let steps = shells(&truncated.modes);
+    let mut history = History::new(shape.points(), (f64::INFINITY, f64::INFINITY));
+    let mut engine = solver.build();
+    let opts = SolveOptions::with_tol(tol);
+    let mut last: Option<ContactSolution> = None;
+    let mut spec = vec![Complex64::new(0.0, 0.0); shape.points()];
+    let mut next = 0;
+    let mut iterations = 0u64;
+    let mut failed = None;
+    for (step, &zeta) in steps.iter().enumerate() {
+        while next < truncated.modes.len() && truncated.modes[next].0 <= zeta * (1.0 + 1e-9) {
+            let (_, at, amplitude) = truncated.modes[next];
+            spec[at] = amplitude;
+            next += 1;
+        }
+        let heights = model.pad_heights(&idft2(&spec, shape))?;
+        let problem = ContactProblem::new(&model, &heights, p0 * share)?;
+        let start = last.as_ref().map_or(Start::Cold, Start::Warm);
+        match engine.solve(&problem, start, &opts) {
+            Ok(solution) => {
+                iterations += solution.stats.iterations as u64;
+                let window = window_of(&model, shape, &solution.pressure);
+                history.update(step, &window);
+                last = Some(solution);
+            }
+            Err(
+                e @ (Error::NotConverged { .. }
+                | Error::NonFinite { .. }
+                | Error::LostContact { .. }),
+            ) => {
+                failed = Some(format!(
+                    "re-entry sweep, shell {} of {} (zeta = {zeta:.3}): {e}",
+                    step + 1,
+                    steps.len()
+                ));
+                break;
+            }
+            Err(e) => return Err(e),
+        }
+    }
+    let (contact_points, reentered, after_first) = history.counts();
+    let of = |k: u64| k as f64 / contact_points.max(1) as f64;
+    Ok(Reentry {
+        p0,
+        zeta_max,
+        shells: steps.len(),
+        grid: [shape.rows, shape.cols],
+        a_r: contact_points as f64 / shape.points() as f64,
+        contact_points,
+        share: of(reentered),
+        share_after_first: of(after_first),
+        iterations,
+        wall_s: timer.elapsed().as_secs_f64(),
+        failed,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::engine::fft::Fft2;
+    use crate::engine::surface::{Surface, SurfaceParams};
+
+    #[test]
+    fn the_truncated_surface_keeps_its_modes_on_the_coarse_grid() {
+        // A band-limited periodic 64^2 surface (lambda_s = 8: zeta <= 8) truncated at
+        // zeta_max = 8 lands on a 32^2 grid with every mode: the coarse heights are the
+        // fine ones at every second point, in coarse pixels (half as many per length).
+        let surface = Surface::generate(&SurfaceParams::new(64, 0.8, 64.0, 8.0, 4)).unwrap();
+        let fft = Fft2::new(surface.grid());
+        let h = surface.heights_at(f64::INFINITY, &fft);
+        let shape = Shape { rows: 64, cols: 64 };
+        let spectrum = ScanSpectrum::new(&h, shape, 1.0, Boundary::Periodic).unwrap();
+        let t = truncate(&spectrum, 8.0);
+        assert_eq!(t.shape, Shape { rows: 32, cols: 32 });
+        let mut spec = vec![Complex64::new(0.0, 0.0); t.shape.points()];
+        for &(_, at, a) in &t.modes {
+            spec[at] = a;
+        }
+        let coarse = idft2(&spec, t.shape);
+        for i in 0..32 {
+            for j in 0..32 {
+                let fine = 0.5 * spectrum.heights[2 * i * 64 + 2 * j];
+                assert!((coarse[i * 32 + j] - fine).abs() < 1e-12, "({i}, {j})");
+            }
+        }
+        // The shells are the surface's own, in increasing order.
+        let zetas = shells(&t.modes);
+        assert!(zetas.windows(2).all(|w| w[0] < w[1]));
+        assert!((zetas[0] - 1.0).abs() < 1e-12 && *zetas.last().unwrap() <= 8.0 + 1e-9);
+    }
+
+    #[test]
+    fn points_leave_and_come_back_as_shells_are_added() {
+        // A 64^2 window of a rough surface at a_r about 0.1: some points re-enter (the
+        // paper's finding), and the share counts the points in contact at zeta_max.
+        let surface = Surface::generate(&SurfaceParams::new(128, 0.8, 64.0, 4.0, 6)).unwrap();
+        let fft = Fft2::new(surface.grid());
+        let full = surface.heights_at(f64::INFINITY, &fft);
+        let shape = Shape { rows: 48, cols: 64 };
+        let window: Vec<f64> = (0..shape.points())
+            .map(|k| full[(k / 64) * 128 + k % 64])
+            .collect();
+        let spectrum = ScanSpectrum::new(&window, shape, 1.0, Boundary::Free).unwrap();
+        let r = reentry_share(&spectrum, 0.05, SolverKind::Cg, 1e-8).unwrap();
+        assert!(r.failed.is_none(), "{:?}", r.failed);
+        assert_eq!(r.zeta_max, 16.0);
+        assert_eq!(r.grid, [48, 64]);
+        assert!(r.shells > 50, "{} shells", r.shells);
+        assert!(r.a_r > 0.01 && r.a_r < 0.5, "a_r {}", r.a_r);
+        assert!(r.share > 0.0 && r.share <= 1.0, "share {}", r.share);
+        assert!(r.share_after_first <= r.share);
+    }
+}
