@@ -420,7 +420,7 @@ impl Experiment for ContactArea {
             "Over {} of each of H = {:?} (grid {}x{} refined by {:?}, lambda_l = {} and \
              lambda_s = {} grid spacings on the coarsest grid), the low-load slope a_r / p~0 \
              (p~0 <= {}, {label}) is {}, against {:.3} from Persson's original theory and 2 c1 = \
-             2.15 from the paper's fit. Eq. (contactArea) matches the measured a_r to within \
+             {:.2} from the paper's fit. Eq. (contactArea) matches the measured a_r to within \
              {:.1}% for a_r in [{}, {}].",
             realizations(scene.seeds.len()),
             scene.hursts,
@@ -432,6 +432,7 @@ impl Experiment for ContactArea {
             scene.low_load,
             s.kappa.text(1.0, 3, ""),
             persson_kappa(),
+            crate::persson::ContactAreaLaw::PAPER.kappa(),
             100.0 * s.law.worst,
             scene.law_range.0,
             scene.law_range.1,
