@@ -897,8 +897,7 @@ fn terrace_with_particles_warm_along_the_loads() {
         let heights = model.pad_heights(&h).unwrap();
         // The load over the window, as a mean over the model's grid.
         let share = (n * n) as f64 / model.grid.points() as f64;
-        let mut last: Vec<Option<ContactSolution>> =
-            SolverKind::ALL.iter().map(|_| None).collect();
+        let mut last: Vec<Option<ContactSolution>> = SolverKind::ALL.iter().map(|_| None).collect();
         for &p0 in &loads {
             let scene = format!("terrace, {boundary}, p0 = {p0}");
             let problem = ContactProblem::new(model, &heights, p0 * share).unwrap();
