@@ -28,6 +28,8 @@ mod validation;
 pub use golden::{read_snapshot, GoldenMatch};
 pub use outcomes::{read_outcome, read_outcomes, scene_grids, scene_seeds, Loaded};
 
+pub mod compare;
+
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
