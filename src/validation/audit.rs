@@ -448,9 +448,15 @@ fn walk(
                 path.truncate(len);
             }
         }
-        (Some(x), Some(y)) if x.to_string() == y.to_string() => {}
+        (Some(x), Some(y)) if same_text(x, y) => {}
         (a, b) => note(path, a, b),
     }
+}
+
+/// Whether two values are written alike (numbers by their text: `-0.0` is not `0.0`).
+fn same_text(x: &Value, y: &Value) -> bool {
+    let (a, b) = (x.to_string(), y.to_string());
+    a == b
 }
 
 #[cfg(test)]

@@ -247,8 +247,8 @@ pub fn compared(
         .reduce(|a, b| a + b);
     let z = match (identical, difference, variance) {
         (true, _, _) => Some(0.0),
-        (false, Some(d), Some(_)) if d == 0.0 => Some(0.0),
-        (false, Some(d), Some(v)) => Some(d / v.sqrt()),
+        // Equal values whose error bars changed have not moved.
+        (false, Some(d), Some(v)) => Some(if d == 0.0 { 0.0 } else { d / v.sqrt() }),
         _ => None,
     };
     Compared {

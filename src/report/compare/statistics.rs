@@ -278,12 +278,12 @@ mod tests {
             ]
         );
         assert_eq!(statistics(&old)[1].measured.std_error, None);
-        let readings: Vec<(String, String)> = readings(&old)
+        let listed: Vec<(String, String)> = readings(&old)
             .into_iter()
             .map(|r| (r.key, r.value))
             .collect();
         assert_eq!(
-            readings,
+            listed,
             [
                 ("verdict".into(), "holds".into()),
                 ("reproduced".into(), "reproduced".into()),
