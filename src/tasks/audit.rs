@@ -20,8 +20,8 @@ use crate::error::{Error, Result};
 use crate::plot::significant;
 use crate::provenance;
 use crate::validation::audit::{
-    candidates, differences, pick, recompute, top_level_value, Candidate, Difference, Reason,
-    Uncovered, COST_MARGIN,
+    candidates, differences, only_measured_times, pick, recompute, top_level_value, Candidate,
+    Difference, Reason, Uncovered, COST_MARGIN,
 };
 use crate::validation::source::{builtin_sources, select, Source};
 use crate::validation::Registry;
@@ -57,6 +57,12 @@ pub struct AuditOptions {
 pub enum Finding {
     /// The recomputed result equals the stored one byte for byte.
     Identical,
+    /// The results differ in measured times alone (a history's own wall time), every
+    /// computed number equal.
+    IdenticalButTimes {
+        /// The measured times, stored and recomputed.
+        differences: Vec<Difference>,
+    },
     /// The bytes differ.
     Differs {
         /// How many values differ.
@@ -102,6 +108,10 @@ impl JobAudit {
     pub fn line(&self) -> String {
         let finding = match &self.finding {
             Finding::Identical => "identical".to_string(),
+            Finding::IdenticalButTimes { differences } => format!(
+                "identical but for its measured time ({})",
+                times(differences)
+            ),
             Finding::Differs {
                 count, largest_rel, ..
             } => format!(
@@ -213,6 +223,27 @@ pub fn minutes(s: f64) -> String {
     } else {
         format!("{} h", significant(s / 3600.0, 2))
     }
+}
+
+/// Measured times, stored against recomputed: `result.wall_s 2800 s -> 4700 s`.
+fn times(differences: &[Difference]) -> String {
+    let seconds = |v: &Option<Value>| {
+        v.as_ref()
+            .and_then(Value::as_f64)
+            .map_or("n/a".into(), minutes)
+    };
+    differences
+        .iter()
+        .map(|d| {
+            format!(
+                "{} {} stored, {} now",
+                d.path,
+                seconds(&d.stored),
+                seconds(&d.recomputed)
+            )
+        })
+        .collect::<Vec<_>>()
+        .join("; ")
 }
 
 /// The hash of a commit label (`<hash> (with uncommitted changes)` -> `<hash>`).
@@ -416,6 +447,14 @@ fn audit_one(
     }
     let parse = |bytes: &[u8]| serde_json::from_slice::<Value>(bytes).unwrap_or(Value::Null);
     let (count, listed) = differences("result", &parse(a), &parse(b), usize::MAX);
+    if only_measured_times(&listed) {
+        return (
+            Finding::IdenticalButTimes {
+                differences: listed,
+            },
+            measured,
+        );
+    }
     let largest_rel = listed
         .iter()
         .filter_map(|d| d.rel)
@@ -451,6 +490,7 @@ impl Audit {
 
     fn summary_text(&self) -> String {
         let identical = self.count(|f| matches!(f, Finding::Identical));
+        let timed = self.count(|f| matches!(f, Finding::IdenticalButTimes { .. }));
         let differ = self.count(|f| matches!(f, Finding::Differs { .. }));
         let failed = self.count(|f| matches!(f, Finding::Failed { .. }));
         let not_run = self.count(|f| matches!(f, Finding::NotRun { .. }));
@@ -459,7 +499,7 @@ impl Audit {
             covered.iter().map(|(v, _)| v).collect();
         let mut s = format!(
             "{} of {} stored job results recomputed, covering {} validation-solver pair{} of \
-             {} validation{}: {identical} identical, {differ} differ{}, {failed} failed; \
+             {} validation{}: {identical} identical{}, {differ} differ{}, {failed} failed; \
              measured {} against the cost model's {}.",
             self.jobs.len() - not_run,
             self.candidates,
@@ -467,6 +507,14 @@ impl Audit {
             if covered.len() == 1 { "" } else { "s" },
             validations.len(),
             if validations.len() == 1 { "" } else { "s" },
+            if timed > 0 {
+                format!(
+                    ", {timed} identical but for the wall time the result records (a \
+                     re-entry history's)"
+                )
+            } else {
+                String::new()
+            },
             if differ == 1 { "s" } else { "" },
             minutes(self.measured_s),
             minutes(self.estimate_s),
@@ -511,7 +559,8 @@ impl Audit {
             self.from.display(),
             self.summary,
             if self.passed {
-                "Every job that ran gave its stored result, byte for byte."
+                "Every job that ran gave its stored result, byte for byte (any measured wall \
+                 time a result records aside)."
             } else {
                 "**Failed:** a recomputed job differs from its stored result, or failed."
             }
@@ -539,6 +588,12 @@ impl Audit {
         for j in &self.jobs {
             let finding = match &j.finding {
                 Finding::Identical => "identical".to_string(),
+                Finding::IdenticalButTimes { differences } => {
+                    format!(
+                        "identical but for its measured time ({})",
+                        times(differences)
+                    )
+                }
                 Finding::Differs { count, .. } => format!("**differs** ({count} values)"),
                 Finding::Failed { .. } => "**failed**".into(),
                 Finding::NotRun { .. } => "not run (budget)".into(),

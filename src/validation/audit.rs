@@ -16,7 +16,10 @@
 //! A job is recomputed ([`recompute`]) as the only job of a one-share run into a scratch
 //! folder, exactly as a share of a sharded run computes it, and the `result` part of the
 //! two files ([`top_level_value`]) is compared byte for byte; where the bytes differ,
-//! [`differences`] names every number that differs and by how much.
+//! [`differences`] names every number that differs and by how much. A result may hold the
+//! time its job took (a re-entry history's `wall_s`, which its account reports): such a
+//! number ([`MEASURED_TIMES`]) differs between any two runs, and [`only_measured_times`]
+//! tells a result that differs in nothing else.
 
 use std::collections::{BTreeMap, HashSet};
 use std::path::{Path, PathBuf};
@@ -42,6 +45,20 @@ use crate::error::{Error, Result};
 /// scale measured job times run 1.2 to 2 times the estimate on a busy 2-core machine (the
 /// README's cost section: "plan on about 1.5 times the table").
 pub const COST_MARGIN: f64 = 1.5;
+
+/// The keys under which a job's result holds a measured time rather than a computed
+/// number (the wall time of a re-entry history's sweep).
+pub const MEASURED_TIMES: &[&str] = &["wall_s"];
+
+/// Whether every one of `differences` is a measured time ([`MEASURED_TIMES`]) with a number
+/// on both sides (and there is at least one).
+pub fn only_measured_times(differences: &[Difference]) -> bool {
+    !differences.is_empty()
+        && differences.iter().all(|d| {
+            let key = d.path.rsplit('.').next().unwrap_or("");
+            MEASURED_TIMES.contains(&key) && d.abs.is_some()
+        })
+}
 
 /// A stored job result that today's definitions plan.
 #[derive(Debug, Clone, Serialize)]
@@ -493,6 +510,18 @@ mod tests {
         let (n, d) = differences("result", &a, &b, 1);
         assert_eq!((n, d.len()), (4, 1));
         assert_eq!(differences("r", &a, &a, 10).0, 0);
+        assert!(!only_measured_times(&d));
+        let timed = |x: f64| json!({"shells": 3, "wall_s": x});
+        let (_, d) = differences("result", &timed(2800.1), &timed(4700.5), 10);
+        assert!(only_measured_times(&d));
+        let (_, d) = differences(
+            "result",
+            &timed(1.0),
+            &json!({"shells": 4, "wall_s": 2.0}),
+            10,
+        );
+        assert!(!only_measured_times(&d));
+        assert!(!only_measured_times(&[]));
     }
 
     fn candidate(key: &str, validations: &[&str], solver: SolverKind, cost: f64) -> Candidate {
