@@ -76,3 +76,37 @@ fn the_cheapest_committed_job_recomputes_identical_and_a_changed_byte_is_found()
     assert_ne!(d["stored"], d["recomputed"]);
     assert_eq!(a["passed"], false);
 }
+
+#[test]
+fn bad_input_names_the_flag_and_exits_2() {
+    let tmp = tempfile::tempdir().unwrap();
+    let full = Path::new(env!("CARGO_MANIFEST_DIR")).join("results/full");
+    let full = full.to_str().unwrap();
+    let out = tmp.path().join("audit");
+    let empty = tmp.path().to_str().unwrap();
+    for (args, named) in [
+        (vec!["--from", full, "--budget", "20"], "--budget"),
+        (vec!["--from", full, "--budget", "0m"], "--budget"),
+        (vec!["--from", full, "--job", "0123456789abcdef"], "--job"),
+        (
+            vec!["--from", full, "--validation", "no_such"],
+            "--validation",
+        ),
+        (vec!["--from", empty], "--from"),
+    ] {
+        let o = Command::new(BIN)
+            .arg("audit")
+            .args(&args)
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(named), "{args:?}: {err}");
+        assert!(
+            !out.join("audit.json").exists(),
+            "{args:?}: nothing written"
+        );
+    }
+}

@@ -156,3 +156,36 @@ fn a_perturbed_copy_of_the_full_results_is_flagged() {
     assert_eq!(flips.len(), 1);
     assert_eq!(flips[0]["key"], "verdict");
 }
+
+#[test]
+fn bad_input_names_the_argument_and_exits_2() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("c.md");
+    let run = |args: &[&str]| {
+        let o = Command::new(BIN)
+            .arg("compare")
+            .args(args)
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap();
+        (
+            o.status.code().unwrap(),
+            String::from_utf8_lossy(&o.stderr).to_string(),
+        )
+    };
+    let fixtures = fixtures();
+    let f = fixtures.to_str().unwrap();
+    let empty = tmp.path().to_str().unwrap();
+    for (args, named) in [
+        (vec!["/no/such/folder", f], "BASE"),
+        (vec![f, empty], "NEW"),
+        (vec![f, f, "--z", "0"], "--z"),
+        (vec![f, f, "--z", "-1"], "--z"),
+    ] {
+        let (code, err) = run(&args);
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(err.contains(named), "{args:?}: {err}");
+    }
+    assert!(!out.exists(), "nothing written on bad input");
+}
