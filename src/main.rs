@@ -13,6 +13,7 @@
 //! persson-check audit    [--from DIR] [--budget 20m] [--seed K] [--job KEY ...]
 //!                        [--validation NAME ...] [--out DIR]
 //! persson-check compare  BASE NEW [--out FILE.md] [--z Z]
+//! persson-check claims   [--full DIR] [--reduced DIR] [--write FILE.md]
 //! ```
 //!
 //! Exit code 0 on success; otherwise a message on stderr and a non-zero code, and no
@@ -60,6 +61,8 @@ enum Command {
     Audit(commands::audit::Args),
     /// Compare two folders of outcomes statistic by statistic (z-scores, flips).
     Compare(commands::compare::Args),
+    /// The paper's claims, full and reduced scenes side by side (the README's table).
+    Claims(commands::claims::Args),
 }
 
 fn main() -> ExitCode {
@@ -82,6 +85,7 @@ fn main() -> ExitCode {
         Command::CheckSurface(args) => commands::check_surface::run(args),
         Command::Audit(args) => return answer(commands::audit::run(args)),
         Command::Compare(args) => return answer(commands::compare::run(args)),
+        Command::Claims(args) => commands::claims::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

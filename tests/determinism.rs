@@ -26,7 +26,6 @@ lambda_l = 64
 lambda_s = 8
 seeds = [1, 2]
 contact_areas = [0.14]
-paper_shares = [0.62]
 flux_zeta = 6
 flux_dzeta = 1
 checkpoint_seconds = 30

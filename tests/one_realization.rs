@@ -37,7 +37,6 @@ lambda_l = 16
 lambda_s = 4
 seeds = [1]
 contact_areas = [0.14]
-paper_shares = [0.62]
 flux_zeta = 2
 flux_dzeta = 1
 checkpoint_seconds = 30
@@ -50,7 +49,6 @@ lambda_l = 16
 lambda_s = 4
 seeds = [1]
 contact_areas = [0.14]
-paper_shares = [0.62]
 flux_zeta = 2
 flux_dzeta = 1
 checkpoint_seconds = 30
@@ -82,7 +80,7 @@ const ONE_SEED_SCENES: &[(&str, &str)] = &[
     (
         "c_reentry",
         "n = 32\nhurst = 0.8\nlambda_l = 16\nlambda_s = 4\nseeds = [1]\n\
-         contact_areas = [0.14, 0.5]\npaper_shares = [0.62, 0.2]\nflux_zeta = 2\n\
+         contact_areas = [0.14, 0.5]\nflux_zeta = 2\n\
          flux_dzeta = 1\ncheckpoint_seconds = 30\ntol = 1e-8\n",
     ),
     (
@@ -179,7 +177,9 @@ fn every_validation_with_one_realization_writes_no_nan_and_fails_no_check() {
         }
         assert!(o.value.is_finite(), "{}: no headline value", o.name);
         assert!(!o.account.contains("1 realizations"), "{}", o.account);
-        assert_no_nan(&format!("{} notes", o.name), &o.notes.join(" "));
+        for study in &o.studies {
+            assert_no_nan(&format!("{} notes", o.name), &study.notes.join(" "));
+        }
     }
     // The scorecard reads every outcome back (nulls where there is no error bar).
     scorecard(out.path());

@@ -30,7 +30,6 @@ lambda_l = 32
 lambda_s = 2
 seeds = [1, 2, 3]
 contact_areas = [0.14]
-paper_shares = [0.62]
 flux_zeta = 12
 flux_dzeta = 1
 checkpoint_seconds = 0.1

@@ -4,6 +4,7 @@
 
 pub mod audit;
 pub mod check_surface;
+pub mod claims;
 pub mod compare;
 pub mod report;
 pub mod solve;

@@ -37,6 +37,7 @@ pub mod flux;
 pub mod modes;
 pub mod reentry;
 pub mod scene;
+pub mod study;
 pub mod total_energy;
 pub mod transitions;
 
@@ -47,14 +48,15 @@ use std::path::{Path, PathBuf};
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 
-use self::flux::sensitivity::SensitivityRow;
+use self::study::Study;
 use crate::error::{Error, Result};
 use crate::plot::{Axis, Figure, Raster, Waterfall};
 use crate::stats::{Decision, Estimate};
 
 /// What a conclusion is judged by: the validation's name, its verdict rule's significance
-/// and resolution, and the paper's value of the headline statistic.
-#[derive(Debug, Clone, PartialEq)]
+/// and resolution, the paper's value of the headline statistic, and the paper's values of
+/// its claims by key (data from the definition, never typed into code).
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct Criteria {
     /// The validation's name (the stem of its first table).
     pub name: String,
@@ -64,6 +66,15 @@ pub struct Criteria {
     pub resolution: f64,
     /// The paper's value of the headline statistic, if it states one.
     pub paper_value: Option<f64>,
+    /// The paper's value of each claim that states one, by the claim's key.
+    pub paper: BTreeMap<String, f64>,
+}
+
+impl Criteria {
+    /// The paper's value of the claim `key`, if the definition states one.
+    pub fn paper(&self, key: &str) -> Option<f64> {
+        self.paper.get(key).copied()
+    }
 }
 
 /// A secondary statistic, shown in the validation's section of the scorecard.
@@ -252,10 +263,8 @@ pub struct Conclusion {
     pub rasters: Vec<Raster>,
     /// Largest solver residual over all solves.
     pub max_residual: f64,
-    /// Rows of a sensitivity study (the one-step flux against its settings).
-    pub sensitivity: Vec<SensitivityRow>,
-    /// Statements drawn from a study, shown after the account.
-    pub notes: Vec<String>,
+    /// Studies: tables of rows beside the headline, with their notes.
+    pub studies: Vec<Study>,
     /// Waterfalls of cross sections.
     pub waterfalls: Vec<Waterfall>,
 }
@@ -430,18 +439,14 @@ pub trait Experiment {
         BTreeMap::new()
     }
 
-    /// Rows of a sensitivity study.
-    fn sensitivity(_run: &Run<Self>, _stats: &Self::Stats) -> Vec<SensitivityRow> {
+    /// Studies: tables of rows beside the headline (a sensitivity study, the readings of
+    /// a statement the paper leaves open), each with its notes.
+    fn studies(_run: &Run<Self>, _stats: &Self::Stats) -> Vec<Study> {
         Vec::new()
     }
 
     /// The account, from the numbers (nothing that depends on the machine).
     fn account(run: &Run<Self>, stats: &Self::Stats) -> String;
-
-    /// Statements drawn from a study, shown after the account.
-    fn notes(_run: &Run<Self>, _stats: &Self::Stats) -> Vec<String> {
-        Vec::new()
-    }
 
     /// Tables; the first is written as `<name>.csv`.
     fn tables(_run: &Run<Self>, _stats: &Self::Stats) -> Vec<Table> {
@@ -488,9 +493,8 @@ pub trait Experiment {
             details: Self::details(&run, &stats),
             checks: Self::checks(&run, &stats),
             golden: Self::golden(&run, &stats),
-            sensitivity: Self::sensitivity(&run, &stats),
+            studies: Self::studies(&run, &stats),
             account: Self::account(&run, &stats),
-            notes: Self::notes(&run, &stats),
             tables: Self::tables(&run, &stats),
             figures: Self::figures(&run, &stats),
             rasters: Self::rasters(&run, &stats),
@@ -523,6 +527,16 @@ pub(crate) fn shipped_scenes<S: DeserializeOwned>(name: &str) -> (S, S, Criteria
         significance: verdict["significance"].as_float().expect("significance"),
         resolution: verdict["resolution"].as_float().expect("resolution"),
         paper_value: table["paper"].get("value").and_then(|v| v.as_float()),
+        paper: table
+            .get("claims")
+            .and_then(|c| c.as_array())
+            .into_iter()
+            .flatten()
+            .filter_map(|c| {
+                let key = c.get("key")?.as_str()?.to_string();
+                Some((key, c.get("value")?.as_float()?))
+            })
+            .collect(),
     };
     (reduced, full, criteria)
 }

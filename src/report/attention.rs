@@ -4,7 +4,8 @@
 use super::format::{no_nan, num, pm, sig};
 use super::golden::GoldenMatch;
 use super::outcomes::Loaded;
-use crate::validation::Verdict;
+use crate::stats::{decide, Claim, Estimate};
+use crate::validation::{ClaimResult, Verdict};
 
 /// Plain statements of what needs a reviewer's eye.
 pub(super) fn attention(loaded: &[Loaded], golden: &[GoldenMatch]) -> Vec<String> {
@@ -30,19 +31,43 @@ pub(super) fn attention(loaded: &[Loaded], golden: &[GoldenMatch]) -> Vec<String
                 .filter(|c| c.decided && !c.passed)
                 .map(|c| format!("{} ({})", no_nan(&c.name), no_nan(&c.detail)))
                 .collect();
-            let why = if o.verdict != o.paper_verdict {
-                format!(
+            let claims: Vec<String> = o
+                .claims
+                .iter()
+                .filter(|c| c.result == ClaimResult::NotReproduced)
+                .map(|c| format!("`{}` ({})", c.key, no_nan(&c.paper)))
+                .collect();
+            let in_range = o.paper_range.is_none_or(|(lo, hi)| {
+                decide(
+                    Estimate::new(o.value, o.std_error),
+                    Claim::Overlaps(lo, hi),
+                    o.rule.significance,
+                )
+                .passed()
+            });
+            let mut reasons = Vec::new();
+            if o.verdict != o.paper_verdict {
+                reasons.push(format!(
                     "this run finds the assumption {} where the paper finds it {}",
                     o.verdict, o.paper_verdict
-                )
-            } else if !failed.is_empty() {
-                format!("failed checks: {}", failed.join("; "))
-            } else {
-                format!(
+                ));
+            }
+            if !in_range {
+                reasons.push(format!(
                     "the measurement lies outside the range that reproduces the paper (paper: {})",
                     o.paper_value.map_or_else(|| "no value stated".into(), num)
-                )
-            };
+                ));
+            }
+            if !failed.is_empty() {
+                reasons.push(format!("failed checks: {}", failed.join("; ")));
+            }
+            if !claims.is_empty() {
+                reasons.push(format!("claims not reproduced: {}", claims.join(", ")));
+            }
+            if reasons.is_empty() {
+                reasons.push("the outcome names no reason (written by an older version?)".into());
+            }
+            let why = reasons.join("; ");
             lines.push(format!(
                 "{}: the paper's finding is NOT reproduced: {why}.",
                 o.name

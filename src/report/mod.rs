@@ -2,7 +2,8 @@
 //!
 //! Reads every outcome (`<name>.json`) in a folder and writes one Markdown file a reviewer
 //! can read in a minute: a summary that names every inconclusive verdict and every finding
-//! not reproduced, one table row per validation, a section per validation (account,
+//! not reproduced, the paper's claims one row each ([`claims`]), one table row per
+//! validation, a section per validation (account,
 //! secondary statistics, checks, figures, the scene as run), the statistics measured on
 //! several grids (discretisation error), the speed-against-error study ([`crate::speed`]),
 //! and the provenance needed to reproduce any row.
@@ -13,6 +14,7 @@
 //! written atomically.
 
 mod attention;
+pub mod claims;
 mod format;
 mod golden;
 mod lenient;
@@ -20,6 +22,7 @@ mod outcomes;
 mod provenance_section;
 mod resolution;
 mod speed_section;
+mod study;
 mod table;
 #[cfg(test)]
 mod tests;
@@ -222,6 +225,8 @@ impl Scorecard<'_> {
     fn markdown(&self) -> String {
         let mut s = String::new();
         self.header(&mut s);
+        let outcomes: Vec<&Outcome> = self.loaded.iter().map(|l| &l.outcome).collect();
+        claims::section(&mut s, &outcomes);
         self.table(&mut s);
         for (l, g) in self.loaded.iter().zip(self.golden) {
             self.validation(&mut s, l, g);

@@ -35,6 +35,7 @@ fn outcome(name: &str, verdict: Verdict, reproduced: Option<bool>, scale: Scale)
         persson_text: "kappa = 1".into(),
         paper: "kappa ~ 2".into(),
         paper_value: Some(2.0),
+        paper_range: None,
         paper_verdict: Verdict::Violated,
         verdict,
         reproduced,
@@ -73,8 +74,8 @@ fn outcome(name: &str, verdict: Verdict, reproduced: Option<bool>, scale: Scale)
         }],
         account: format!("Account of {name}: kappa = 2.5 +- 0.05."),
         golden: BTreeMap::from([("kappa".to_string(), 2.5)]),
-        sensitivity: Vec::new(),
-        notes: Vec::new(),
+        claims: Vec::new(),
+        studies: Vec::new(),
         files: vec![
             format!("{name}.csv"),
             format!("{name}/fig.svg"),
@@ -352,8 +353,12 @@ fn attention_names_the_reason_a_finding_is_not_reproduced() {
         "{lines:?}"
     );
     o.verdict = Verdict::Violated;
-    let lines = attention::attention(&[loaded(o)], &[GoldenMatch::FullScene]);
+    o.paper_range = Some((o.value + 10.0 * o.std_error, o.value + 20.0 * o.std_error));
+    let lines = attention::attention(&[loaded(o.clone())], &[GoldenMatch::FullScene]);
     assert!(lines[0].contains("outside the range"), "{lines:?}");
+    o.paper_range = None;
+    let lines = attention::attention(&[loaded(o)], &[GoldenMatch::FullScene]);
+    assert!(lines[0].contains("names no reason"), "{lines:?}");
 }
 
 #[test]
@@ -448,7 +453,7 @@ fn one_realization_shows_no_error_bar_and_no_nan() {
 }
 
 /// An outcome of one realization as written by hand: the error bars `null` (serde_json's
-/// NaN) in the headline, a detail, the sensitivity rows and the cross-check, one detail's
+/// NaN) in the headline, a detail, a study's row and the cross-check, one detail's
 /// error bar left out, and NaN in the outcome's own text.
 const NULL_ERROR_BARS: &str = r#"{
   "name": "one_seed", "title": "One realization", "assumption": "(c) p = 0 absorbs",
@@ -469,14 +474,11 @@ const NULL_ERROR_BARS: &str = r#"{
               "detail": "flux in = 0.0025 +- NaN", "decided": false}],
   "account": "One realization: the ratio is 0.86 +- NaN (z = NaN).",
   "golden": {"ratio": 0.86, "z": null},
-  "sensitivity": [{"parameter": "tol", "value": 0.0001, "label": "1e-4",
-    "config": {"n": 128, "lambda_l": 64.0, "lambda_s": 4.0, "contact_area": 0.14, "zeta": 8.0,
-               "dzeta": 0.09375, "tol": 0.0001, "solver": "cg", "fixed_area": false},
-    "realizations": 1,
-    "flux_in": {"value": 0.00525, "std_error": null}, "flux_out": {"value": 0.005},
-    "flux_in_of_contact": {"value": 0.0375, "std_error": null},
-    "flux_out_of_contact": {"value": 0.0358, "std_error": null},
-    "contact_area": {"value": 0.1398, "std_error": null}}],
+  "studies": [{"key": "sensitivity", "title": "Sensitivity", "columns": [
+      {"key": "flux_in", "label": "in, %", "percent": true},
+      {"key": "flux_out", "label": "out, %", "percent": true}],
+    "rows": [{"key": "tol=0.0001", "label": "tol = 1e-4",
+      "cells": [{"value": 0.00525, "std_error": null}, {"value": 0.005}]}]}],
   "files": [], "threads": 1, "solver": "gfmd",
   "cross_check": {"solver": "cg", "value": 0.8585, "std_error": null, "agrees": true}
 }"#;
@@ -531,7 +533,7 @@ fn outcomes_with_null_or_absent_error_bars_are_read_and_say_so() {
         "| flux in | 0.0025 (no error estimate) | — | 0.00675 | — |",
         "| flux out | 0.0029 (no error estimate) | — | 0.00597 | — |",
         "| x = 0.35 (no error bar) | n/a | 0.42 | — | — |",
-        "| tol | 1e-4 | 128x128, cg | 0.525 (no error estimate) | 0.5 (no error estimate) |",
+        "| tol = 1e-4 | 0.525 (no error estimate) | 0.5 (no error estimate) |",
         "| points enter contact | not decided (1 realization) | flux in = 0.0025 (no error bar) |",
         "One realization: the ratio is 0.86 (no error bar) (z = n/a).",
     ] {

@@ -1,5 +1,5 @@
-//! The section of each validation: what it tests and what it found, its account and
-//! notes, the sensitivity study, the secondary statistics, the checks of the paper's
+//! The section of each validation: what it tests and what it found, its account, its
+//! studies with their notes, the secondary statistics, the checks of the paper's
 //! finding, its figures and tables, and the scene as run.
 
 use std::fmt::Write as _;
@@ -10,7 +10,6 @@ use super::golden::GoldenMatch;
 use super::outcomes::{grid_cell, seeds_cell, Loaded};
 use super::table::headline;
 use super::{anchor, reproduced_cell, verdict_cell, Scorecard};
-use crate::stats::Estimate;
 use crate::validation::{Check, Outcome};
 
 impl Scorecard<'_> {
@@ -20,7 +19,7 @@ impl Scorecard<'_> {
         let _ = writeln!(s, "## {}: {}\n", md(&o.name), md(&o.title));
         push_table(s, &["", ""], &facts(o, g));
         account(s, o);
-        sensitivity(s, o);
+        super::study::studies(s, &o.studies);
         details(s, o);
         checks(s, o);
         self.files(s, o);
@@ -155,64 +154,11 @@ fn golden_text(g: &GoldenMatch) -> String {
     }
 }
 
-/// The account generated from the numbers, then the notes drawn from a study.
+/// The account generated from the numbers.
 fn account(s: &mut String, o: &Outcome) {
     if !o.account.trim().is_empty() {
         let _ = writeln!(s, "{}\n", prose(o.account.trim()));
     }
-    for note in &o.notes {
-        let _ = writeln!(s, "{}\n", prose(note));
-    }
-}
-
-/// The sensitivity study's rows (`c_flux`), in % of the nominal and of the true contact
-/// area.
-fn sensitivity(s: &mut String, o: &Outcome) {
-    if o.sensitivity.is_empty() {
-        return;
-    }
-    let _ = writeln!(
-        s,
-        "**Sensitivity of the one-step flux** (one setting moved at a time; % of the \
-         nominal area A0 and of the true contact area Ac at zeta; the step taken as the \
-         height variance its modes add, % of the variance at zeta, and their count; \
-         net/gross = |out - in| / mean one-way; zero bin: % of the non-contact that enters)\n"
-    );
-    let pct = |e: Estimate| pm(100.0 * e.value, 100.0 * e.std_error);
-    let opt = |e: Option<Estimate>, scale: f64| {
-        e.map_or_else(|| "—".into(), |e| pm(scale * e.value, scale * e.std_error))
-    };
-    let header = [
-        "setting",
-        "value",
-        "grid, solver",
-        "in, % A0",
-        "out, % A0",
-        "in, % Ac",
-        "out, % Ac",
-        "net/gross",
-        "zero bin, %",
-        "step: variance %, modes",
-    ];
-    push_rows(s, &header, &o.sensitivity, |r| {
-        vec![
-            md(&r.parameter),
-            md(&r.label),
-            format!("{}x{}, {}", r.config.n, r.config.n, r.config.solver.name()),
-            pct(r.flux_in),
-            pct(r.flux_out),
-            pct(r.flux_in_of_contact),
-            pct(r.flux_out_of_contact),
-            opt(r.net_over_gross, 1.0),
-            opt(r.zero_bin, 100.0),
-            match (r.variance_added, r.modes_added) {
-                (Some(v), Some(m)) => {
-                    format!("{}, {m:.0}", pm(100.0 * v.value, 100.0 * v.std_error))
-                }
-                _ => "—".into(),
-            },
-        ]
-    });
 }
 
 /// The secondary statistics with Persson's and the paper's values.

@@ -5,6 +5,7 @@ use std::fmt;
 
 use serde::{Deserialize, Serialize};
 
+use super::claims::ClaimSpec;
 use crate::error::{Error, Result};
 use crate::experiments::Criteria;
 use crate::stats::{decide, Claim, Decision, Estimate};
@@ -149,6 +150,10 @@ pub struct Definition<S> {
     pub verdict: VerdictRule,
     /// The paper's finding.
     pub paper: PaperFinding,
+    /// The paper's quantitative statements this validation tests
+    /// ([`super::claims`]).
+    #[serde(default)]
+    pub claims: Vec<ClaimSpec>,
     /// Small scene for `cargo test`.
     pub reduced: S,
     /// Paper-scale scene for the command line.
@@ -190,6 +195,11 @@ impl<S> Definition<S> {
             significance: self.verdict.significance,
             resolution: self.verdict.resolution,
             paper_value: self.paper.value,
+            paper: self
+                .claims
+                .iter()
+                .filter_map(|c| Some((c.key.clone(), c.value?)))
+                .collect(),
         }
     }
 }

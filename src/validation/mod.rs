@@ -16,6 +16,7 @@
 //! as `<name>.json`, `<name>.csv` and figures.
 //!
 //! * [`definition`]: verdict rule, the paper's finding, the two scenes;
+//! * [`claims`]: the paper's quantitative statements as data, each decided by one rule;
 //! * [`source`]: the built-in definitions and definition folders;
 //! * [`outcome`]: the record of a run;
 //! * [`store`]: job results and checkpoints on disk;
@@ -26,6 +27,7 @@
 //! * [`audit`]: stored job results recomputed with this build and compared byte for byte.
 
 pub mod audit;
+pub mod claims;
 pub mod definition;
 pub mod outcome;
 pub mod plan;
@@ -35,6 +37,7 @@ pub mod shard;
 pub mod source;
 pub mod store;
 
+pub use claims::{ClaimOutcome, ClaimResult, ClaimSpec};
 pub use definition::{Definition, PaperFinding, Scale, Verdict, VerdictRule};
 pub use outcome::Outcome;
 pub use registry::{check, run, Registry};

@@ -9,9 +9,10 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
+use super::claims::ClaimOutcome;
 use super::definition::{Scale, Verdict, VerdictRule};
 use super::store::JobRun;
-use crate::experiments::flux::sensitivity::SensitivityRow;
+use crate::experiments::study::Study;
 use crate::experiments::{Check, Detail};
 use crate::stats::{null_as_nan, null_as_nan_values};
 
@@ -41,6 +42,9 @@ pub struct Outcome {
     pub paper: String,
     /// The paper's value, if stated.
     pub paper_value: Option<f64>,
+    /// The range of the headline that reproduces the paper, if the definition states one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub paper_range: Option<(f64, f64)>,
     /// The paper's verdict.
     pub paper_verdict: Verdict,
     /// The verdict of this run.
@@ -70,12 +74,12 @@ pub struct Outcome {
     /// Golden values.
     #[serde(deserialize_with = "null_as_nan_values")]
     pub golden: BTreeMap<String, f64>,
-    /// Rows of a sensitivity study (`c_flux`: the one-step flux against its settings).
+    /// The paper's claims this validation tests, each with its measurement and result.
+    #[serde(default)]
+    pub claims: Vec<ClaimOutcome>,
+    /// Studies: tables of rows beside the headline, with their notes.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub sensitivity: Vec<SensitivityRow>,
-    /// Statements drawn from a study, shown after the account.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub notes: Vec<String>,
+    pub studies: Vec<Study>,
     /// Files written (tables, figures), relative to the output directory.
     pub files: Vec<String>,
     /// Worker threads used.

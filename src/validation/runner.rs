@@ -14,6 +14,7 @@ use std::time::{Instant, SystemTime, UNIX_EPOCH};
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 
+use super::claims::{self, ClaimOutcome, Measures};
 use super::definition::{Definition, Scale, Verdict};
 use super::outcome::{CrossCheck, MergeRecord, Outcome, ShardRecord};
 use super::plan::{estimate_seconds, PlannedUnit};
@@ -24,7 +25,9 @@ use super::store::{
 };
 use crate::engine::solver::SolverKind;
 use crate::error::{Error, Result};
-use crate::experiments::{Check, Conclusion, Experiment, JobContext, JobOf, Jobs, ResultOf, Work};
+use crate::experiments::{
+    Check, Conclusion, Detail, Experiment, JobContext, JobOf, Jobs, ResultOf, Work,
+};
 use crate::stats::{decide, Claim, Decision, Estimate};
 
 /// How to run validations.
@@ -338,7 +341,10 @@ pub(crate) fn conclude<E: Experiment>(
         agrees: def.verdict.agree(measured, m),
     });
     let verdict = def.verdict.judge(measured, conclusion.persson);
-    let reproduced = reproduced(def, verdict, measured, &conclusion.checks);
+    let mut conclusion = conclusion;
+    let claims = judge_claims(def, &conclusion, measured, &cross_check, opts.scale);
+    papers_values(&mut conclusion.details, &claims);
+    let reproduced = reproduced(def, verdict, measured, &conclusion.checks, &claims);
     let files = write_files(&opts.out, &def.name, &conclusion)?;
     let outcome = Outcome {
         name: def.name.clone(),
@@ -351,6 +357,7 @@ pub(crate) fn conclude<E: Experiment>(
         persson_text: def.persson.clone(),
         paper: def.paper.finding.clone(),
         paper_value: def.paper.value,
+        paper_range: def.paper.range,
         paper_verdict: def.paper.verdict,
         verdict,
         reproduced,
@@ -364,8 +371,8 @@ pub(crate) fn conclude<E: Experiment>(
         checks: conclusion.checks,
         account: conclusion.account,
         golden: conclusion.golden,
-        sensitivity: conclusion.sensitivity,
-        notes: conclusion.notes,
+        claims,
+        studies: conclusion.studies,
         files,
         threads: rayon::current_num_threads(),
         solver: solver.name().to_string(),
@@ -407,15 +414,63 @@ fn conclude_by_solver<E: Experiment>(
         .collect()
 }
 
+/// Every claim of the definition judged on the headline solver's conclusion (and the
+/// cross-checks' headlines), by the one rule of [`super::claims::ClaimSpec::judge`].
+fn judge_claims<S>(
+    def: &Definition<S>,
+    conclusion: &Conclusion,
+    measured: Estimate,
+    cross_check: &Option<CrossCheck>,
+    scale: Scale,
+) -> Vec<ClaimOutcome> {
+    let measures = Measures {
+        headline: measured,
+        details: &conclusion.details,
+        studies: &conclusion.studies,
+        cross_checks: cross_check
+            .iter()
+            .map(|c| (c.solver.clone(), Estimate::new(c.value, c.std_error)))
+            .collect(),
+    };
+    def.claims
+        .iter()
+        .map(|c| c.judge(&measures, scale == Scale::Reduced, def.verdict.significance))
+        .collect()
+}
+
+/// Each detail a claim measures carries that claim's value as the paper's (the details
+/// show it beside the measurement; the experiments know no paper values).
+fn papers_values(details: &mut [Detail], claims: &[ClaimOutcome]) {
+    for c in claims {
+        let Some(key) = c.measure.strip_prefix("detail:") else {
+            continue;
+        };
+        let (key, grid) = match key.split_once('@') {
+            Some((k, g)) => (k, g.parse::<usize>().ok()),
+            None => (key, None),
+        };
+        for d in details
+            .iter_mut()
+            .filter(|d| d.key == key && (grid.is_none() || d.grid == grid))
+        {
+            if c.paper_value.is_some() {
+                d.paper = c.paper_value;
+            }
+        }
+    }
+}
+
 /// Whether the run reproduces the paper's finding: the paper's verdict, its range (the
-/// interval `measured +- z error` overlaps it) and every check, in the three-valued logic
-/// of [`Decision::all`]. `None` when the verdict is inconclusive, or when a check the data
-/// do not decide (one realization) is all that stands in the way.
+/// interval `measured +- z error` overlaps it), every check and every claim judged at this
+/// scale, in the three-valued logic of [`Decision::all`]. `None` when the verdict is
+/// inconclusive, or when a check or claim the data do not decide (one realization) is all
+/// that stands in the way.
 fn reproduced<S>(
     def: &Definition<S>,
     verdict: Verdict,
     measured: Estimate,
     checks: &[Check],
+    claims: &[ClaimOutcome],
 ) -> Option<bool> {
     if verdict == Verdict::Inconclusive {
         return None;
@@ -429,7 +484,8 @@ fn reproduced<S>(
         (false, _) => Decision::Undecided,
         (true, passed) => Decision::from_bool(passed),
     });
-    match Decision::all([same_verdict, in_range].into_iter().chain(checks)) {
+    let claims = claims::decision(claims);
+    match Decision::all([same_verdict, in_range, claims].into_iter().chain(checks)) {
         Decision::Undecided => None,
         d => Some(d.passed()),
     }

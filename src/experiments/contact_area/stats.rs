@@ -105,26 +105,70 @@ pub struct LawDeviation {
     pub at: (f64, f64, f64),
 }
 
+/// What a deviation from eq. (contactArea) is relative to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Denominator {
+    /// The measured `a_r`: `|a_r - law| / a_r`.
+    Measured,
+    /// The law's `a_r`: `|a_r - law| / law`.
+    Law,
+    /// The measured non-contact: `|(1 - a_r) - (1 - law)| / (1 - a_r)`.
+    Complement,
+}
+
+impl Denominator {
+    /// The deviation of `a` (with its error) from `law`, and its standard error.
+    fn deviation(self, a: Estimate, law: f64) -> (f64, f64) {
+        let diff = (a.value - law).abs();
+        match self {
+            // d/da |a - law| / a = +- law / a^2.
+            Denominator::Measured => (diff / a.value, a.std_error * law / (a.value * a.value)),
+            Denominator::Law => (diff / law, a.std_error / law),
+            // d/da |a - law| / (1 - a) = +- (1 - law) / (1 - a)^2.
+            Denominator::Complement => {
+                let c = 1.0 - a.value;
+                (diff / c, a.std_error * (1.0 - law) / (c * c))
+            }
+        }
+    }
+}
+
 impl LawDeviation {
-    /// The worst deviation over `hursts`, at the scene's pressures.
+    /// The worst deviation over `hursts`, at the scene's pressures, relative to the
+    /// measured `a_r` over the scene's `law_range`.
     pub fn of(scene: &AreaScene, hursts: &[HurstStats]) -> Self {
+        Self::over(
+            &scene.reduced_pressures,
+            hursts,
+            Denominator::Measured,
+            scene.law_range,
+        )
+    }
+
+    /// The worst deviation over `hursts` at `pressures`, relative to `denominator`, over
+    /// the loads whose `a_r` lies in `range`.
+    pub fn over(
+        pressures: &[f64],
+        hursts: &[HurstStats],
+        denominator: Denominator,
+        range: (f64, f64),
+    ) -> Self {
         let mut law = LawDeviation {
             worst: 0.0,
             std_error: 0.0,
             at: (f64::NAN, f64::NAN, f64::NAN),
         };
         for h in hursts {
-            for (&p, a) in scene.reduced_pressures.iter().zip(&h.areas) {
-                if a.value < scene.law_range.0 || a.value > scene.law_range.1 {
+            for (&p, &a) in pressures.iter().zip(&h.areas) {
+                if a.value < range.0 || a.value > range.1 {
                     continue;
                 }
-                let paper = ContactAreaLaw::PAPER.contact_area(p);
-                let dev = (a.value - paper).abs() / a.value;
+                let (dev, std_error) =
+                    denominator.deviation(a, ContactAreaLaw::PAPER.contact_area(p));
                 if dev > law.worst {
                     law = LawDeviation {
                         worst: dev,
-                        // d/da |a - law| / a = +- law / a^2.
-                        std_error: a.std_error * paper / (a.value * a.value),
+                        std_error,
                         at: (h.hurst, p, a.value),
                     };
                 }
@@ -136,6 +180,79 @@ impl LawDeviation {
     /// The deviation as an estimate, for deciding the check.
     pub fn estimate(&self) -> Estimate {
         Estimate::new(self.worst, self.std_error)
+    }
+}
+
+/// One load of the finer grid's study: `a_r` on three grids and the order of the grid
+/// error.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GridOrder {
+    /// Hurst exponent.
+    pub hurst: f64,
+    /// Reduced pressure.
+    pub pressure: f64,
+    /// The three refinements: the scene's last two and the finer grid's.
+    pub refinements: [usize; 3],
+    /// `a_r` on each, over realizations.
+    pub areas: [Estimate; 3],
+    /// `(a_1 - a_2) / (a_2 - a_3)` per realization: 2 for an error proportional to the grid
+    /// spacing at refinements 1, 2, 4; 4 for a second-order error.
+    pub ratio: Estimate,
+    /// What `ratio` is for a first-order error at these refinements.
+    pub first_order: f64,
+    /// The first-order extrapolation from the coarser pair and from the finer pair.
+    pub extrapolated: [Estimate; 2],
+}
+
+impl GridOrder {
+    /// Every load of the scene's finer grid (none without one).
+    pub fn of(scene: &AreaScene, curves: &Curves) -> Vec<Self> {
+        let Some(f) = &scene.finer_grid else {
+            return Vec::new();
+        };
+        let k = scene.refinements.len();
+        if k < 2 {
+            return Vec::new();
+        }
+        let r = [scene.refinements[k - 2], scene.refinements[k - 1], f.refine];
+        let [r1, r2, r3] = r.map(|x| x as f64);
+        let mut rows = Vec::new();
+        for &hurst in &f.hursts {
+            for (j, &p) in f.reduced_pressures.iter().enumerate() {
+                let i = scene
+                    .reduced_pressures
+                    .iter()
+                    .position(|&q| q == p)
+                    .expect("validated: a pressure of the scene");
+                let per_seed: Vec<[f64; 3]> = scene
+                    .seeds
+                    .iter()
+                    .map(|&s| {
+                        [
+                            curves.curve(hurst, s, r[0])[i],
+                            curves.curve(hurst, s, r[1])[i],
+                            curves.curve(hurst, s, r[2])[j],
+                        ]
+                    })
+                    .collect();
+                let over = |f: &dyn Fn(&[f64; 3]) -> f64| {
+                    Estimate::mean_of(&per_seed.iter().map(f).collect::<Vec<_>>())
+                };
+                rows.push(GridOrder {
+                    hurst,
+                    pressure: p,
+                    refinements: r,
+                    areas: [over(&|a| a[0]), over(&|a| a[1]), over(&|a| a[2])],
+                    ratio: over(&|a| (a[0] - a[1]) / (a[1] - a[2])),
+                    first_order: (1.0 / r1 - 1.0 / r2) / (1.0 / r2 - 1.0 / r3),
+                    extrapolated: [
+                        over(&|a| richardson(r1, a[0], r2, a[1])),
+                        over(&|a| richardson(r2, a[1], r3, a[2])),
+                    ],
+                });
+            }
+        }
+        rows
     }
 }
 
@@ -151,7 +268,18 @@ pub struct AreaStats {
     pub hursts: Vec<HurstStats>,
     /// The largest deviation from eq. (contactArea).
     pub law: LawDeviation,
+    /// The largest deviation of the non-contact `1 - a_r` from the law's, near full
+    /// contact ([`NEAR_FULL_CONTACT`] and above).
+    pub complement: LawDeviation,
+    /// The law's deviation read other ways: `(key, label, deviation)`.
+    pub readings: Vec<(String, String, LawDeviation)>,
+    /// The finer grid's loads on three grids.
+    pub grid_order: Vec<GridOrder>,
 }
+
+/// Loads at and above this `a_r` are near full contact, where the law's complementary
+/// term dominates: the range of the `1 - a_r` deviation (up to the top of `law_range`).
+pub const NEAR_FULL_CONTACT: f64 = 0.5;
 
 impl AreaStats {
     /// The statistics of the jobs' results.
@@ -183,10 +311,72 @@ impl AreaStats {
             .iter()
             .map(|&hurst| hurst_stats(scene, &curves, hurst))
             .collect();
+        let p = &scene.reduced_pressures;
+        let complement = LawDeviation::over(
+            p,
+            &hursts,
+            Denominator::Complement,
+            (NEAR_FULL_CONTACT.max(scene.law_range.0), scene.law_range.1),
+        );
+        let mut readings = vec![(
+            "extrapolated_over_law".to_string(),
+            "extrapolated a_r, |a_r - law| / law".to_string(),
+            LawDeviation::over(p, &hursts, Denominator::Law, scene.law_range),
+        )];
+        for &refine in &scene.refinements {
+            let on: Vec<HurstStats> = scene
+                .hursts
+                .iter()
+                .map(|&h| hurst_stats_on(scene, &curves, h, refine))
+                .collect();
+            readings.push((
+                format!("grid_{}", scene.n * refine),
+                format!(
+                    "the {0}x{0} grid alone, |a_r - law| / a_r",
+                    scene.n * refine
+                ),
+                LawDeviation::over(p, &on, Denominator::Measured, scene.law_range),
+            ));
+        }
+        let grid_order = GridOrder::of(scene, &curves);
+        for (pair, label) in [(0, "coarser"), (1, "finer")] {
+            let worst = grid_order
+                .iter()
+                .filter(|g| {
+                    (scene.law_range.0..=scene.law_range.1).contains(&g.extrapolated[pair].value)
+                })
+                .map(|g| {
+                    let a = g.extrapolated[pair];
+                    let (dev, err) = Denominator::Measured
+                        .deviation(a, ContactAreaLaw::PAPER.contact_area(g.pressure));
+                    LawDeviation {
+                        worst: dev,
+                        std_error: err,
+                        at: (g.hurst, g.pressure, a.value),
+                    }
+                })
+                .max_by(|a, b| a.worst.total_cmp(&b.worst));
+            if let (Some(w), Some(g)) = (worst, grid_order.first()) {
+                let grids = if pair == 0 { [0, 1] } else { [1, 2] };
+                readings.push((
+                    format!("finer_grid_{label}_pair"),
+                    format!(
+                        "the finer grid's loads only, extrapolated from the {label} pair ({}^2 \
+                         and {}^2), |a_r - law| / a_r",
+                        scene.n * g.refinements[grids[0]],
+                        scene.n * g.refinements[grids[1]]
+                    ),
+                    w,
+                ));
+            }
+        }
         Self {
             kappa,
             on_grid,
             law: LawDeviation::of(scene, &hursts),
+            complement,
+            readings,
+            grid_order,
             hursts,
         }
     }
@@ -194,11 +384,24 @@ impl AreaStats {
 
 /// The extrapolated slope and areas of one Hurst exponent over the realizations.
 fn hurst_stats(scene: &AreaScene, curves: &Curves, hurst: f64) -> HurstStats {
-    let extrapolated: Vec<Vec<f64>> = scene
-        .seeds
-        .iter()
-        .map(|&s| curves.extrapolated(hurst, s))
-        .collect();
+    curve_stats(scene, curves, hurst, |s| curves.extrapolated(hurst, s))
+}
+
+/// The slope and areas of one Hurst exponent on the grid refined `refine` times.
+pub fn hurst_stats_on(scene: &AreaScene, curves: &Curves, hurst: f64, refine: usize) -> HurstStats {
+    curve_stats(scene, curves, hurst, |s| {
+        curves.curve(hurst, s, refine).to_vec()
+    })
+}
+
+/// The slope and areas over the realizations of the curves `curve(seed)`.
+fn curve_stats(
+    scene: &AreaScene,
+    curves: &Curves,
+    hurst: f64,
+    curve: impl Fn(u64) -> Vec<f64>,
+) -> HurstStats {
+    let extrapolated: Vec<Vec<f64>> = scene.seeds.iter().map(|&s| curve(s)).collect();
     let kappa = Estimate::mean_of(
         &extrapolated
             .iter()

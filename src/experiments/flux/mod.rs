@@ -8,11 +8,14 @@
 //! (warm start); every point is classified by its contact at the two magnifications:
 //!
 //! * `flux_in`: the fraction of the nominal area out of contact at `zeta` and in contact
-//!   at `zeta + dzeta` (paper, 4096^2, H = 0.8, a_r = 0.14, zeta 128 -> 129.5: 0.675%);
-//! * `flux_out`: in contact at `zeta`, out at `zeta + dzeta` (paper: 0.597%);
+//!   at `zeta + dzeta` (the paper's figure: 4096^2, H = 0.8, a_r = 0.14, zeta 128 ->
+//!   129.5);
+//! * `flux_out`: in contact at `zeta`, out at `zeta + dzeta`;
 //! * the headline, `flux_in / flux_out`, the points entering contact per point leaving it
-//!   (Persson: 0; paper: 1.13), and the net flux over the mean one-way flux,
-//!   `|out - in| / ((out + in) / 2)` (paper: about 0.12).
+//!   (Persson: 0), and the net flux over the mean one-way flux, `|out - in| / ((out + in)
+//!   / 2)`.
+//!
+//! The paper's numbers for each are claims of the definition (`validations/c_flux.toml`).
 //!
 //! The map of the first realization is coloured as the paper's figure: grey, in contact at
 //! both magnifications; red, entered contact; white, out of contact at both; blue, left
@@ -35,20 +38,17 @@ use serde::{Deserialize, Serialize};
 
 use std::collections::BTreeMap;
 
+use self::reading::PaperFlux;
 use self::sensitivity::{SensitivityPlan, SensitivityRow, StudyJob, StudyResult};
 use self::steps::StepStats;
 use self::waterfall::{WaterfallPlan, WaterfallResult};
 use super::reentry::history::pack_categories;
 use super::scene::{scene, Step};
+use super::study::Study;
 use super::{Check, Detail, Experiment, JobContext, Jobs, Work};
 use crate::error::{Error, Result};
 use crate::plot::{Figure, Raster, Waterfall};
 use crate::stats::Estimate;
-
-/// The paper's flux into contact from zeta = 128 to 129.5, fraction of the nominal area.
-pub const PAPER_IN: f64 = 0.00675;
-/// The paper's flux out of contact over the same step.
-pub const PAPER_OUT: f64 = 0.00597;
 
 /// Map categories: in contact at both, entered, out at both, left.
 const BOTH: u8 = 0;
@@ -122,6 +122,13 @@ pub struct FluxResult {
 /// The experiment.
 pub struct Flux;
 
+impl FluxScene {
+    /// The headline step's relative size `dzeta / zeta`, the unit of the study's steps.
+    pub fn relative_step(&self) -> f64 {
+        self.dzeta / self.zeta
+    }
+}
+
 /// The category of a point from its pressure before and after the step.
 fn category(before: f64, after: f64) -> u8 {
     match (before > 0.0, after > 0.0) {
@@ -148,7 +155,7 @@ impl Jobs for FluxScene {
         self.base()
             .validate_step(self.contact_area, self.zeta, self.dzeta)?;
         if let Some(plan) = &self.sensitivity {
-            plan.validate(self.hurst)?;
+            plan.validate(self.hurst, self.relative_step())?;
         }
         if let Some(plan) = &self.waterfall {
             plan.validate(self.base().zeta_max())?;
@@ -159,7 +166,11 @@ impl Jobs for FluxScene {
     fn jobs(&self) -> Vec<FluxJob> {
         let mut jobs: Vec<FluxJob> = self.seeds.iter().map(|&s| FluxJob::Step(s)).collect();
         if let Some(plan) = &self.sensitivity {
-            jobs.extend(plan.jobs().into_iter().map(FluxJob::Study));
+            jobs.extend(
+                plan.jobs(self.relative_step())
+                    .into_iter()
+                    .map(FluxJob::Study),
+            );
         }
         if self.waterfall.is_some() {
             jobs.push(FluxJob::Waterfall);
@@ -237,10 +248,9 @@ impl FluxStats {
             .collect();
         Self {
             steps: StepStats::of(&results),
-            rows: scene
-                .sensitivity
-                .as_ref()
-                .map_or_else(Vec::new, |plan| plan.conclude(&study)),
+            rows: scene.sensitivity.as_ref().map_or_else(Vec::new, |plan| {
+                plan.conclude(scene.relative_step(), &study)
+            }),
             results,
         }
     }
@@ -272,32 +282,34 @@ impl Experiment for Flux {
         steps::golden(&s.steps)
     }
 
-    fn sensitivity(_run: &Run, s: &FluxStats) -> Vec<SensitivityRow> {
-        s.rows.clone()
-    }
-
     fn account(run: &Run, s: &FluxStats) -> String {
         steps::account(run.scene, &s.steps)
     }
 
-    /// The reading of the sensitivity study against the paper's flux.
-    fn notes(_run: &Run, s: &FluxStats) -> Vec<String> {
+    /// The sensitivity study as a table, with its reading against the paper's flux
+    /// (where the definition states the paper's numbers) as notes.
+    fn studies(run: &Run, s: &FluxStats) -> Vec<Study> {
         if s.rows.is_empty() {
             return Vec::new();
         }
-        let (before, after) = (s.steps.a_before.value, s.steps.a_after.value);
-        reading::notes(&s.rows, before, after)
+        let mut study = sensitivity::study(&s.rows);
+        if let Some(p) = PaperFlux::of(run.criteria, run.scene.relative_step()) {
+            let (before, after) = (s.steps.a_before.value, s.steps.a_after.value);
+            study.notes = reading::notes(&s.rows, &p, before, after);
+        }
+        vec![study]
     }
 
     /// The flux per step against the step, the study's rows beside the headline step
     /// (placed at the study's row of the same step, where there is one).
     fn figures(run: &Run, s: &FluxStats) -> Vec<Figure> {
-        if s.rows.is_empty() {
+        let paper = PaperFlux::of(run.criteria, run.scene.relative_step());
+        let (Some(p), false) = (paper, s.rows.is_empty()) else {
             return Vec::new();
-        }
+        };
         let headline =
             same_step(run.scene, &s.rows).map(|row| (row, s.steps.flux_in, s.steps.flux_out));
-        vec![reading::figure(&s.rows, headline)]
+        vec![reading::figure(&s.rows, &p, headline)]
     }
 
     fn rasters(run: &Run, s: &FluxStats) -> Vec<Raster> {

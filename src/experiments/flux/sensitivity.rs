@@ -4,7 +4,8 @@
 //! setting at a time moves away from a base configuration:
 //!
 //! * `tol`: the solver's residual tolerance;
-//! * `dzeta_over_zeta`: the relative step, in multiples of the paper's 1.5 / 128;
+//! * `dzeta_over_zeta`: the relative step, in multiples of the headline step's
+//!   `dzeta / zeta` (the paper's figure: 1.5 / 128);
 //! * `lambda_s`: the discretisation, grid spacings per shortest wavelength, at the same
 //!   surface (the grid and `lambda_l` scale with it, so the modes and `zeta` stay);
 //! * `lambda_l_over_l`: the roll-off wavelength over the system size, the step kept at the
@@ -32,10 +33,8 @@ use crate::engine::spectrum::ShellSpectrum;
 use crate::error::{check_open, check_positive, Error, Result};
 use crate::experiments::reentry::net_over_gross;
 use crate::experiments::scene::Base;
+use crate::experiments::study::{Cell, Study};
 use crate::stats::Estimate;
-
-/// The paper's relative step, `1.5 / 128`.
-pub const PAPER_RELATIVE_STEP: f64 = 1.5 / 128.0;
 
 /// The study, as a scene states it (`[reduced.sensitivity]`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -59,7 +58,7 @@ pub struct SensitivityPlan {
     pub solver: SolverKind,
     /// Tolerances (the base's among them).
     pub tols: Vec<f64>,
-    /// Steps `dzeta / zeta` in multiples of the paper's `1.5 / 128`.
+    /// Steps `dzeta / zeta` in multiples of the headline step's.
     pub step_factors: Vec<f64>,
     /// Shortest wavelengths in grid spacings, the same surface on a finer or coarser grid.
     pub lambda_s_values: Vec<f64>,
@@ -202,8 +201,9 @@ pub struct SensitivityRow {
 }
 
 impl SensitivityPlan {
-    /// Checks the ranges; errors name the field.
-    pub fn validate(&self, hurst: f64) -> Result<()> {
+    /// Checks the ranges (`step`: the headline's relative step `dzeta / zeta`); errors
+    /// name the field.
+    pub fn validate(&self, hurst: f64, step: f64) -> Result<()> {
         check_open("sensitivity.contact_area", self.contact_area, 0.0, 1.0)?;
         check_positive("sensitivity.zeta", self.zeta)?;
         crate::error::check_seeds(&self.seeds)?;
@@ -238,7 +238,7 @@ impl SensitivityPlan {
         if self.solvers.is_empty() {
             return Err(Error::invalid("sensitivity.solvers", "[]", "at least one"));
         }
-        for (parameter, _, _, config) in self.rows() {
+        for (parameter, _, _, config) in self.rows(step) {
             let base = Base {
                 n: config.n,
                 hurst: config.hurst.unwrap_or(hurst),
@@ -255,15 +255,15 @@ impl SensitivityPlan {
         Ok(())
     }
 
-    /// The base configuration.
-    pub fn base(&self) -> StudyConfig {
+    /// The base configuration, stepping by the relative step `step`.
+    pub fn base(&self, step: f64) -> StudyConfig {
         StudyConfig {
             n: self.n,
             lambda_l: self.lambda_l,
             lambda_s: self.lambda_s,
             contact_area: self.contact_area,
             zeta: self.zeta,
-            dzeta: PAPER_RELATIVE_STEP * self.zeta,
+            dzeta: step * self.zeta,
             tol: self.tol,
             solver: self.solver,
             fixed_area: false,
@@ -271,9 +271,10 @@ impl SensitivityPlan {
         }
     }
 
-    /// Every row as `(parameter, value, label, configuration)`.
-    pub fn rows(&self) -> Vec<(&'static str, f64, String, StudyConfig)> {
-        let base = self.base();
+    /// Every row as `(parameter, value, label, configuration)`, the steps in multiples
+    /// of `step`, the headline's relative step.
+    pub fn rows(&self, step: f64) -> Vec<(&'static str, f64, String, StudyConfig)> {
+        let base = self.base(step);
         let mut rows = Vec::new();
         for &tol in &self.tols {
             let c = StudyConfig {
@@ -283,12 +284,12 @@ impl SensitivityPlan {
             rows.push(("tol", tol, format!("{tol:e}"), c));
         }
         for &f in &self.step_factors {
-            let r = f * PAPER_RELATIVE_STEP;
+            let r = f * step;
             let c = StudyConfig {
                 dzeta: r * base.zeta,
                 ..base.clone()
             };
-            rows.push(("dzeta_over_zeta", r, format!("{f} x 1.5/128"), c));
+            rows.push(("dzeta_over_zeta", r, format!("{f} x the headline step"), c));
         }
         for &ls in &self.lambda_s_values {
             let scale = ls / base.lambda_s;
@@ -306,7 +307,7 @@ impl SensitivityPlan {
             let c = StudyConfig {
                 lambda_l,
                 zeta,
-                dzeta: PAPER_RELATIVE_STEP * zeta,
+                dzeta: step * zeta,
                 ..base.clone()
             };
             rows.push(("lambda_l_over_l", fr, format!("{fr} (zeta = {zeta})"), c));
@@ -370,9 +371,9 @@ impl SensitivityPlan {
     }
 
     /// The jobs: every distinct configuration once, for every seed.
-    pub fn jobs(&self) -> Vec<StudyJob> {
+    pub fn jobs(&self, step: f64) -> Vec<StudyJob> {
         let mut configs: Vec<StudyConfig> = Vec::new();
-        for (_, _, _, c) in self.rows() {
+        for (_, _, _, c) in self.rows(step) {
             if !configs.contains(&c) {
                 configs.push(c);
             }
@@ -389,8 +390,12 @@ impl SensitivityPlan {
     }
 
     /// The rows from the jobs' results.
-    pub fn conclude(&self, results: &[(&StudyJob, &StudyResult)]) -> Vec<SensitivityRow> {
-        self.rows()
+    pub fn conclude(
+        &self,
+        step: f64,
+        results: &[(&StudyJob, &StudyResult)],
+    ) -> Vec<SensitivityRow> {
+        self.rows(step)
             .into_iter()
             .filter_map(|(parameter, value, label, config)| {
                 let runs: Vec<&StudyResult> = results
@@ -429,6 +434,75 @@ impl SensitivityPlan {
             })
             .collect()
     }
+}
+
+/// The rows as a generic table (one row per setting and value, keyed
+/// `PARAMETER=VALUE`, the transition scene's row `transition`), in % where the column
+/// says so.
+pub fn study(rows: &[SensitivityRow]) -> Study {
+    let mut study = Study::new(
+        "sensitivity",
+        "What sets the one-step flux: one setting at a time",
+        &[
+            ("n", "grid (points per side)"),
+            ("zeta", "zeta"),
+            ("dzeta", "dzeta"),
+            ("realizations", "realizations"),
+            ("flux_in", "into contact, % of A0"),
+            ("flux_out", "out of contact, % of A0"),
+            ("flux_in_of_contact", "into contact, % of the contact area"),
+            (
+                "flux_out_of_contact",
+                "out of contact, % of the contact area",
+            ),
+            ("net_over_gross", "net / mean one-way flux"),
+            ("zero_bin", "non-contact entering contact, %"),
+            ("contact_area", "a_r at zeta"),
+            ("variance_added", "height variance added, % of that at zeta"),
+            ("modes_added", "modes added"),
+        ],
+    )
+    .percent(&[
+        "flux_in",
+        "flux_out",
+        "flux_in_of_contact",
+        "flux_out_of_contact",
+        "zero_bin",
+        "variance_added",
+    ])
+    .about(
+        "Each row moves one setting away from the base configuration (the first row of each \
+         setting shares it) and repeats the step over the realizations: mean and standard \
+         error over realizations.",
+    );
+    for r in rows {
+        let key = if r.parameter == "transition" {
+            "transition".to_string()
+        } else {
+            format!("{}={}", r.parameter, r.value)
+        };
+        let label = format!("{} = {} ({})", r.parameter, r.label, r.config.solver.name());
+        study.push(
+            key,
+            label,
+            vec![
+                Cell::from(r.config.n as f64),
+                Cell::from(r.config.zeta),
+                Cell::from(r.config.dzeta),
+                Cell::from(r.realizations as f64),
+                r.flux_in.into(),
+                r.flux_out.into(),
+                r.flux_in_of_contact.into(),
+                r.flux_out_of_contact.into(),
+                r.net_over_gross.into(),
+                r.zero_bin.into(),
+                r.contact_area.into(),
+                r.variance_added.into(),
+                r.modes_added.map_or(Cell::Empty, Cell::from),
+            ],
+        );
+    }
+    study
 }
 
 /// Runs one study job: the load that gives the contact area at `zeta`, then the step at
@@ -492,6 +566,9 @@ pub fn step_taken(shells: &ShellSpectrum, zeta: f64, dzeta: f64) -> (f64, u64) {
 mod tests {
     use super::*;
 
+    /// The headline's relative step in these tests.
+    const STEP: f64 = 1.5 / 128.0;
+
     fn plan() -> SensitivityPlan {
         SensitivityPlan {
             n: 64,
@@ -525,14 +602,14 @@ mod tests {
     #[test]
     fn rows_vary_one_setting_and_share_the_base() {
         let p = plan();
-        p.validate(0.8).unwrap();
-        let rows = p.rows();
+        p.validate(0.8, STEP).unwrap();
+        let rows = p.rows(STEP);
         assert_eq!(rows.len(), 2 + 3 + 2 + 2 + 2 + 2 + 1 + 1 + 1);
         // The base appears once per list; the jobs run it once.
-        let base = p.base();
+        let base = p.base(STEP);
         assert_eq!(rows.iter().filter(|r| r.3 == base).count(), 6);
         let distinct = rows.len() - 6 + 1;
-        assert_eq!(p.jobs().len(), distinct * p.seeds.len());
+        assert_eq!(p.jobs(STEP).len(), distinct * p.seeds.len());
         // lambda_s = 2: the same surface on a grid half as fine.
         let coarse = &rows
             .iter()
@@ -560,7 +637,7 @@ mod tests {
     fn a_transition_scene_beyond_its_grid_is_refused_by_name() {
         let mut p = plan();
         p.transition.as_mut().unwrap().zeta = 63.0;
-        let e = p.validate(0.8).unwrap_err().to_string();
+        let e = p.validate(0.8, STEP).unwrap_err().to_string();
         assert!(e.contains("sensitivity.transition"), "{e}");
     }
 
@@ -582,7 +659,7 @@ mod tests {
     #[test]
     fn rows_average_over_realizations_in_both_measures() {
         let p = plan();
-        let jobs = p.jobs();
+        let jobs = p.jobs(STEP);
         let results: Vec<StudyResult> = jobs
             .iter()
             .map(|j| StudyResult {
@@ -596,8 +673,8 @@ mod tests {
             })
             .collect();
         let pairs: Vec<(&StudyJob, &StudyResult)> = jobs.iter().zip(&results).collect();
-        let rows = p.conclude(&pairs);
-        assert_eq!(rows.len(), p.rows().len());
+        let rows = p.conclude(STEP, &pairs);
+        assert_eq!(rows.len(), p.rows(STEP).len());
         let r = &rows[0];
         assert!((r.flux_in.value - 0.0015).abs() < 1e-15);
         assert!((r.flux_in_of_contact.value - 0.015).abs() < 1e-14);

@@ -4,7 +4,7 @@
 
 use std::collections::BTreeMap;
 
-use super::{FluxResult, FluxScene, PAPER_IN, PAPER_OUT};
+use super::{FluxResult, FluxScene};
 use crate::experiments::reentry::history::unpack_categories;
 use crate::experiments::reentry::{net_over_gross, step_palette};
 use crate::experiments::{Check, Criteria, Detail};
@@ -59,27 +59,24 @@ pub fn check(criteria: &Criteria, s: &StepStats) -> Check {
     )
 }
 
-/// The fluxes beside the paper's, the net flux, and the contact area before and after.
+/// The fluxes, the net flux, and the contact area before and after.
 pub fn details(s: &StepStats) -> Vec<Detail> {
     vec![
         Detail::new(
             "flux_in",
             "fraction of the nominal area entering contact",
             s.flux_in,
-        )
-        .paper(Some(PAPER_IN)),
+        ),
         Detail::new(
             "flux_out",
             "fraction of the nominal area leaving contact",
             s.flux_out,
-        )
-        .paper(Some(PAPER_OUT)),
+        ),
         Detail::new(
             "net_over_gross",
             "net flux over the mean one-way flux, |out - in| / ((out + in) / 2)",
             s.net,
-        )
-        .paper(Some(net_over_gross(PAPER_IN, PAPER_OUT))),
+        ),
         Detail::new("contact_area_before", "a_r at zeta", s.a_before),
         Detail::new("contact_area_after", "a_r at zeta + dzeta", s.a_after),
     ]

@@ -9,24 +9,25 @@ use crate::experiments::climb::step_of;
 use crate::experiments::ensemble::{group, load_range};
 use crate::stats::{Estimate, LineFit};
 
-/// The paper's asymptote law `K1 exp(-K2 x)` for `H = 0.8`: `(K1, K2)`.
-pub const PAPER_K_H08: (f64, f64) = (0.9, 1.0);
-/// The paper's asymptote law `K1 exp(-K2 x)` for `H = 0.3`: `(K1, K2)`.
-pub const PAPER_K_H03: (f64, f64) = (0.7, 1.4);
-
 /// Loads with a measured contact area at the end of the sweep at or above this are full
 /// contact (`x ~ 0`) and left out of the fit of the asymptote law, as in the paper.
 pub const FULL_CONTACT: f64 = 0.99;
 
-/// The paper's `(K1, K2)` for Hurst exponent `hurst`, if it states them.
-pub fn paper_k(hurst: f64) -> Option<(f64, f64)> {
-    if (hurst - 0.8).abs() < 0.05 {
-        Some(PAPER_K_H08)
-    } else if (hurst - 0.3).abs() < 0.05 {
-        Some(PAPER_K_H03)
-    } else {
-        None
-    }
+/// The reading of `x` at the mode's own magnification: the slope of `ln a_r` against
+/// `ln zeta` over `zeta_t / MODE_WINDOW` to `MODE_WINDOW zeta_t`.
+pub const MODE_WINDOW: f64 = 1.5;
+
+/// `x = -d ln a_r / d ln zeta` of one realization over the steps with `zeta` in
+/// `[lo, hi]` (none with fewer than two such steps).
+pub fn slope_over(run: &ModeResult, lo: f64, hi: f64) -> Option<f64> {
+    let (ln_z, ln_a): (Vec<f64>, Vec<f64>) = run
+        .zetas
+        .iter()
+        .zip(&run.contact_area)
+        .filter(|(z, _)| **z >= lo * (1.0 - 1e-12) && **z <= hi * (1.0 + 1e-12))
+        .map(|(z, a)| (z.ln(), a.ln()))
+        .unzip();
+    LineFit::fit(&ln_z, &ln_a).map(|f| -f.slope.value)
 }
 
 /// Per-realization asymptote `E_inf` (intercept of `E_norm` against `1/zeta`) and
@@ -56,8 +57,10 @@ pub struct AfterResolution {
     pub change: Estimate,
     /// The asymptote `E_inf`, over realizations.
     pub asymptote: Estimate,
-    /// `x = -d ln a_r / d ln zeta`, over realizations.
+    /// `x = -d ln a_r / d ln zeta` over the frozen window, over realizations.
     pub x: Estimate,
+    /// `x` at the mode's own magnification ([`MODE_WINDOW`]), over realizations.
+    pub x_mode: Estimate,
     /// The correction factor `S(a_r(zeta_t))` (Persson's asymptote).
     pub s: f64,
     /// The measured contact area at the end of the sweep.
@@ -83,6 +86,13 @@ fn after_resolution(scene: &ModeScene, steps: &[f64], load: &Load, t: usize) -> 
         change: load.change(t, zt, from, end),
         asymptote: mean(|f| f.0),
         x: mean(|f| f.1),
+        x_mode: Estimate::mean_of(
+            &load
+                .runs
+                .iter()
+                .filter_map(|r| slope_over(r, zt / MODE_WINDOW, MODE_WINDOW * zt))
+                .collect::<Vec<_>>(),
+        ),
         s: scene
             .correction
             .factor(load.contact_area_at(step_of(steps, zt)).value),
@@ -106,6 +116,10 @@ pub struct FrozenStats {
     pub k_points: Vec<(f64, f64)>,
     /// The line through `k_points`: `ln K1 - K2 x`.
     pub k_fit: Option<LineFit>,
+    /// The same points with `x` at the mode's own magnification: `(x_mode, ln E_inf)`.
+    pub k_mode_points: Vec<(f64, f64)>,
+    /// The line through `k_mode_points`.
+    pub k_mode_fit: Option<LineFit>,
 }
 
 impl FrozenStats {
@@ -119,17 +133,29 @@ impl FrozenStats {
                 (0..scene.targets.len()).map(move |t| after_resolution(scene, steps, load, t))
             })
             .collect();
-        let k_points: Vec<(f64, f64)> = after
-            .iter()
-            .filter(|a| a.asymptote.value > 0.0 && a.a_end < FULL_CONTACT)
+        let fitted = || {
+            after
+                .iter()
+                .filter(|a| a.asymptote.value > 0.0 && a.a_end < FULL_CONTACT)
+        };
+        let k_points: Vec<(f64, f64)> = fitted()
             .map(|a| (a.x.value, a.asymptote.value.ln()))
             .collect();
-        let (xs, ys): (Vec<f64>, Vec<f64>) = k_points.iter().copied().unzip();
+        let k_mode_points: Vec<(f64, f64)> = fitted()
+            .map(|a| (a.x_mode.value, a.asymptote.value.ln()))
+            .filter(|p| p.0.is_finite())
+            .collect();
+        let line = |points: &[(f64, f64)]| {
+            let (xs, ys): (Vec<f64>, Vec<f64>) = points.iter().copied().unzip();
+            LineFit::fit(&xs, &ys)
+        };
         let (lowest, highest) = load_range(&scene.contact_areas);
         Self {
             long_minus_short: long_minus_short(scene, group(loads, lowest)),
-            k_fit: LineFit::fit(&xs, &ys),
+            k_fit: line(&k_points),
+            k_mode_fit: line(&k_mode_points),
             k_points,
+            k_mode_points,
             after,
             lowest,
             highest,
@@ -150,16 +176,25 @@ impl FrozenStats {
         self.at(self.lowest, 0).change
     }
 
-    /// `(K1, K2)` of the fitted law, with their standard errors.
+    /// `(K1, K2)` of the fitted law (`x` over the frozen window), with their standard
+    /// errors.
     pub fn k(&self) -> Option<(Estimate, Estimate)> {
-        self.k_fit.map(|f| {
-            let k1 = Estimate::new(
-                f.intercept.value.exp(),
-                f.intercept.std_error * f.intercept.value.exp(),
-            );
-            (k1, Estimate::new(-f.slope.value, f.slope.std_error))
-        })
+        self.k_fit.map(law_constants)
     }
+
+    /// `(K1, K2)` with `x` at the mode's own magnification.
+    pub fn k_mode(&self) -> Option<(Estimate, Estimate)> {
+        self.k_mode_fit.map(law_constants)
+    }
+}
+
+/// `(K1, K2)` of a line `ln K1 - K2 x`, with their standard errors.
+fn law_constants(f: LineFit) -> (Estimate, Estimate) {
+    let k1 = Estimate::new(
+        f.intercept.value.exp(),
+        f.intercept.std_error * f.intercept.value.exp(),
+    );
+    (k1, Estimate::new(-f.slope.value, f.slope.std_error))
 }
 
 /// The asymptote of the first target minus that of the last at `load`, per realization.

@@ -3,7 +3,7 @@
 //! 12), and, for (e), the asymptotes against `x = -d ln a_r / d ln zeta` with the paper's
 //! law.
 
-use super::asymptote::{paper_k, FrozenStats};
+use super::asymptote::FrozenStats;
 use super::{Load, ModeEnsemble, ModeScene};
 use crate::experiments::climb::step_of;
 use crate::experiments::{figure, Table};
@@ -135,7 +135,9 @@ pub fn asymptote_table(scene: &ModeScene, s: &FrozenStats) -> Table {
 
 /// The asymptotes of the partial-contact loads against `x`, the fitted law and the
 /// paper's.
-pub fn asymptote_figure(scene: &ModeScene, s: &FrozenStats) -> Figure {
+/// The asymptotes with the fitted law and, where the definition states it, the paper's
+/// `(K1, K2)`.
+pub fn asymptote_figure(scene: &ModeScene, s: &FrozenStats, paper: Option<(f64, f64)>) -> Figure {
     let mut fig = figure(
         "asymptote",
         format!(
@@ -161,7 +163,7 @@ pub fn asymptote_figure(scene: &ModeScene, s: &FrozenStats) -> Figure {
             grid.iter().map(|&x| (x, f.at(x).exp())),
         ));
     }
-    if let Some((k1, k2)) = paper_k(scene.hurst) {
+    if let Some((k1, k2)) = paper {
         fig.series.push(Series::xy(
             format!("paper, {k1} exp(-{k2} x)"),
             Style::Dashed,

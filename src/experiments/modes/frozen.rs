@@ -4,17 +4,24 @@
 
 use std::collections::BTreeMap;
 
-use super::asymptote::{paper_k, FrozenStats};
+use super::asymptote::{FrozenStats, MODE_WINDOW};
 use super::figures::{asymptote_figure, asymptote_table, curve_figures, curve_table};
 use super::ModeScene;
 use crate::error::{Error, Result};
 use crate::experiments::ensemble::by_load;
-use crate::experiments::{Check, Detail, Experiment, Jobs, Table};
+use crate::experiments::study::{Cell, Study};
+use crate::experiments::{Check, Criteria, Detail, Experiment, Jobs, Table};
 use crate::plot::Figure;
 use crate::stats::{decide, round_sig, Claim, Estimate};
 
 /// Assumption (e): a resolved mode's energy no longer changes.
 pub struct ModeFrozen;
+
+/// The paper's `(K1, K2)` of the asymptote law, as the definition's claims `k1` and `k2`
+/// state them.
+fn paper_k(criteria: &Criteria) -> Option<(f64, f64)> {
+    Some((criteria.paper("k1")?, criteria.paper("k2")?))
+}
 
 type Run<'a> = crate::experiments::Run<'a, ModeFrozen>;
 
@@ -100,15 +107,16 @@ impl Experiment for ModeFrozen {
             );
         }
         if let Some((k1, k2)) = s.k() {
-            let paper = paper_k(scene.hurst);
-            details.push(
-                Detail::new("k1", "K1 of the asymptote law K1 exp(-K2 x)", k1)
-                    .paper(paper.map(|k| k.0)),
-            );
-            details.push(
-                Detail::new("k2", "K2 of the asymptote law K1 exp(-K2 x)", k2)
-                    .paper(paper.map(|k| k.1)),
-            );
+            details.push(Detail::new(
+                "k1",
+                "K1 of the asymptote law K1 exp(-K2 x)",
+                k1,
+            ));
+            details.push(Detail::new(
+                "k2",
+                "K2 of the asymptote law K1 exp(-K2 x)",
+                k2,
+            ));
         }
         details
     }
@@ -179,6 +187,82 @@ impl Experiment for ModeFrozen {
         golden
     }
 
+    /// The readings of the asymptote law: `x` over the frozen window and at the mode's
+    /// own magnification, each with its fitted `(K1, K2)`.
+    fn studies(run: &Run, s: &FrozenStats) -> Vec<Study> {
+        let scene = run.scene;
+        let mut study = Study::new(
+            "asymptote_law",
+            "Readings of the asymptote law K1 exp(-K2 x): where x = -d ln a_r / d ln zeta is taken",
+            &[
+                ("k1", "K1"),
+                ("k2", "K2"),
+                ("points", "partial-contact points"),
+                ("x_min", "smallest x"),
+                ("x_max", "largest x"),
+            ],
+        )
+        .about(
+            "The same asymptotes E_inf of every partial-contact load and target, fitted \
+             against x taken over two windows of the sweep; the paper does not state its \
+             window",
+        );
+        let readings = [
+            (
+                "frozen_window",
+                format!(
+                    "x over the frozen window, zeta = {} zeta_t to {}",
+                    scene.frozen_from, scene.zeta_end
+                ),
+                s.k(),
+                &s.k_points,
+            ),
+            (
+                "mode",
+                format!(
+                    "x at the mode's own magnification, zeta_t / {MODE_WINDOW} to \
+                     {MODE_WINDOW} zeta_t"
+                ),
+                s.k_mode(),
+                &s.k_mode_points,
+            ),
+        ];
+        for (key, label, k, points) in readings {
+            let xs = points.iter().map(|p| p.0);
+            let (lo, hi) = (
+                xs.clone().fold(f64::NAN, f64::min),
+                xs.fold(f64::NAN, f64::max),
+            );
+            study.push(
+                key,
+                label,
+                vec![
+                    k.map(|k| k.0).into(),
+                    k.map(|k| k.1).into(),
+                    Cell::from(points.len() as f64),
+                    Cell::from(lo),
+                    Cell::from(hi),
+                ],
+            );
+        }
+        if let (Some((k1, k2)), Some(paper)) = (s.k_mode(), paper_k(run.criteria)) {
+            study.notes.push(format!(
+                "At the mode's own magnification K1 = {}, K2 = {} (paper {} and {}); over the \
+                 frozen window the fit gives {}.",
+                k1.text(1.0, 2, ""),
+                k2.text(1.0, 2, ""),
+                paper.0,
+                paper.1,
+                s.k().map_or("no fit".into(), |(a, b)| format!(
+                    "K1 = {}, K2 = {}",
+                    a.text(1.0, 2, ""),
+                    b.text(1.0, 2, "")
+                ))
+            ));
+        }
+        vec![study]
+    }
+
     /// The account, from the numbers.
     fn account(run: &Run, s: &FrozenStats) -> String {
         let scene = run.scene;
@@ -190,7 +274,7 @@ impl Experiment for ModeFrozen {
                 s.k_points.len(),
                 k1.text(1.0, 2, ""),
                 k2.text(1.0, 2, ""),
-                match paper_k(scene.hurst) {
+                match paper_k(run.criteria) {
                     Some((a, b)) => format!(" (paper, H = {}: K1 = {a}, K2 = {b})", scene.hurst),
                     None => String::new(),
                 }
@@ -223,7 +307,7 @@ impl Experiment for ModeFrozen {
     fn figures(run: &Run, s: &FrozenStats) -> Vec<Figure> {
         let loads = by_load(&run.scene.contact_areas, run.results);
         let mut figures = curve_figures("e_norm", run.scene, &loads);
-        figures.push(asymptote_figure(run.scene, s));
+        figures.push(asymptote_figure(run.scene, s, paper_k(run.criteria)));
         figures
     }
 }

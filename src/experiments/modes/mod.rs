@@ -74,7 +74,7 @@ mod figures;
 mod frozen;
 mod onset;
 
-pub use asymptote::{FrozenStats, PAPER_K_H03, PAPER_K_H08};
+pub use asymptote::FrozenStats;
 pub use band::{band_energies, Band};
 pub use frozen::ModeFrozen;
 pub use onset::{ModeOnset, OnsetStats};

@@ -53,6 +53,35 @@ pub struct OnsetStats {
     pub lowest: f64,
     /// The highest load.
     pub highest: f64,
+    /// Where the bands peak: the magnification of a band's largest `E_norm` over its
+    /// `zeta_t`, over bands, realizations and the loads still in partial contact at
+    /// `zeta_t` (measured `a_r` below [`PARTIAL`]).
+    pub peak: Estimate,
+}
+
+/// Loads whose measured contact area at `zeta_t` reaches this are in full contact there:
+/// left out of where the bands peak.
+pub const PARTIAL: f64 = 0.99;
+
+/// `zeta_peak / zeta_t` of every band of every realization at the loads in partial contact.
+pub fn peak_ratios(scene: &ModeScene, loads: &[Load]) -> Vec<f64> {
+    let steps = scene.steps();
+    let mut ratios = Vec::new();
+    for load in loads {
+        for (t, &zt) in scene.targets.iter().enumerate() {
+            if load.contact_area_at(step_of(&steps, zt)).value >= PARTIAL {
+                continue;
+            }
+            for r in &load.runs {
+                let e = r.e_norm(t, zt);
+                let k = (0..e.len())
+                    .max_by(|&a, &b| e[a].total_cmp(&e[b]))
+                    .expect("a sweep has steps");
+                ratios.push(r.zetas[k] / zt);
+            }
+        }
+    }
+    ratios
 }
 
 impl OnsetStats {
@@ -79,6 +108,7 @@ impl OnsetStats {
                 .collect(),
             lowest,
             highest,
+            peak: Estimate::mean_of(&peak_ratios(scene, loads)),
         }
     }
 
@@ -111,10 +141,21 @@ impl Experiment for ModeOnset {
         (s.headline, 0.0)
     }
 
-    /// `E_norm` at the onset point of every load and target.
+    /// `E_norm` at the onset point of every load and target, and where the bands peak.
     fn details(run: &Run, s: &OnsetStats) -> Vec<Detail> {
         let scene = run.scene;
         let steps = scene.steps();
+        let peak = Detail::new(
+            "peak_over_zeta_t",
+            format!(
+                "magnification of a band's largest E_norm over its zeta_t (mean over bands, \
+                 realizations and loads with a_r < {PARTIAL} at zeta_t; the sweep ends at \
+                 zeta = {})",
+                scene.zeta_end
+            ),
+            s.peak,
+        )
+        .persson(1.0);
         s.onsets
             .iter()
             .map(|o| {
@@ -130,6 +171,7 @@ impl Experiment for ModeOnset {
                 )
                 .persson(0.0)
             })
+            .chain(std::iter::once(peak))
             .collect()
     }
 

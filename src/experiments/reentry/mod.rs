@@ -10,13 +10,12 @@
 //! * **Re-entry share** (the convention of [`crate::conventions`], section 6): among the points in contact at `zeta_max`, the
 //!   share that was out of contact at some earlier step, the first shell (`zeta = 1`)
 //!   included. Also reported: the share that left contact *after* the first shell and came
-//!   back, so both readings are visible. Persson: 0. Paper (H = 0.8, 1024^2,
-//!   lambda_l = 512): ~62% at a_r = 0.14, ~100% at 0.014, ~8% at 0.88.
+//!   back, so both readings are visible. Persson: 0. The paper's shares (H = 0.8, 1024^2,
+//!   lambda_l = 512) are claims of the definition (`validations/c_reentry.toml`).
 //! * **Flux** between `flux_zeta` and `flux_zeta + flux_dzeta`: the fractions of the nominal
-//!   area that enter and leave contact, the net flux over the mean one-way flux (paper,
-//!   zeta 128 -> 129.5: in 0.675%, out 0.597% of A0, net ~ 0.12 of either), and the
+//!   area that enter and leave contact, the net flux over the mean one-way flux, and the
 //!   transition probability out of the `p = 0` bin, the share of non-contact that enters
-//!   contact (paper: ~1% from zeta = 63 to 63.3). Persson: no flux into contact.
+//!   contact. Persson: no flux into contact.
 //! * **Contact map** at `zeta_max` coloured as the paper's re-entry figures: grey, in
 //!   contact at every step; red, in contact after having been out (re-entered); white, out
 //!   of contact and never back; blue, out of contact after having come back at least once.
@@ -48,22 +47,11 @@ use crate::error::{check_positive, Error, Result};
 use crate::plot::Raster;
 use crate::stats::{decide, round_sig, Claim, Decision, Estimate};
 
-/// The paper's flux into contact from zeta = 128 to 129.5 (fraction of the nominal area).
-pub const PAPER_FLUX_IN: f64 = 0.00675;
-/// The paper's flux out of contact over the same step.
-pub const PAPER_FLUX_OUT: f64 = 0.00597;
-/// The paper's net flux over the mean one-way flux.
-pub const PAPER_NET_OVER_GROSS: f64 = 0.12;
-/// The paper's share of non-contact that enters contact from zeta = 63 to 63.3.
-pub const PAPER_ZERO_BIN: f64 = 0.01;
-
 scene! {
     /// Scene of the re-entry experiment.
     pub struct ReentryScene {
         /// Contact areas at `zeta_max` (the first is the headline).
         pub contact_areas: Vec<f64>,
-        /// The paper's re-entry share at each contact area, for comparison.
-        pub paper_shares: Vec<f64>,
         /// Start of the flux interval.
         pub flux_zeta: f64,
         /// Length of the flux interval.
@@ -197,13 +185,6 @@ impl Jobs for ReentryScene {
     fn validate(&self) -> Result<()> {
         self.base().validate()?;
         check_contact_areas(&self.contact_areas)?;
-        if self.paper_shares.len() != self.contact_areas.len() {
-            return Err(Error::invalid(
-                "paper_shares",
-                format!("{} values", self.paper_shares.len()),
-                format!("one per contact area ({})", self.contact_areas.len()),
-            ));
-        }
         let zeta_max = self.base().zeta_max();
         check_zeta(self.flux_zeta, zeta_max)?;
         check_positive("flux_dzeta", self.flux_dzeta)?;
@@ -258,7 +239,7 @@ impl Experiment for Reentry {
     fn details(run: &Run, s: &ReentryStats) -> Vec<Detail> {
         let scene = run.scene;
         let mut details = Vec::new();
-        for (share, &paper) in s.shares.iter().zip(&scene.paper_shares) {
+        for share in &s.shares {
             let target = share.load;
             details.push(
                 Detail::new(
@@ -266,8 +247,7 @@ impl Experiment for Reentry {
                     format!("re-entry share at a_r = {target}"),
                     share.share,
                 )
-                .persson(0.0)
-                .paper(Some(paper)),
+                .persson(0.0),
             );
             details.push(
                 Detail::new(
@@ -287,30 +267,27 @@ impl Experiment for Reentry {
                     scene.flux_zeta + scene.flux_dzeta
                 ),
                 s.flux_in,
-                PAPER_FLUX_IN,
             ),
             (
                 "flux_out",
                 "flux out of contact (fraction of A0)".to_string(),
                 s.flux_out,
-                PAPER_FLUX_OUT,
             ),
             (
                 "net_over_gross",
                 "net flux / mean one-way flux".to_string(),
                 s.net_over_gross,
-                PAPER_NET_OVER_GROSS,
             ),
             (
                 "zero_bin_reentry",
                 "share of non-contact entering contact (transition out of p = 0)".to_string(),
                 s.zero_bin,
-                PAPER_ZERO_BIN,
             ),
         ];
-        details.extend(flux.into_iter().map(|(key, name, e, paper)| {
-            Detail::new(key, name, e).persson(0.0).paper(Some(paper))
-        }));
+        details.extend(
+            flux.into_iter()
+                .map(|(key, name, e)| Detail::new(key, name, e).persson(0.0)),
+        );
         details
     }
 
@@ -369,7 +346,7 @@ impl Experiment for Reentry {
         format!(
             "{} were swept through all {} shells one at a time at fixed load, from the flat \
              interface to zeta_max = {}. Of the points in contact at zeta_max, {} had been \
-             out of contact at a lower magnification (paper: {}). Between zeta = {} and {}, \
+             out of contact at a lower magnification. Between zeta = {} and {}, \
              {:.3}% of the nominal area entered contact and {:.3}% left it, at a_r = \
              {head}. A sweep took {} solver iterations on average.",
             scene.base().runs(),
@@ -378,13 +355,6 @@ impl Experiment for Reentry {
             s.shares
                 .iter()
                 .map(|s| format!("{} at a_r = {}", s.share.text(100.0, 1, "%"), s.load))
-                .collect::<Vec<_>>()
-                .join(", "),
-            scene
-                .contact_areas
-                .iter()
-                .zip(&scene.paper_shares)
-                .map(|(a, s)| format!("{:.0}% at {a}", 100.0 * s))
                 .collect::<Vec<_>>()
                 .join(", "),
             scene.flux_zeta,

@@ -3,8 +3,8 @@
 
 use std::collections::BTreeMap;
 
-use super::stats::{original_area, window_mean, AtFullResolution, Headline, Load};
-use super::{EnergyScene, PAPER_FAILURE_AREA};
+use super::stats::{original_area, ratio, window_mean, AtFullResolution, Headline, Load, Theory};
+use super::{EnergyScene, FAILS_BELOW};
 use crate::experiments::{Check, Criteria, Detail};
 use crate::stats::{decide, realizations, round_sig, Claim};
 
@@ -32,6 +32,23 @@ pub fn details(
         )
         .persson(0.0),
     );
+    details.push(Detail::new(
+        "improvement_headline",
+        format!(
+            "|E_exa / E_P - 1| - |E_exa / E_c - 1| at the headline load (a_r = {:.3}): how much \
+             closer the corrected theory is",
+            h.head.area.value
+        ),
+        h.improvement(),
+    ));
+    details.push(Detail::new(
+        "deviation_growth_low_load",
+        format!(
+            "|E_exa / E_c - 1| at the lowest load (a_r = {:.4}) less that at the headline load",
+            h.low.area.value
+        ),
+        h.growth(),
+    ));
     details
 }
 
@@ -64,6 +81,17 @@ fn load_details(
             full.corrected,
         )
         .persson(1.0),
+        Detail::new(
+            format!("corrected_start_ar{a}"),
+            format!(
+                "E_exa / E_c at the lowest magnification, zeta = {:.3}, a_r = {a} at full \
+                 resolution (p~0 = p0 / E* g_bar = {:.4}, g_bar at full resolution)",
+                zetas[0],
+                load.mean(|r| r.p0).value
+            ),
+            ratio(load, 0, Theory::Corrected),
+        )
+        .persson(1.0),
     ];
     for (w, window) in windows.iter().enumerate() {
         let s_w = load.mean(|r| window_mean(r, &r.windows[w]));
@@ -88,7 +116,8 @@ fn load_details(
 }
 
 /// The paper's findings: the correction brings the energy closer to the measurement, and
-/// (when the lowest load is below `a_r = 0.05`) fails there.
+/// (when the lowest load is below the contact area of the paper's claim
+/// [`FAILS_BELOW`]) fails there.
 pub fn checks(criteria: &Criteria, h: &Headline) -> Vec<Check> {
     let (head, low) = (&h.head, &h.low);
     let mut checks = vec![Check::new(
@@ -102,12 +131,13 @@ pub fn checks(criteria: &Criteria, h: &Headline) -> Vec<Check> {
             head.area.value
         ),
     )];
-    if low.area.value < PAPER_FAILURE_AREA {
+    let below = criteria.paper(FAILS_BELOW);
+    if let Some(below) = below.filter(|&b| low.area.value < b) {
         let growth = h.growth();
         checks.push(Check::new(
             "correction_fails_at_low_load",
             format!(
-                "below a_r = {PAPER_FAILURE_AREA} the corrected energy deviates from the \
+                "below a_r = {below} the corrected energy deviates from the \
                  measurement more than at the headline load (by {} combined standard errors)",
                 criteria.significance
             ),
@@ -150,9 +180,10 @@ pub fn golden(loads: &[Load], end: usize, h: &Headline) -> BTreeMap<String, f64>
 }
 
 /// The account, from the numbers.
-pub fn account(scene: &EnergyScene, zetas: &[f64], h: &Headline) -> String {
+pub fn account(scene: &EnergyScene, zetas: &[f64], h: &Headline, criteria: &Criteria) -> String {
     let (head, low) = (&h.head, &h.low);
-    let low_text = if low.area.value < PAPER_FAILURE_AREA {
+    let below = criteria.paper(FAILS_BELOW);
+    let low_text = if below.is_some_and(|b| low.area.value < b) {
         format!(
             " At the lowest load (a_r = {:.4}, {}) E_exa / E_c = {}.",
             low.area.value,

@@ -152,9 +152,64 @@ pub fn bin_rows(scene: &TransitionScene, results: &[(u64, TransitionResult)]) ->
     rows
 }
 
+/// The contact pressures counted as small for the shape of `Pr(p)`, in units of
+/// `p0 / a_r`: the bins that lie wholly below this.
+pub const SMALL_PRESSURE: f64 = 0.2;
+
+/// The local exponent `alpha` of `Pr(p) ~ p^alpha` at small pressure, from the old-pressure
+/// histogram of one realization: the least-squares slope of `ln n_k` against
+/// `ln (k + 1/2)` over the bins `k` that lie wholly below `SMALL_PRESSURE` (bin width
+/// `bin_width`, in units of `p0 / a_r`). Persson's distribution, eq. (pressureDistOri),
+/// vanishes linearly at `p = 0` (`alpha = 1`). `None` with fewer than two non-empty bins.
+pub fn small_pressure_exponent(bins: &[BinSums], bin_width: f64) -> Option<f64> {
+    let last = (SMALL_PRESSURE / bin_width + 1e-9).floor() as usize;
+    let points: Vec<(f64, f64)> = bins
+        .iter()
+        .take(last)
+        .enumerate()
+        .filter(|(_, b)| b.count > 0.0)
+        .map(|(k, b)| ((k as f64 + 0.5).ln(), b.count.ln()))
+        .collect();
+    if points.len() < 2 {
+        return None;
+    }
+    let n = points.len() as f64;
+    let (mx, my) = points
+        .iter()
+        .fold((0.0, 0.0), |(x, y), p| (x + p.0 / n, y + p.1 / n));
+    let (sxy, sxx) = points.iter().fold((0.0, 0.0), |(xy, xx), p| {
+        (xy + (p.0 - mx) * (p.1 - my), xx + (p.0 - mx) * (p.0 - mx))
+    });
+    Some(sxy / sxx)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_small_pressure_exponent_of_a_linear_and_a_flat_histogram() {
+        // Pr(p) ~ p: counts in bins of width w grow as the bins' centres, k + 1/2.
+        let counted = |f: &dyn Fn(f64) -> f64| -> Vec<BinSums> {
+            (0..10)
+                .map(|k| BinSums {
+                    count: f(k as f64 + 0.5),
+                    ..BinSums::default()
+                })
+                .collect()
+        };
+        let linear = small_pressure_exponent(&counted(&|c| 100.0 * c), 0.05).unwrap();
+        assert!((linear - 1.0).abs() < 1e-12, "{linear}");
+        let flat = small_pressure_exponent(&counted(&|_| 7.0), 0.05).unwrap();
+        assert!(flat.abs() < 1e-12, "{flat}");
+        // Bins beyond SMALL_PRESSURE do not count: a spike in bin 4 (0.2 to 0.25) changes
+        // nothing.
+        let mut spiked = counted(&|c| c * c);
+        spiked[4].count = 1e9;
+        let square = small_pressure_exponent(&spiked, 0.05).unwrap();
+        assert!((square - 2.0).abs() < 1e-12, "{square}");
+        assert!(small_pressure_exponent(&spiked, 0.15).is_none());
+    }
 
     fn bin(pairs: &[(f64, f64)]) -> BinSums {
         let mut b = BinSums::default();

@@ -3,11 +3,15 @@
 
 use std::collections::BTreeMap;
 
-use super::bins::{bin_rows, mean_of, over_realizations, region_mean, BinRow};
+use super::bins::{
+    bin_rows, mean_of, over_realizations, region_mean, small_pressure_exponent, BinRow,
+    SMALL_PRESSURE,
+};
 use super::tables::{bin_figure, bin_points, bin_table, common_account, level, transition_table};
 use super::{TransitionResult, TransitionScene};
 use crate::error::Result;
 use crate::experiments::{Check, Detail, Experiment, Table};
+use crate::persson::moments;
 use crate::persson::Correction;
 use crate::plot::{Figure, Series, Style};
 use crate::stats::{decide, round_sig, Claim, Estimate};
@@ -26,6 +30,8 @@ pub struct DiffusionStats {
     pub a_r: Estimate,
     /// The corrected theory's `S(a_r)`, eq. (gamma).
     pub s_corrected: f64,
+    /// The exponent of `Pr(p) ~ p^alpha` at small pressure, at `zeta`.
+    pub small_p_exponent: Estimate,
     /// Every analysed bin.
     pub rows: Vec<BinRow>,
 }
@@ -44,6 +50,12 @@ impl DiffusionStats {
             high: region(&|p| p >= scene.high_pressure),
             a_r,
             s_corrected: Correction::yang_persson().factor(a_r.value),
+            small_p_exponent: Estimate::mean_of(
+                &results
+                    .iter()
+                    .filter_map(|(_, r)| small_pressure_exponent(&r.bins, scene.bin_width))
+                    .collect::<Vec<_>>(),
+            ),
             rows: bin_rows(scene, results),
         }
     }
@@ -53,6 +65,9 @@ impl DiffusionStats {
         self.rows.iter().filter(|r| !r.suited).count()
     }
 }
+
+/// Points of the scan over `Dp_n / p'` of eq. (approxDeltaPress)'s error.
+const ERROR_POINTS: usize = 2001;
 
 type Run<'a> = crate::experiments::Run<'a, Diffusion>;
 
@@ -76,14 +91,28 @@ impl Experiment for Diffusion {
                 format!("D_n / D_P at p >= {} p0/a_r", run.scene.high_pressure),
                 s.high,
             )
-            .persson(1.0)
-            .paper(Some(1.0)),
+            .persson(1.0),
             Detail::new(
                 "s_corrected",
                 "corrected theory's S(a_r) (eq. gamma)",
                 Estimate::new(s.s_corrected, f64::NAN),
             )
             .persson(s.s_corrected),
+            Detail::new(
+                "approx_delta_p_error",
+                "largest relative error of eq. (approxDeltaPress) against the exact inversion \
+                 of eq. (2ndMoment), Dp_n / p' from 1e-3 to 1e3 (exact: no error bar)",
+                Estimate::new(moments::estimate_largest_error(ERROR_POINTS), 0.0),
+            ),
+            Detail::new(
+                "small_p_exponent",
+                format!(
+                    "exponent alpha of Pr(p) ~ p^alpha at zeta, fitted over the bins below \
+                     {SMALL_PRESSURE} p0/a_r (Persson's eq. pressureDistOri: 1)"
+                ),
+                s.small_p_exponent,
+            )
+            .persson(1.0),
         ]
     }
 

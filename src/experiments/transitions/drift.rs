@@ -39,6 +39,16 @@ pub fn contact_drift(scene: &TransitionScene, r: &TransitionResult) -> f64 {
     dp / n / scene.dzeta / (r.p0 / r.a_r_old)
 }
 
+/// `a_r(zeta + dzeta) / a_r(zeta) - 1` over the realizations.
+pub fn relative_area_change(results: &[(u64, TransitionResult)]) -> Estimate {
+    Estimate::mean_of(
+        &results
+            .iter()
+            .map(|(_, r)| r.a_r_new / r.a_r_old - 1.0)
+            .collect::<Vec<_>>(),
+    )
+}
+
 impl DriftStats {
     /// The statistics of the realizations' transitions.
     pub fn of(scene: &TransitionScene, results: &[(u64, TransitionResult)]) -> Self {
@@ -95,6 +105,15 @@ impl Experiment for Drift {
         ]
         .into_iter()
         .map(|(key, name, e)| Detail::new(key, name, e).persson(0.0))
+        .chain(std::iter::once(Detail::new(
+            "a_r_relative_change",
+            format!(
+                "relative change of a_r over the step, zeta {} -> {}",
+                scene.zeta,
+                scene.zeta + scene.dzeta
+            ),
+            relative_area_change(run.results),
+        )))
         .collect()
     }
 

@@ -1,0 +1,54 @@
+//! `claims`: the paper's claims, full and reduced scenes side by side, as a Markdown table
+//! printed or written between the markers of a file (the README's table).
+
+use std::path::PathBuf;
+
+use clap::Args as ClapArgs;
+use persson_check::error::{Error, Result};
+use persson_check::report::claims::{table, write_between_markers, MARKERS};
+use persson_check::report::read_outcomes;
+
+/// Arguments of `claims`.
+#[derive(ClapArgs, Debug)]
+pub struct Args {
+    /// Folder of the full scenes' outcomes (<name>.json).
+    #[arg(long, default_value = "results/full")]
+    full: PathBuf,
+    /// Folder of the reduced scenes' outcomes.
+    #[arg(long, default_value = "results/reduced")]
+    reduced: PathBuf,
+    /// A Markdown file to write the table into, between its `<!-- paper-claims -->` and
+    /// `<!-- /paper-claims -->` lines (default: print the table).
+    #[arg(long)]
+    write: Option<PathBuf>,
+}
+
+pub fn run(args: Args) -> Result<()> {
+    let read = |dir: &PathBuf, flag: &str| -> Result<Vec<_>> {
+        if !dir.is_dir() {
+            return Err(Error::invalid(
+                flag,
+                dir.display(),
+                "an existing folder of outcomes (<name>.json)",
+            ));
+        }
+        Ok(read_outcomes(dir)?.into_iter().map(|l| l.outcome).collect())
+    };
+    let md = table(
+        &read(&args.full, "--full")?,
+        &read(&args.reduced, "--reduced")?,
+    );
+    match args.write {
+        None => print!("{md}"),
+        Some(path) => {
+            write_between_markers(&path, &md)?;
+            println!(
+                "wrote the claims into {} (between {} and {})",
+                path.display(),
+                MARKERS.0,
+                MARKERS.1
+            );
+        }
+    }
+    Ok(())
+}
