@@ -12,8 +12,8 @@
 //! Outcomes, statistics and readings present on one side only are listed. The comparison
 //! fails when some `|z|` exceeds the threshold or something flips.
 //!
-//! The outcomes are read as plain JSON, so folders written by different versions of the
-//! code compare alike.
+//! The outcomes are read as [`Outcome`]s: a file that looks like one (it has `name`,
+//! `statistic` and `verdict`) but does not read as one is an error naming it.
 
 pub mod statistics;
 
@@ -27,6 +27,7 @@ use serde_json::Value;
 use self::statistics::{readings, Measured};
 use super::format::{md, pm, push_table};
 use crate::error::{Error, Result};
+use crate::validation::Outcome;
 
 /// The default threshold of `|z|`.
 pub const Z_THRESHOLD: f64 = 3.0;
@@ -101,7 +102,7 @@ pub struct Comparison {
 
 /// The outcomes (`<name>.json` holding `name`, `statistic` and `verdict`) directly in
 /// `dir`, by name; other JSON files are skipped. `flag` names the folder in errors.
-pub fn read_folder(dir: &Path, flag: &str) -> Result<BTreeMap<String, Value>> {
+pub fn read_folder(dir: &Path, flag: &str) -> Result<BTreeMap<String, Outcome>> {
     if !dir.is_dir() {
         return Err(Error::invalid(
             flag,
@@ -121,9 +122,12 @@ pub fn read_folder(dir: &Path, flag: &str) -> Result<BTreeMap<String, Value>> {
         let is_outcome = ["name", "statistic", "verdict"]
             .iter()
             .all(|k| value.get(k).is_some());
-        if let (true, Some(name)) = (is_outcome, value.get("name").and_then(Value::as_str)) {
-            out.insert(name.to_string(), value);
+        if !is_outcome {
+            continue;
         }
+        let outcome: Outcome = serde_json::from_value(value)
+            .map_err(|e| Error::bad_file(&path, format!("not an outcome ({e})")))?;
+        out.insert(outcome.name.clone(), outcome);
     }
     if out.is_empty() {
         return Err(Error::invalid(
@@ -178,7 +182,13 @@ pub fn compare(base: &Path, new: &Path, z_threshold: f64) -> Result<Comparison> 
 }
 
 /// The statistics and readings of one outcome on both sides, into `c`.
-fn compare_outcome(name: &str, base: &Value, new: &Value, z_threshold: f64, c: &mut Comparison) {
+fn compare_outcome(
+    name: &str,
+    base: &Outcome,
+    new: &Outcome,
+    z_threshold: f64,
+    c: &mut Comparison,
+) {
     let bs = statistics::statistics(base);
     let ns: BTreeMap<String, Measured> = statistics::statistics(new)
         .into_iter()
