@@ -1,10 +1,13 @@
 //! `audit`: the cheapest committed full job of one validation, recomputed alone with this
 //! build, equals its stored result byte for byte; after one byte of a copy of that result
-//! is changed, the audit names the number that differs and exits 1.
+//! is changed, the audit names the number that differs and exits 1. The copy holding that
+//! one result, the audit lists every other validation and solver of the crate as without a
+//! stored result; results/full has a result for each and none that no job names.
 
 use std::path::Path;
 use std::process::Command;
 
+use persson_check::engine::solver::SolverKind;
 use persson_check::validation::audit::candidates;
 use persson_check::validation::source::builtin_sources;
 use persson_check::validation::Registry;
@@ -40,6 +43,7 @@ fn the_cheapest_committed_job_recomputes_identical_and_a_changed_byte_is_found()
     let full = Path::new(env!("CARGO_MANIFEST_DIR")).join("results/full");
     let found = candidates(&Registry::builtin(), &builtin_sources(), &full).unwrap();
     assert!(found.orphans.is_empty(), "{:?}", found.orphans);
+    assert!(found.unstored.is_empty(), "{:?}", found.unstored);
     let cheapest = found
         .candidates
         .iter()
@@ -55,6 +59,30 @@ fn the_cheapest_committed_job_recomputes_identical_and_a_changed_byte_is_found()
     assert_eq!(code, 0, "{}", a["summary"]);
     assert_eq!(a["jobs"][0]["finding"], "identical", "{}", a["jobs"][0]);
     assert_eq!(a["passed"], true);
+    // Every other validation and solver of the crate has no stored result in the copy.
+    let unstored: Vec<(&str, &str)> = a["unstored"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|u| {
+            (
+                u["validation"].as_str().unwrap(),
+                u["solver"].as_str().unwrap(),
+            )
+        })
+        .collect();
+    for solver in <SolverKind as clap::ValueEnum>::value_variants() {
+        let pair = ("contact_area", solver.name());
+        assert_eq!(
+            unstored.contains(&pair),
+            *solver != cheapest.solver,
+            "{pair:?} in {unstored:?}"
+        );
+        assert!(
+            unstored.contains(&("d_onset", solver.name())),
+            "{unstored:?}"
+        );
+    }
 
     // One digit of the result changes: the first digit after the sixth in the result.
     let mut bytes = std::fs::read(&copy).unwrap();

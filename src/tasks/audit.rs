@@ -21,7 +21,7 @@ use crate::plot::significant;
 use crate::provenance;
 use crate::validation::audit::{
     candidates, differences, only_measured_times, pick, recompute, top_level_value, Candidate,
-    Difference, Reason, Uncovered, COST_MARGIN,
+    Difference, Found, Reason, Uncovered, Unstored, COST_MARGIN,
 };
 use crate::validation::source::{builtin_sources, select, Source};
 use crate::validation::Registry;
@@ -175,6 +175,8 @@ pub struct Audit {
     pub orphans: Vec<PathBuf>,
     /// Validations and solvers no sampled job covers.
     pub uncovered: Vec<Uncovered>,
+    /// Validations and solvers (every solver of the crate) with no stored result at all.
+    pub unstored: Vec<Unstored>,
     /// Every sampled job, in run order.
     pub jobs: Vec<JobAudit>,
     /// The estimate of the jobs run, seconds.
@@ -252,12 +254,8 @@ fn hash(label: &str) -> &str {
 }
 
 /// The candidates of `opts.from` after the filters, with every validation and job named
-/// checked.
-fn chosen(
-    registry: &Registry,
-    sources: &[Source],
-    opts: &AuditOptions,
-) -> Result<(Vec<Candidate>, Vec<PathBuf>)> {
+/// checked; the orphans and the validations and solvers without stored results as found.
+fn chosen(registry: &Registry, sources: &[Source], opts: &AuditOptions) -> Result<Found> {
     if !opts.from.join("jobs").is_dir() {
         return Err(Error::invalid(
             "--from",
@@ -266,14 +264,12 @@ fn chosen(
         ));
     }
     select(sources.to_vec(), &opts.validations).map_err(|e| e.with_field("--validation"))?;
-    let found = candidates(registry, sources, &opts.from)?;
-    let mut cands: Vec<Candidate> = found
-        .candidates
+    let mut found = candidates(registry, sources, &opts.from)?;
+    let named = |v: &String| opts.validations.is_empty() || opts.validations.contains(v);
+    found.unstored.retain(|u| named(&u.validation));
+    let mut cands: Vec<Candidate> = std::mem::take(&mut found.candidates)
         .into_iter()
-        .filter(|c| {
-            opts.validations.is_empty()
-                || c.validations.iter().any(|v| opts.validations.contains(v))
-        })
+        .filter(|c| c.validations.iter().any(named))
         .collect();
     if !opts.jobs.is_empty() {
         for key in &opts.jobs {
@@ -310,7 +306,8 @@ fn chosen(
             "a run folder holding results of jobs today's definitions plan",
         ));
     }
-    Ok((cands, found.orphans))
+    found.candidates = cands;
+    Ok(found)
 }
 
 /// Audits `opts.from`: draws the sample, recomputes each job in turn (telling `event`),
@@ -327,7 +324,11 @@ pub fn audit(
     }
     super::check_out_dir(&opts.out, &super::Flags::default())?;
     let sources = builtin_sources();
-    let (cands, orphans) = chosen(registry, &sources, opts)?;
+    let Found {
+        candidates: cands,
+        orphans,
+        unstored,
+    } = chosen(registry, &sources, opts)?;
     let budget = if opts.jobs.is_empty() {
         opts.budget_s
     } else {
@@ -394,6 +395,7 @@ pub fn audit(
         candidates: cands.len(),
         orphans,
         uncovered: selection.uncovered,
+        unstored,
         estimate_s: jobs.iter().filter(ran).map(|j| j.job.estimate_s).sum(),
         measured_s: jobs.iter().filter_map(|j| j.measured_s).sum(),
         passed: !jobs
@@ -540,6 +542,14 @@ impl Audit {
                 })
                 .collect();
             let _ = write!(s, " Not covered within the budget: {}.", list.join(", "));
+        }
+        if !self.unstored.is_empty() {
+            let list: Vec<String> = self
+                .unstored
+                .iter()
+                .map(|u| format!("{} {} ({} jobs planned)", u.validation, u.solver, u.planned))
+                .collect();
+            let _ = write!(s, " No stored result at all: {}.", list.join(", "));
         }
         if !self.orphans.is_empty() {
             let _ = write!(
@@ -691,6 +701,17 @@ impl Audit {
                 }
                 _ => {}
             }
+        }
+        if !self.unstored.is_empty() {
+            s.push_str("## Validations and solvers without a stored result\n\n");
+            for u in &self.unstored {
+                let _ = writeln!(
+                    s,
+                    "- {} {}: none of its {} jobs has a stored result",
+                    u.validation, u.solver, u.planned
+                );
+            }
+            s.push('\n');
         }
         if !self.orphans.is_empty() {
             s.push_str("## Stored results no job of today's definitions names\n\n");

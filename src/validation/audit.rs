@@ -4,8 +4,10 @@
 //!
 //! A job result (`jobs/<family>/<scale>/<key>.json`, see [`super::store`]) is found by its
 //! key, a hash of everything the job computes, so a stored result that today's plan names
-//! is a result of the very job today's code would run ([`candidates`]). Results that no job
-//! of today's definitions names (an edited scene) cannot be recomputed and are listed.
+//! is a result of the very job today's code would run ([`candidates`]). Every solver the
+//! crate has ([`SolverKind`]'s variants) is looked for. Results that no job of today's
+//! definitions names (an edited scene) cannot be recomputed and are listed, and so are the
+//! validations and solvers whose jobs have no stored result at all.
 //!
 //! The sample ([`pick`]): for every validation and solver, in increasing order of the
 //! cheapest job that covers the pair (by the cost model, [`super::plan::estimate_seconds`]),
@@ -88,6 +90,19 @@ pub struct Found {
     pub candidates: Vec<Candidate>,
     /// Those no job of today's definitions names (relative paths).
     pub orphans: Vec<PathBuf>,
+    /// Validations and solvers with planned jobs of which none has a stored result.
+    pub unstored: Vec<Unstored>,
+}
+
+/// A validation and solver whose planned jobs have no stored result in the run folder.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Unstored {
+    /// The validation.
+    pub validation: String,
+    /// The solver.
+    pub solver: String,
+    /// How many jobs its definition plans.
+    pub planned: usize,
 }
 
 /// The scales with a jobs folder under `from/jobs/<family>/`.
@@ -135,14 +150,25 @@ fn stored_files(from: &Path) -> Vec<PathBuf> {
 }
 
 /// The stored results in `from` that the definitions `sources` plan, at every scale with
-/// a jobs folder there, with both solvers; and those they do not plan.
+/// a jobs folder there, with every solver of the crate; those they do not plan; and the
+/// validations and solvers with planned jobs but no stored result.
 pub fn candidates(registry: &Registry, sources: &[Source], from: &Path) -> Result<Found> {
     let mut by_path: BTreeMap<PathBuf, usize> = BTreeMap::new();
     let mut found = Found::default();
+    // (validation, solver) -> (jobs planned, jobs stored)
+    let mut pairs: BTreeMap<(String, &'static str), (usize, usize)> = BTreeMap::new();
     for scale in scales_in(from) {
-        let opts = RunOptions::new(scale, from);
+        let opts = RunOptions {
+            solvers: <SolverKind as clap::ValueEnum>::value_variants().to_vec(),
+            ..RunOptions::new(scale, from)
+        };
         for source in sources {
             for unit in registry.jobs(source, &opts)? {
+                let pair = pairs
+                    .entry((unit.validation.clone(), unit.solver.name()))
+                    .or_default();
+                pair.0 += 1;
+                pair.1 += usize::from(unit.path.is_file());
                 if let Some(&i) = by_path.get(&unit.path) {
                     let c: &mut Candidate = &mut found.candidates[i];
                     if !c.validations.contains(&unit.validation) {
@@ -176,6 +202,15 @@ pub fn candidates(registry: &Registry, sources: &[Source], from: &Path) -> Resul
     found.orphans = stored_files(from)
         .into_iter()
         .filter(|p| !planned.contains(p))
+        .collect();
+    found.unstored = pairs
+        .into_iter()
+        .filter(|(_, (_, stored))| *stored == 0)
+        .map(|((validation, solver), (planned, _))| Unstored {
+            validation,
+            solver: solver.into(),
+            planned,
+        })
         .collect();
     Ok(found)
 }
