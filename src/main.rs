@@ -4,12 +4,12 @@
 //! persson-check surface  (--scene FILE.toml | --n N --hurst H --lambda-l L --lambda-s S --seed K)
 //!                        [--zeta Z] --out FILE.npy
 //! persson-check solve    (--heights FILE.npy | --scene FILE.toml) (--p0 P | --contact-area A)
-//!                        [--zeta Z] [--solver gfmd|cg] [--tol T] --out DIR
-//! persson-check validate [NAME ...] [--full] --out DIR
+//!                        [--zeta Z] [--solver gfmd|cg|fire] [--tol T] --out DIR
+//! persson-check validate [NAME ...] [--full] [--solvers S1,S2,...] --out DIR
 //! persson-check report   [--from DIR] --out FILE.md [--golden DIR] [--no-speed] [--speed-n N]
 //! persson-check speed    [--n N] [--floor-n N ...] [--repeats K] --out DIR
 //! persson-check check-surface --heights FILE... --pixel-size DX [--periodic]
-//!                        [--loads P1,P2,...] [--solver gfmd|cg] [--no-cross-check] --out DIR
+//!                        [--loads P1,P2,...] [--solver gfmd|cg|fire] [--no-cross-check] --out DIR
 //! persson-check audit    [--from DIR] [--budget 20m] [--seed K] [--job KEY ...]
 //!                        [--validation NAME ...] [--out DIR]
 //! persson-check compare  BASE NEW [--out FILE.md] [--z Z]

@@ -5,6 +5,9 @@
 //! failing solves). Run before and after a change and compare the output:
 //!
 //! `cargo test --test suite gfmd_bits -- --ignored --nocapture`
+//!
+//! The other dynamics methods' probes ([`crate::fire_bits`]) run the same solves
+//! ([`probe`]).
 
 use persson_check::engine::contact::ContactProblem;
 use persson_check::engine::solver::{Gfmd, SolveOptions, Solver, Start};
@@ -20,6 +23,11 @@ const SWEEP_SHELLS: usize = 4;
 #[test]
 #[ignore = "a probe: prints digests to compare before and after a change"]
 fn gfmd_bits() {
+    probe(&|| Box::new(Gfmd::default()), "GFMD_BITS_OUT");
+}
+
+/// The probe's solves with fresh solvers from `build`, emitted as `var` says ([`emit`]).
+pub(crate) fn probe(build: &dyn Fn() -> Box<dyn Solver + Send>, var: &str) {
     let mut out = Vec::new();
     for Scene {
         n,
@@ -34,20 +42,20 @@ fn gfmd_bits() {
             let label = format!("n={n} H={hurst} p0={p0}");
             // One solver for both solves: the warm solve begins from the step the
             // cold one ended with.
-            let mut gfmd = Gfmd::default();
+            let mut solver = build();
             let problem = ContactProblem::new(&model, &h, p0).unwrap();
-            let cold = gfmd.solve(&problem, Start::Cold, &opts);
+            let cold = solver.solve(&problem, Start::Cold, &opts);
             out.push(line(&format!("{label} cold"), &cold));
             if let Ok(prev) = &cold {
                 let warm_problem = ContactProblem::new(&model, &h, p0 * 1.1).unwrap();
-                let warm = gfmd.solve(&warm_problem, Start::Warm(prev), &opts);
+                let warm = solver.solve(&warm_problem, Start::Warm(prev), &opts);
                 out.push(line(&format!("{label} warm"), &warm));
             }
         }
         // A load search, then shells added one by one, warm-started from predicted
         // states, with one solver throughout.
         let steps = shell_steps(&surface, SWEEP_FROM, f64::INFINITY);
-        let mut sweep = Sweep::with_solver(&surface, &model, Box::new(Gfmd::default()), opts);
+        let mut sweep = Sweep::with_solver(&surface, &model, build(), opts);
         let label = format!("n={n} H={hurst} sweep");
         match sweep.find_load(steps[0], 0.1) {
             Ok(p0) => {
@@ -64,7 +72,7 @@ fn gfmd_bits() {
         }
         if n == 128 {
             failures(
-                &mut Gfmd::default(),
+                build().as_mut(),
                 &model,
                 &h,
                 &format!("n={n} H={hurst}"),
@@ -72,5 +80,5 @@ fn gfmd_bits() {
             );
         }
     }
-    emit(&out, "GFMD_BITS_OUT");
+    emit(&out, var);
 }

@@ -22,7 +22,8 @@ use persson_check::engine::surface::{Surface, SurfaceParams};
 use persson_check::error::Termination;
 use persson_check::Error;
 
-const BOTH: [SolverKind; 2] = [SolverKind::Cg, SolverKind::Gfmd];
+/// Every solver, in the order of the list.
+const ALL: [SolverKind; SolverKind::ALL.len()] = SolverKind::ALL;
 
 /// The tolerance of the scenes: two orders tighter than the default, so that agreement
 /// between the solvers is tested well below the size of any physical effect.
@@ -102,6 +103,27 @@ fn cold(scene: &str, kind: SolverKind, model: &Model, h: &[f64], p0: f64) -> Con
     converge(scene, kind, kind.build().as_mut(), &problem, Start::Cold)
 }
 
+/// The load CG's search ended at (`found`: each solver's search, in the order of
+/// [`SolverKind::ALL`]), where every other solver's solution agrees with CG's: its own if
+/// its search ended there too (the searches see the same areas at the same loads), or a
+/// cold solve at that load.
+fn agree_with_cg(scene: &str, found: &[ContactSolution], model: &Model, h: &[f64]) -> f64 {
+    let cg = &found[SolverKind::Cg.index()];
+    for (&kind, s) in ALL.iter().zip(found) {
+        if kind == SolverKind::Cg {
+            continue;
+        }
+        let same = if s.p0 == cg.p0 {
+            s.clone()
+        } else {
+            let label = format!("{scene}, {} at cg's load", kind.name());
+            cold(&label, kind, model, h, cg.p0)
+        };
+        assert_agree(scene, cg, &same, TOL);
+    }
+    cg.p0
+}
+
 /// The hard-wall conditions on a converged solution, checked from its fields alone.
 fn check_solution(
     scene: &str,
@@ -138,14 +160,11 @@ fn check_solution(
         field::min(p)
     );
     // The load: CG rescales the pressure to it at every iteration, so it holds to
-    // rounding. GFMD's pressure is the wall's reaction, whose mean differs from p0 by the
-    // stress the dynamics has not yet relaxed: that is the `load` part of its residual,
-    // bounded by the tolerance.
+    // rounding. A dynamics method's pressure (GFMD's, FIRE's) is the wall's reaction,
+    // whose mean differs from p0 by the stress the dynamics has not yet relaxed: that is
+    // the `load` part of its residual, bounded by the tolerance.
     let load = (field::mean(p) - problem.p0).abs() / problem.p0;
-    let bound = match kind {
-        SolverKind::Cg => 1e-12,
-        SolverKind::Gfmd => tol,
-    };
+    let bound = if kind == SolverKind::Cg { 1e-12 } else { tol };
     assert!(
         load <= bound,
         "{scene}, {name}: mean(p) off p0 by {load:e} (relative)"
@@ -264,7 +283,7 @@ fn very_low_load_single_asperity() {
         p0_guess: persson_load_guess(1e-4, 1.0, 1.0),
     };
     let mut found = Vec::new();
-    for kind in BOTH {
+    for kind in ALL {
         let mut solver = kind.build();
         let s = solve_for_area(
             solver.as_mut(),
@@ -295,27 +314,14 @@ fn very_low_load_single_asperity() {
         assert!(spread(&points, n) <= 2, "contact points {points:?}");
         found.push(s);
     }
-    // Both searches see the same areas at the same loads, so they end at the same load.
-    let (cg, gfmd) = (&found[0], &found[1]);
-    let p0 = cg.p0;
-    let gfmd_same = if gfmd.p0 == p0 {
-        gfmd.clone()
-    } else {
-        cold(
-            "a_r = 1e-4, gfmd at cg's load",
-            SolverKind::Gfmd,
-            &model,
-            &h,
-            p0,
-        )
-    };
-    assert_agree("a_r = 1e-4", cg, &gfmd_same, TOL);
+    // The searches see the same areas at the same loads, so they end at the same load.
+    let p0 = agree_with_cg("a_r = 1e-4", &found, &model, &h);
 
     // Warm starts across loads, by a decade up and down. At p0 / 10 only the highest point
     // touches; from there the contact set must grow, and a lone contact point's gap is zero
     // by construction, so the conjugate-gradient step is 0/0 (this start once failed with
     // a non-finite step length).
-    for (kind, s) in BOTH.iter().zip(&found) {
+    for (kind, s) in ALL.iter().zip(&found) {
         let mut steps = Vec::new();
         let lone = cold("a_r = 1e-4: p0 / 10", *kind, &model, &h, 0.1 * p0);
         assert_eq!(contact_points(&lone).len(), 1, "{}", kind.name());
@@ -376,7 +382,7 @@ fn near_full_contact() {
         p0_guess: persson_load_guess(0.9995, 1.0, 1.0),
     };
     let mut found = Vec::new();
-    for kind in BOTH {
+    for kind in ALL {
         let mut solver = kind.build();
         let s = solve_for_area(
             solver.as_mut(),
@@ -403,24 +409,11 @@ fn near_full_contact() {
         assert!(a > 0.999 && a < 1.0, "{}: a_r = {a}", kind.name());
         found.push(s);
     }
-    let (cg, gfmd) = (&found[0], &found[1]);
-    let p0 = cg.p0;
-    let gfmd_same = if gfmd.p0 == p0 {
-        gfmd.clone()
-    } else {
-        cold(
-            "a_r = 0.9995, gfmd at cg's load",
-            SolverKind::Gfmd,
-            &model,
-            &h,
-            p0,
-        )
-    };
-    assert_agree("a_r = 0.9995", cg, &gfmd_same, TOL);
+    let p0 = agree_with_cg("a_r = 0.9995", &found, &model, &h);
 
     // Warm starts: a little less load (a_r stays > 0.99), from almost no contact (p0 / 1e5,
     // a few points) to almost full contact in one step and back, and zeta 8 -> 16.
-    for (kind, s) in BOTH.iter().zip(&found) {
+    for (kind, s) in ALL.iter().zip(&found) {
         let mut steps = Vec::new();
         steps.push(assert_warm_reaches_cold(
             "a_r = 0.9995: p0 -> 0.8 p0",
@@ -480,7 +473,7 @@ fn hurst_03_at_zeta_128() {
     }
     // The last magnification step of a sweep, warm: zeta 64 -> 128.
     let h64 = surface.heights_at(64.0, &model.fft);
-    for kind in BOTH {
+    for kind in ALL {
         let at64 = cold("H = 0.3, zeta 64, p0 = 0.1", kind, &model, &h64, 0.1);
         let step =
             assert_warm_reaches_cold("H = 0.3: zeta 64 -> 128", kind, &model, &h, 0.1, &at64);
@@ -505,7 +498,7 @@ fn single_tall_spike() {
     // The spike alone carries the load: p = p0 N^2 on it, 0 elsewhere.
     let p0 = 1e-4;
     let mut alone = Vec::new();
-    for kind in BOTH {
+    for kind in ALL {
         let s = cold("spike alone, p0 = 1e-4", kind, &model, &h, p0);
         assert_eq!(contact_points(&s), vec![spike], "{}", kind.name());
         let exact = p0 * n2;
@@ -524,7 +517,7 @@ fn single_tall_spike() {
     // Pressed into the rough surface.
     let p0 = 3e-3;
     let mut pressed = Vec::new();
-    for kind in BOTH {
+    for kind in ALL {
         let s = cold("spike in rough contact, p0 = 3e-3", kind, &model, &h, p0);
         let a = s.contact_area();
         assert!(a > 0.3 && a < 0.6, "{}: a_r = {a}", kind.name());
@@ -569,7 +562,7 @@ fn step() {
     for p0 in [0.01, 0.1] {
         let scene = format!("step, p0 = {p0}");
         let mut both = Vec::new();
-        for kind in BOTH {
+        for kind in ALL {
             let s = cold(&scene, kind, &model, &h, p0);
             let p = &s.pressure;
             let largest = field::max(p);
@@ -634,7 +627,7 @@ fn scaled_heights_and_load() {
             / (s * largest)
     };
     for p0 in [1.4e-5, 0.05, 1.6] {
-        for kind in BOTH {
+        for kind in ALL {
             let base = cold(&format!("scale 1, p0 = {p0}"), kind, &model, &h, p0);
             for s in [1e6, 1e-6, 1048576.0, 1.0 / 1048576.0] {
                 let hs: Vec<f64> = h.iter().map(|x| s * x).collect();
@@ -710,7 +703,7 @@ fn sinusoid(n: usize, h0: f64) -> (Model, Vec<f64>) {
 #[test]
 fn westergaard_on_non_power_of_two_grids() {
     let h0 = 1.0;
-    for kind in BOTH {
+    for kind in ALL {
         for ratio in [0.3, 0.8] {
             for n in [64usize, 100, 127, 128] {
                 let (model, h) = sinusoid(n, h0);
@@ -836,7 +829,7 @@ fn exhausted_budgets_on_hard_scenes_are_clean_errors() {
     ];
     for (scene, model, h, p0) in scenes {
         let problem = ContactProblem::new(model, h, p0).unwrap();
-        for kind in BOTH {
+        for kind in ALL {
             for max_iter in [1, 7, 20] {
                 let opts = SolveOptions { tol: TOL, max_iter };
                 let out = run(

@@ -9,6 +9,7 @@ mod check_surface;
 mod common;
 mod compare;
 mod determinism;
+mod fire_bits;
 mod gfmd_bits;
 mod hard_scenes;
 mod one_realization;

@@ -4,6 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use persson_check::engine::solver::SolverKind;
 use persson_check::error::Result;
 use persson_check::experiments::{Check, Detail, Experiment, JobContext, Jobs, Run, Work};
 use persson_check::stats::{decide, Claim, Estimate};
@@ -144,7 +145,8 @@ fn a_registered_experiment_runs_like_a_built_in_one() {
     assert_eq!(o.details[0].key, "count");
     // Both solvers ran (the toy ignores them): the cross-check agrees exactly.
     assert_eq!(o.solver, "gfmd");
-    let cross = o.cross_check.as_ref().expect("a cross-check");
+    assert_eq!(o.cross_checks.len(), 1, "{:?}", o.cross_checks);
+    let cross = &o.cross_checks[0];
     assert!(cross.agrees && cross.value == o.value, "{cross:?}");
     assert!(out.path().join("coin.json").exists());
     assert_eq!(
@@ -154,4 +156,36 @@ fn a_registered_experiment_runs_like_a_built_in_one() {
         12,
         "one stored result per job and solver"
     );
+}
+
+#[test]
+fn every_solver_after_the_headline_gives_a_cross_check() {
+    let source = Source {
+        path: "builtin:coin".into(),
+        text: DEFINITION.to_string(),
+    };
+    let registry = Registry::builtin().with::<Coin>("coin");
+    let out = tempfile::tempdir().unwrap();
+    let mut opts = RunOptions::new(Scale::Reduced, out.path());
+    opts.solvers = SolverKind::ALL.iter().rev().copied().collect();
+    let o = registry.run(&source, &opts).unwrap().unwrap();
+    assert_eq!(o.solver, opts.solvers[0].name());
+    let crossed: Vec<&str> = o.cross_checks.iter().map(|c| c.solver.as_str()).collect();
+    let rest: Vec<&str> = opts.solvers[1..].iter().map(|s| s.name()).collect();
+    assert_eq!(
+        crossed, rest,
+        "one cross-check per solver, in the run's order"
+    );
+    assert!(o.cross_checks.iter().all(|c| c.agrees));
+    // The outcome file lists them all.
+    let written: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.path().join("coin.json")).unwrap()).unwrap();
+    assert_eq!(
+        written["cross_checks"].as_array().unwrap().len(),
+        rest.len()
+    );
+    // A solver named twice is refused, naming it.
+    opts.solvers = vec![SolverKind::Cg, SolverKind::Gfmd, SolverKind::Cg];
+    let e = registry.run(&source, &opts).unwrap_err().to_string();
+    assert!(e.contains("solvers") && e.contains("cg twice"), "{e}");
 }

@@ -5,7 +5,8 @@ command line itself): the same surfaces, solvers, theory and validations, with n
 arrays in and out.
 
 * :func:`surface` -- a self-affine surface, the command line's realization bit for bit;
-* :func:`solve` -- hard-wall contact on any square height array (CG or GFMD);
+* :func:`solve` -- hard-wall contact on any square height array, by any solver of
+  :data:`SOLVERS` (CG, GFMD, FIRE);
 * :func:`sweep` -- warm-started solves while roughness is added, as an iterator;
 * :func:`theory` -- Persson's theory on a surface's own spectrum;
 * :func:`validate`, :func:`plan`, :func:`merge`, :func:`report` -- the validations;
@@ -27,6 +28,7 @@ import numpy as _np
 
 from . import _native
 from ._native import (
+    SOLVERS,
     Solution,
     SolveError,
     Sweep,
@@ -38,6 +40,7 @@ from ._native import (
 )
 
 __all__ = [
+    "SOLVERS",
     "Solution",
     "SolveError",
     "Sweep",
@@ -249,7 +252,7 @@ surface, treated as realizations, from which the error bars come. Scans must be 
 and windows the spectrum; ``periodic=True`` solves with the periodic kernel, as
 :func:`solve` does. ``loads`` are nominal pressures ``p0 / E*`` (default: eight loads
 giving contact areas of about 1% to 30%). ``solver`` heads the comparison, and
-``cross_check`` also solves with the other one. ``out`` writes ``surface.json``,
+``cross_check`` also solves with a second solver (CG for GFMD, GFMD for any other). ``out`` writes ``surface.json``,
 ``surface.md`` and the figures there. The result's ``curve`` holds, per load, ``p0``,
 ``a_r`` and Persson's ``a_r_persson`` and ``a_r_persson_corrected`` with the elastic
 energies; ``comparisons`` holds the verdicts. The GIL is released; Ctrl-C stops it.

@@ -8,10 +8,13 @@ import numpy as np
 import numpy.typing as npt
 
 __version__: str
+SOLVERS: tuple[str, ...]
 
 Array2 = npt.NDArray[np.float64]
 Progress = Callable[[int, float], object]
-SolverName = Literal["cg", "gfmd"]
+# The names of SOLVERS, in its order (a test keeps the two in step).
+SolverName = Literal["gfmd", "cg", "fire"]
+SolverNames = Union[SolverName, Sequence[SolverName], None]
 Names = Union[str, Sequence[str], None]
 Path = Union[str, os.PathLike[str]]
 
@@ -153,7 +156,7 @@ def validate(
     names: Names = None,
     out: Path = "out",
     full: bool = False,
-    solver: Optional[SolverName] = None,
+    solver: SolverNames = None,
     resume: bool = False,
     dir: Optional[Path] = None,
     threads: Optional[int] = None,
@@ -164,7 +167,7 @@ def plan(
     names: Names = None,
     shards: Optional[int] = None,
     full: bool = False,
-    solver: Optional[SolverName] = None,
+    solver: SolverNames = None,
     out: Optional[Path] = None,
     dir: Optional[Path] = None,
 ) -> dict[str, Any]:
@@ -174,7 +177,7 @@ def merge(
     names: Names = None,
     out: Path = "out",
     full: bool = False,
-    solver: Optional[SolverName] = None,
+    solver: SolverNames = None,
     accept_other_commit: bool = False,
     dir: Optional[Path] = None,
 ) -> list[dict[str, Any]]:

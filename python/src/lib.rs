@@ -35,6 +35,10 @@ use pyo3::prelude::*;
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("SolveError", m.py().get_type::<errors::SolveError>())?;
+    m.add(
+        "SOLVERS",
+        pyo3::types::PyTuple::new(m.py(), persson_check::engine::solver::SolverKind::NAMES)?,
+    )?;
     m.add_class::<solve::Solution>()?;
     m.add_class::<sweeps::Sweep>()?;
     m.add_class::<sweeps::SweepStep>()?;

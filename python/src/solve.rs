@@ -118,7 +118,7 @@ impl Solution {
         self.summary.termination.to_string()
     }
 
-    /// Solver name, "cg" or "gfmd".
+    /// Solver name, one of `SOLVERS`.
     #[getter]
     fn solver(&self) -> &'static str {
         self.summary.solver
@@ -211,7 +211,8 @@ impl Solution {
 /// `p0` or at the load that gives relative contact area `contact_area`, as
 /// `persson-check solve --heights h.npy` does. Returns a `Solution`.
 ///
-/// `lambda_l` is the wavelength that defines zeta = |q| / q_l (default: the box size);
+/// `solver` is one of `SOLVERS`. `lambda_l` is the wavelength that defines
+/// zeta = |q| / q_l (default: the box size);
 /// `zeta` solves at that magnification (default: full resolution). `threads` sets the
 /// worker threads (default: all cores). `progress(iteration, residual)` is called every
 /// 16 iterations. The GIL is released during the solve; Ctrl-C stops it and raises

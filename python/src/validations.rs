@@ -20,15 +20,20 @@ use crate::conversions::{name_list, record};
 use crate::errors::{to_py, OrRaise};
 use crate::worker::{run_blocking, Hook};
 
-/// The options of a run from Python (no progress bars), `solver` by its name.
+/// The options of a run from Python (no progress bars), `solver` a name or a list of
+/// names (the first for the headline, each other for a cross-check; None: the default).
 fn run_options(
     full: bool,
     out: PathBuf,
     resume: bool,
-    solver: Option<&str>,
+    solver: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<RunOptions> {
-    let solver = solver.map(parse::solver).transpose().or_raise()?;
-    Ok(task::run_options(full, out, resume, false, solver))
+    let solvers = name_list(solver)?
+        .iter()
+        .map(|name| parse::solver(name))
+        .collect::<persson_check::Result<Vec<_>>>()
+        .or_raise()?;
+    Ok(task::run_options(full, out, resume, false, &solvers))
 }
 
 /// Runs the definitions, checked first, with `opts`; stops between definitions when
@@ -66,7 +71,8 @@ fn run_definitions(
 /// `persson-check validate NAMES --out OUT` does, writing the same files into `out`, and
 /// returns their outcomes as a list of dicts with the keys of `<name>.json`
 /// (`o["name"]`, `o["verdict"]`, `o["reproduced"]`, ...). `full=True` runs the paper-scale
-/// scenes; `solver` ("gfmd" or "cg") runs one solver only; `resume=True` reuses the job
+/// scenes; `solver`, a name of `SOLVERS` or a list of them, chooses the solvers (the first
+/// for the headline, each other for a cross-check; default "gfmd" and "cg"); `resume=True` reuses the job
 /// results already in `out`; `dir` reads the definitions from a folder of `.toml` files.
 /// The GIL is released while it runs; Ctrl-C takes effect once the validation under way
 /// has finished.
@@ -78,7 +84,7 @@ pub fn validate<'py>(
     names: Option<&Bound<'py, PyAny>>,
     out: PathBuf,
     full: bool,
-    solver: Option<&str>,
+    solver: Option<&Bound<'py, PyAny>>,
     resume: bool,
     dir: Option<PathBuf>,
     threads: Option<i64>,
@@ -105,7 +111,7 @@ pub fn plan<'py>(
     names: Option<&Bound<'py, PyAny>>,
     shards: Option<i64>,
     full: bool,
-    solver: Option<&str>,
+    solver: Option<&Bound<'py, PyAny>>,
     out: Option<PathBuf>,
     dir: Option<PathBuf>,
 ) -> PyResult<Bound<'py, PyAny>> {
@@ -136,7 +142,7 @@ pub fn merge<'py>(
     names: Option<&Bound<'py, PyAny>>,
     out: PathBuf,
     full: bool,
-    solver: Option<&str>,
+    solver: Option<&Bound<'py, PyAny>>,
     accept_other_commit: bool,
     dir: Option<PathBuf>,
 ) -> PyResult<Vec<Bound<'py, PyAny>>> {

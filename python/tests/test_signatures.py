@@ -52,6 +52,19 @@ def _stubs():
     return functions, methods
 
 
+def test_the_stubs_name_every_solver_in_order():
+    tree = ast.parse(STUBS.read_text())
+    aliases = {
+        node.targets[0].id: node.value
+        for node in tree.body
+        if isinstance(node, ast.Assign) and isinstance(node.targets[0], ast.Name)
+    }
+    literal = aliases["SolverName"]
+    assert ast.unparse(literal.value) == "Literal"
+    assert ast.literal_eval(literal.slice) == persson_check.SOLVERS
+    assert len(set(persson_check.SOLVERS)) == len(persson_check.SOLVERS) >= 2
+
+
 def test_every_public_function_is_listed():
     assert set(FUNCTIONS) == {
         "check_surface", "contact_area_law", "merge", "plan", "report", "solve", "surface", "sweep",

@@ -21,7 +21,10 @@ def test_reduced_d_onset_reproduces_the_paper(d_onset):
     assert o["name"] == "d_onset"
     assert o["reproduced"] is True
     assert o["verdict"] == "violated"
-    assert o["cross_check"]["agrees"] is True
+    # The default solvers: GFMD for the headline, CG for the one cross-check.
+    assert o["solver"] == "gfmd"
+    assert [c["solver"] for c in o["cross_checks"]] == ["cg"]
+    assert all(c["agrees"] is True for c in o["cross_checks"])
     # The same record as the file written beside it.
     assert o == json.loads((out / "d_onset.json").read_text())
 

@@ -32,7 +32,7 @@ pub struct Args {
     /// The headline solver.
     #[arg(long, value_enum, default_value_t = SolverKind::Gfmd)]
     solver: SolverKind,
-    /// Skip the cross-check with the other solver.
+    /// Skip the cross-check with a second solver (CG for GFMD, GFMD for any other).
     #[arg(long = "no-cross-check")]
     no_cross_check: bool,
     /// Residual tolerance of every solve.

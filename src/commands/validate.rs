@@ -32,9 +32,10 @@ pub struct Args {
     /// it adds the measured time of every finished job).
     #[arg(long, required_unless_present = "plan")]
     out: Option<PathBuf>,
-    /// Run one solver only (default: GFMD for the headline and CG for the cross-check).
-    #[arg(long, value_enum)]
-    solver: Option<SolverKind>,
+    /// The solvers, comma-separated: the first for the headline, each other for a
+    /// cross-check (default: gfmd,cg, GFMD for the headline and CG for the cross-check).
+    #[arg(long, alias = "solver", value_enum, value_delimiter = ',')]
+    solvers: Vec<SolverKind>,
     /// Run only share K of N of the jobs (K/N, 1 <= K <= N), or the share the scheduler
     /// gives (auto: a Slurm job array, or a Kubernetes indexed job with --shards N); writes
     /// job results under <out>/jobs/ and no outcome. Finished jobs are skipped.
@@ -67,7 +68,7 @@ pub fn run(args: Args) -> Result<()> {
     validations::check(&registry, &sources)?;
     // Without --out (a plan only), results are looked for nowhere.
     let out = args.out.clone().unwrap_or_default();
-    let mut opts = validations::run_options(args.full, out, args.resume, true, args.solver);
+    let mut opts = validations::run_options(args.full, out, args.resume, true, &args.solvers);
     let shard = match args.shard.as_deref() {
         None => None,
         Some("auto") => Some(Shard::from_env(
@@ -126,29 +127,26 @@ pub fn run(args: Args) -> Result<()> {
 }
 
 /// One line per outcome: the headline with its error bar (or the plain statement that
-/// there is none), the verdict, the paper's finding, the cross-check and the wall time.
+/// there is none), the verdict, the paper's finding, the cross-checks and the wall time.
 fn summary_line(o: &Outcome) -> String {
     let measured = if o.std_error.is_finite() {
         format!("{:.4} +- {:.4}", o.value, o.std_error)
     } else {
         format!("{:.4} (one realization: no error bar, no verdict)", o.value)
     };
-    let cross = match &o.cross_check {
-        Some(c) if c.std_error.is_finite() => format!(
-            "; {} {:.4} +- {:.4}, {}",
-            c.solver,
-            c.value,
-            c.std_error,
-            if c.agrees { "agrees" } else { "DISAGREES" }
-        ),
-        Some(c) => format!(
-            "; {} {:.4}, {}",
-            c.solver,
-            c.value,
-            if c.agrees { "agrees" } else { "DISAGREES" }
-        ),
-        None => String::new(),
-    };
+    let cross: String = o
+        .cross_checks
+        .iter()
+        .map(|c| {
+            let value = if c.std_error.is_finite() {
+                format!("{:.4} +- {:.4}", c.value, c.std_error)
+            } else {
+                format!("{:.4}", c.value)
+            };
+            let agrees = if c.agrees { "agrees" } else { "DISAGREES" };
+            format!("; {} {value}, {agrees}", c.solver)
+        })
+        .collect();
     format!(
         "{:<16} {} = {measured} ({}; Persson {:.4}): {}, paper {}{cross} [{:.1} s]",
         o.name,

@@ -52,7 +52,7 @@ use rustfft::num_complex::Complex64;
 use serde::{Deserialize, Serialize};
 
 use crate::engine::elastic::HalfSpace;
-use crate::engine::fft::{Fft2, Kernel};
+use crate::engine::fft::{Fft2, FusedPass, Kernel};
 use crate::engine::field;
 use crate::engine::grid::Grid;
 use crate::error::{check_positive, Error, Result};
@@ -416,21 +416,15 @@ impl Residual {
         // Stress balance: K u + p0 - p (the stiffness has no q = 0 mode: p0 is added).
         let model = problem.model;
         let n = model.grid.n();
-        let (_, rows) = model.fft.convolve(
-            &model.stiffness,
-            spec,
-            None,
-            #[inline(always)]
-            |i, row, _, _| row.copy_from_slice(&u[i * n..(i + 1) * n]),
-            scratch,
-            #[inline(always)]
-            |i, ku, _| {
-                ku.iter()
-                    .zip(&p[i * n..(i + 1) * n])
-                    .map(|(&k, &pi)| (k + problem.p0 - pi).powi(2))
-                    .sum::<f64>()
-            },
-        );
+        let unbalanced = StressBalance {
+            u,
+            p,
+            p0: problem.p0,
+            n,
+        };
+        let (_, rows) = model
+            .fft
+            .convolve(&model.stiffness, spec, None, &unbalanced, scratch);
         let unbalanced: f64 = rows.iter().sum();
         let (sum_p, min_g) = (s.sum_p, s.min_g);
         let rms_p = Self::rms_of(s.sum_p2, npts);
@@ -450,6 +444,35 @@ impl Residual {
             load: Self::load_of(sum_p, npts, problem.p0),
             tamaas,
         }
+    }
+}
+
+/// The stress balance `K u + p0 - p` as the fused pass of the convolution `K u`: row `i` of
+/// `u` generated, the squares of the row's imbalance summed.
+struct StressBalance<'a> {
+    u: &'a [f64],
+    p: &'a [f64],
+    p0: f64,
+    n: usize,
+}
+
+impl FusedPass for StressBalance<'_> {
+    type Generated = ();
+    type Consumed = f64;
+
+    #[inline(always)]
+    fn generate(&self, i: usize, x: &mut [f64], _: &mut [f64], _: &[f64]) {
+        let n = self.n;
+        x.copy_from_slice(&self.u[i * n..(i + 1) * n]);
+    }
+
+    #[inline(always)]
+    fn consume(&self, i: usize, ku: &[f64], _: &[f64]) -> f64 {
+        let n = self.n;
+        ku.iter()
+            .zip(&self.p[i * n..(i + 1) * n])
+            .map(|(&k, &pi)| (k + self.p0 - pi).powi(2))
+            .sum::<f64>()
     }
 }
 

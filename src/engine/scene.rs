@@ -14,7 +14,7 @@
 //! [solve]            # optional; command-line flags take precedence
 //! zeta = 16          # magnification in [1, lambda_l / lambda_s]
 //! contact_area = 0.1 # or p0 = 0.05
-//! solver = "cg"      # or "gfmd"
+//! solver = "cg"      # any name of SolverKind::ALL: "gfmd", "cg", "fire"
 //! tol = 1e-8
 //! ```
 //!

@@ -22,21 +22,26 @@
 //! * [`contact_area`]: the contact-area law, `a_r` against `p~0`;
 //! * [`transitions`]: assumptions (a) pressure-independent diffusion and (b) no drift;
 //! * [`reentry`]: assumption (c), no re-entry into contact;
+//! * [`source`]: assumption (c) in one step, the share of the zero-pressure bin that
+//!   moves into contact (the paper's "about 1%");
 //! * [`modes`]: assumptions (d) a mode holds energy only once resolved, (e) and keeps it;
 //! * [`total_energy`]: the integrated elastic energy against the original and corrected
 //!   theories.
 //!
 //! Shared machinery: [`scene`] (the fields every scene repeats), [`ensemble`] (the
-//! seeds x contact areas job grid and the per-load ensemble statistics) and [`climb`] (the
-//! fixed-load magnification climb with optional checkpoints).
+//! seeds x contact areas job grid and the per-load ensemble statistics), [`climb`] (the
+//! fixed-load magnification climb with optional checkpoints) and [`contact_change`] (which
+//! points entered or left contact in a step).
 
 pub mod climb;
 pub mod contact_area;
+pub mod contact_change;
 pub mod ensemble;
 pub mod flux;
 pub mod modes;
 pub mod reentry;
 pub mod scene;
+pub mod source;
 pub mod study;
 pub mod total_energy;
 pub mod transitions;
@@ -365,6 +370,13 @@ pub trait Jobs: Serialize + DeserializeOwned + Sync + fmt::Debug {
     /// the job, or a figure): the runner does not repeat it for the cross-check.
     fn headline_only(_job: &Self::Job) -> bool {
         false
+    }
+
+    /// The solver the scene fixes for every job, if it fixes one (a study of one solver's
+    /// solutions): the runner then runs each job once, with it, whatever solvers the run
+    /// asks for, and the outcome names it.
+    fn solver(&self) -> Option<crate::engine::solver::SolverKind> {
+        None
     }
 
     /// What one job costs (its grid and its solves), for splitting a run into shares

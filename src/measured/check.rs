@@ -280,11 +280,12 @@ pub fn check(
     ))
 }
 
-/// The other solver.
+/// The other solver: CG for GFMD, GFMD for any other.
 fn other(solver: SolverKind) -> SolverKind {
-    match solver {
-        SolverKind::Gfmd => SolverKind::Cg,
-        SolverKind::Cg => SolverKind::Gfmd,
+    if solver == SolverKind::Gfmd {
+        SolverKind::Cg
+    } else {
+        SolverKind::Gfmd
     }
 }
 

@@ -73,7 +73,7 @@ pub(super) fn attention(loaded: &[Loaded], golden: &[GoldenMatch]) -> Vec<String
                 o.name
             ));
         }
-        if let Some(c) = o.cross_check.as_ref().filter(|c| !c.agrees) {
+        for c in o.cross_checks.iter().filter(|c| !c.agrees) {
             lines.push(format!(
                 "{}: the two solvers DISAGREE: {} {} against {} {}, more than {} combined \
                  standard errors apart (or, without error bars, more than the resolution {}); \

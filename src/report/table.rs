@@ -98,15 +98,23 @@ pub(super) fn measured_cell(o: &Outcome) -> String {
     }
 }
 
-/// The other solver's value of the headline statistic and whether the two agree.
+/// Each other solver's value of the headline statistic and whether it agrees with the
+/// headline's, one after the other.
 pub(super) fn cross_check_cell(o: &Outcome) -> String {
-    match &o.cross_check {
-        Some(c) => format!(
-            "{} {}, {}",
-            c.solver.to_uppercase(),
-            headline(c.value, c.std_error),
-            if c.agrees { "agrees" } else { "**DISAGREES**" }
-        ),
-        None => "not run".into(),
+    if o.cross_checks.is_empty() {
+        return "not run".into();
     }
+    let cells: Vec<String> = o
+        .cross_checks
+        .iter()
+        .map(|c| {
+            format!(
+                "{} {}, {}",
+                c.solver.to_uppercase(),
+                headline(c.value, c.std_error),
+                if c.agrees { "agrees" } else { "**DISAGREES**" }
+            )
+        })
+        .collect();
+    cells.join("; ")
 }

@@ -83,7 +83,7 @@ fn outcome(name: &str, verdict: Verdict, reproduced: Option<bool>, scale: Scale)
         ],
         threads: 2,
         solver: "gfmd".into(),
-        cross_check: None,
+        cross_checks: Vec::new(),
         merge: None,
     }
 }
@@ -391,13 +391,24 @@ fn statistics_on_several_grids_are_grouped_by_key() {
 fn the_cross_check_is_shown_and_a_disagreement_needs_attention() {
     let mut o = outcome("a", Verdict::Violated, Some(true), Scale::Reduced);
     o.solver = "gfmd".into();
-    o.cross_check = Some(CrossCheck {
+    o.cross_checks = vec![CrossCheck {
         solver: "cg".into(),
         value: 2.51,
         std_error: 0.05,
         agrees: true,
-    });
+    }];
     assert_eq!(table::cross_check_cell(&o), "CG 2.510 ± 0.050, agrees");
+    let mut three = o.clone();
+    three.cross_checks.push(CrossCheck {
+        solver: "fire".into(),
+        value: 2.49,
+        std_error: 0.05,
+        agrees: true,
+    });
+    assert_eq!(
+        table::cross_check_cell(&three),
+        "CG 2.510 ± 0.050, agrees; FIRE 2.490 ± 0.050, agrees"
+    );
     assert_eq!(table::measured_cell(&o), "2.500 ± 0.050 (GFMD)");
     let loaded = |o: Outcome| Loaded {
         outcome: o,
@@ -405,7 +416,7 @@ fn the_cross_check_is_shown_and_a_disagreement_needs_attention() {
         modified: None,
     };
     assert!(attention::attention(&[loaded(o.clone())], &[GoldenMatch::FullScene]).is_empty());
-    let c = o.cross_check.as_mut().unwrap();
+    let c = &mut o.cross_checks[0];
     c.value = 3.5;
     c.agrees = false;
     assert!(table::cross_check_cell(&o).contains("DISAGREES"));
@@ -429,12 +440,12 @@ fn one_realization_shows_no_error_bar_and_no_nan() {
     );
     let root = tempfile::tempdir().unwrap();
     let mut o = outcome("one", Verdict::Inconclusive, None, Scale::Full);
-    o.cross_check = Some(CrossCheck {
+    o.cross_checks = vec![CrossCheck {
         solver: "cg".into(),
         value: 2.5,
         std_error: f64::NAN,
         agrees: true,
-    });
+    }];
     std::fs::write(
         root.path().join("one.json"),
         serde_json::to_vec(&o).unwrap(),

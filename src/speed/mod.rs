@@ -1,7 +1,9 @@
 //! Speed against error: how long each solver takes to reach a given accuracy.
 //!
 //! One scene ([`crate::conventions`], section 3; H = 0.8, `lambda_l = N/2`, `lambda_s = 8`,
-//! `p0 = 0.1`, seed 1), solved by both solvers ([`SolverKind::Cg`], [`SolverKind::Gfmd`]):
+//! `p0 = 0.1`, seed 1), solved by every solver ([`SolverKind::ALL`]), the solvers taking
+//! turns row by row (each tolerance, grid or pool size is solved by all of them before
+//! the next), so that a change in the machine's load falls on all of them alike:
 //!
 //! * **tolerance**: a tightly converged reference (CG, `tol = 1e-12`), then cold solves at
 //!   each tolerance; wall time, iterations, the residual reached, and the errors of the
@@ -57,8 +59,8 @@ use crate::plot::{Axis, Figure, Series, Style};
 use crate::provenance::Machine;
 use crate::stats::{round_sig, LineFit};
 
-/// The solvers compared, in table order.
-pub const SOLVERS: [SolverKind; 2] = [SolverKind::Cg, SolverKind::Gfmd];
+/// The solvers compared, in table order: every solver.
+pub const SOLVERS: [SolverKind; SolverKind::ALL.len()] = SolverKind::ALL;
 
 /// Runs the study; `progress` receives a line per step.
 pub fn run(opts: &SpeedOptions, progress: &mut dyn FnMut(&str)) -> Result<SpeedStudy> {
@@ -122,8 +124,8 @@ fn tolerance_study(
     progress: &mut dyn FnMut(&str),
 ) -> Vec<ToleranceRow> {
     let mut rows = Vec::new();
-    for kind in SOLVERS {
-        for &tol in &opts.tols {
+    for &tol in &opts.tols {
+        for kind in SOLVERS {
             progress(&format!(
                 "tolerance: {}, N = {}, tol = {tol:e}",
                 kind.name(),
@@ -133,6 +135,7 @@ fn tolerance_study(
             rows.push(ToleranceRow::of(kind, tol, solved, reference));
         }
     }
+    rows.sort_by_key(|r| r.solver.index());
     rows
 }
 
@@ -144,8 +147,8 @@ fn size_study(opts: &SpeedOptions, progress: &mut dyn FnMut(&str)) -> Result<Vec
         .map(|&n| Ok((n, Scene::new(opts, n)?)))
         .collect::<Result<_>>()?;
     let mut rows = Vec::new();
-    for kind in SOLVERS {
-        for (n, scene) in &scenes {
+    for (n, scene) in &scenes {
+        for kind in SOLVERS {
             progress(&format!(
                 "size: {}, N = {n}, tol = {:e}",
                 kind.name(),
@@ -155,6 +158,7 @@ fn size_study(opts: &SpeedOptions, progress: &mut dyn FnMut(&str)) -> Result<Vec
             rows.push(SizeRow::of(kind, *n, solved));
         }
     }
+    rows.sort_by_key(|r| r.solver.index());
     Ok(rows)
 }
 
@@ -165,9 +169,9 @@ fn thread_study(
     progress: &mut dyn FnMut(&str),
 ) -> Result<Vec<ThreadRow>> {
     let mut rows = Vec::new();
-    for kind in SOLVERS {
-        let mut single = None;
-        for &k in &opts.threads {
+    let mut single = [None; SOLVERS.len()];
+    for &k in &opts.threads {
+        for kind in SOLVERS {
             progress(&format!(
                 "threads: {}, N = {}, {k} thread(s), tol = {:e}",
                 kind.name(),
@@ -184,11 +188,12 @@ fn thread_study(
                 .install(|| scene.timed(kind, opts.size_tol, opts.repeats))
                 .map(|(_, t)| t);
             if let (1, Ok(t)) = (k, &wall_s) {
-                single = Some(*t);
+                single[kind.index()] = Some(*t);
             }
-            rows.push(ThreadRow::of(kind, k, wall_s, single));
+            rows.push(ThreadRow::of(kind, k, wall_s, single[kind.index()]));
         }
     }
+    rows.sort_by_key(|r| r.solver.index());
     Ok(rows)
 }
 

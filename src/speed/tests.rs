@@ -9,9 +9,16 @@ fn tiny_study_produces_every_row_and_its_files() {
     let study = run(&opts, &mut |l| lines.push(l.to_string())).unwrap();
     // Sizes 8 and 16 cannot hold lambda_s = 8 < lambda_l = N/2: left out.
     assert_eq!(opts.valid_sizes(), vec![32, 64]);
-    assert_eq!(study.tolerance.len(), 2 * opts.tols.len());
-    assert_eq!(study.sizes.len(), 2 * 2);
-    assert_eq!(study.threads_study.len(), 2 * 2);
+    let solvers = SOLVERS.len();
+    assert_eq!(study.tolerance.len(), solvers * opts.tols.len());
+    assert_eq!(study.sizes.len(), solvers * 2);
+    assert_eq!(study.threads_study.len(), solvers * 2);
+    // The tables list the solvers in the list's order.
+    let order: Vec<SolverKind> = study.sizes.iter().map(|r| r.solver).collect();
+    assert!(
+        order.windows(2).all(|w| w[0].index() <= w[1].index()),
+        "{order:?}"
+    );
     assert!(
         lines.iter().any(|l| l.starts_with("reference")),
         "{lines:?}"
@@ -57,10 +64,10 @@ fn tighter_tolerances_are_more_accurate(study: &SpeedStudy, opts: &SpeedOptions)
 }
 
 /// CG uses two FFT pairs an iteration (the preconditioner's and the compliance's) and a
-/// third when the contact set changed (u = K^-1 p recomputed); GFMD two (the stress and
-/// the mass filter); both plus the set-up and the final residual.
+/// third when the contact set changed (u = K^-1 p recomputed); GFMD and FIRE two (the
+/// stress and the mass filter); all plus the set-up and the final residual.
 fn floor_counts_fft_pairs(study: &SpeedStudy) {
-    assert_eq!(study.floor.len(), 2);
+    assert_eq!(study.floor.len(), SOLVERS.len());
     for row in &study.floor {
         assert!(row.error.is_none(), "{row:?}");
         let pairs = row.pairs_per_iteration.unwrap();
@@ -78,7 +85,7 @@ fn floor_counts_fft_pairs(study: &SpeedStudy) {
 /// the solution, and GFMD's smaller warm step may take a few more iterations than its cold
 /// solve.)
 fn warm_starts_converge(study: &SpeedStudy) {
-    assert_eq!(study.warm.len(), 4);
+    assert_eq!(study.warm.len(), 2 * SOLVERS.len());
     for row in &study.warm {
         assert!(row.error.is_none(), "{row:?}");
         if row.change.starts_with("load") {
@@ -111,20 +118,35 @@ fn files_hold_every_row(study: &SpeedStudy) {
         (
             "tolerance",
             "solver,tol,wall_s,iterations,residual,tamaas",
-            4,
+            study.tolerance.len(),
         ),
-        ("size", "solver,n,iterations,wall_s,residual,error", 4),
-        ("threads", "solver,threads,wall_s,speedup,error", 4),
-        ("floor", "solver,n,fft_pair_s,iterations", 2),
-        ("warm", "solver,n,change,cold_iterations", 4),
+        (
+            "size",
+            "solver,n,iterations,wall_s,residual,error",
+            study.sizes.len(),
+        ),
+        (
+            "threads",
+            "solver,threads,wall_s,speedup,error",
+            study.threads_study.len(),
+        ),
+        ("floor", "solver,n,fft_pair_s,iterations", study.floor.len()),
+        ("warm", "solver,n,change,cold_iterations", study.warm.len()),
     ] {
         let text = table(name);
         let lines: Vec<&str> = text.lines().collect();
         assert!(lines[0].starts_with(header), "{name}: {}", lines[0]);
         assert_eq!(lines.len(), 1 + rows, "{name}:\n{text}");
     }
-    assert!(table("warm").lines().any(|l| l.starts_with("cg,32,")));
-    assert!(table("size").lines().any(|l| l.starts_with("gfmd,64,")));
+    for kind in SOLVERS {
+        let name = kind.name();
+        assert!(table("warm")
+            .lines()
+            .any(|l| l.starts_with(&format!("{name},32,"))));
+        assert!(table("size")
+            .lines()
+            .any(|l| l.starts_with(&format!("{name},64,"))));
+    }
     // serde_json reads floats back to within an ulp or so, not always bit for bit.
     let back = SpeedStudy::read(&dir.path().join("speed.json")).unwrap();
     assert_eq!(back.options, study.options);

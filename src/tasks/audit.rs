@@ -177,6 +177,8 @@ pub struct Audit {
     pub uncovered: Vec<Uncovered>,
     /// Validations and solvers (every solver of the crate) with no stored result at all.
     pub unstored: Vec<Unstored>,
+    /// Solvers outside a default run of which the folder holds no result.
+    pub idle_solvers: Vec<String>,
     /// Every sampled job, in run order.
     pub jobs: Vec<JobAudit>,
     /// The estimate of the jobs run, seconds.
@@ -328,6 +330,7 @@ pub fn audit(
         candidates: cands,
         orphans,
         unstored,
+        idle_solvers,
     } = chosen(registry, &sources, opts)?;
     let budget = if opts.jobs.is_empty() {
         opts.budget_s
@@ -396,6 +399,7 @@ pub fn audit(
         orphans,
         uncovered: selection.uncovered,
         unstored,
+        idle_solvers,
         estimate_s: jobs.iter().filter(ran).map(|j| j.job.estimate_s).sum(),
         measured_s: jobs.iter().filter_map(|j| j.measured_s).sum(),
         passed: !jobs
@@ -550,6 +554,13 @@ impl Audit {
                 .map(|u| format!("{} {} ({} jobs planned)", u.validation, u.solver, u.planned))
                 .collect();
             let _ = write!(s, " No stored result at all: {}.", list.join(", "));
+        }
+        if !self.idle_solvers.is_empty() {
+            let _ = write!(
+                s,
+                " No results of {} (not in a default run) to audit.",
+                self.idle_solvers.join(", ")
+            );
         }
         if !self.orphans.is_empty() {
             let _ = write!(

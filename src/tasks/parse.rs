@@ -9,24 +9,16 @@ use crate::persson::Correction;
 
 use super::Spelling;
 
-/// The solvers by name, in the order messages list them.
-const SOLVERS: [SolverKind; 2] = [SolverKind::Cg, SolverKind::Gfmd];
-
 /// Most worker threads a front end starts.
 pub const MAX_THREADS: u64 = 1024;
 
 /// Most shares a run of the validations is split into.
 pub const MAX_SHARDS: u64 = 100_000;
 
-/// The solver named `name` (`"cg"`, `"gfmd"`).
+/// The solver named `name`, one of [`SolverKind::NAMES`].
 pub fn solver(name: &str) -> Result<SolverKind> {
-    SOLVERS
-        .into_iter()
-        .find(|k| k.name() == name)
-        .ok_or_else(|| {
-            let names: Vec<String> = SOLVERS.iter().map(|k| format!("{:?}", k.name())).collect();
-            Error::invalid("solver", format!("{name:?}"), names.join(" or "))
-        })
+    SolverKind::from_name(name)
+        .ok_or_else(|| Error::invalid("solver", format!("{name:?}"), SolverKind::listed()))
 }
 
 /// The variant of Persson's theory named `name`: `"original"` (no correction),
@@ -156,12 +148,16 @@ mod tests {
 
     #[test]
     fn solvers_by_name() {
+        for kind in SolverKind::ALL {
+            assert_eq!(solver(kind.name()).unwrap(), kind);
+        }
         assert_eq!(solver("cg").unwrap(), SolverKind::Cg);
-        assert_eq!(solver("gfmd").unwrap(), SolverKind::Gfmd);
-        assert_eq!(
-            solver("fem").unwrap_err().to_string(),
-            "invalid solver = \"fem\": must be \"cg\" or \"gfmd\""
-        );
+        assert!(solver("CG").is_err(), "names are case-sensitive");
+        let e = solver("fem").unwrap_err().to_string();
+        assert!(e.starts_with("invalid solver = \"fem\": must be \""), "{e}");
+        for name in SolverKind::NAMES {
+            assert!(e.contains(&format!("{name:?}")), "{name} missing from {e}");
+        }
     }
 
     #[test]

@@ -41,23 +41,25 @@ pub fn check(registry: &Registry, sources: &[Source]) -> Result<()> {
 }
 
 /// The options of a run: reduced or `full` scenes, into `out`, continuing from the job
-/// results there (`resume`), with progress bars or not, with one `solver` or both (GFMD
-/// for the headline, CG for the cross-check), every job to its outcome.
+/// results there (`resume`), with progress bars or not, with the `solvers` given (the first
+/// for the headline, each other for a cross-check; none: [`RunOptions::DEFAULT_SOLVERS`]),
+/// every job to its outcome.
 pub fn run_options(
     full: bool,
     out: PathBuf,
     resume: bool,
     progress: bool,
-    solver: Option<SolverKind>,
+    solvers: &[SolverKind],
 ) -> RunOptions {
     RunOptions {
         scale: if full { Scale::Full } else { Scale::Reduced },
         out,
         resume,
         progress,
-        solvers: match solver {
-            Some(kind) => vec![kind],
-            None => RunOptions::BOTH.to_vec(),
+        solvers: if solvers.is_empty() {
+            RunOptions::DEFAULT_SOLVERS.to_vec()
+        } else {
+            solvers.to_vec()
         },
         mode: Mode::All,
     }

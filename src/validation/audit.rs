@@ -5,9 +5,10 @@
 //! A job result (`jobs/<family>/<scale>/<key>.json`, see [`super::store`]) is found by its
 //! key, a hash of everything the job computes, so a stored result that today's plan names
 //! is a result of the very job today's code would run ([`candidates`]). Every solver the
-//! crate has ([`SolverKind`]'s variants) is looked for. Results that no job of today's
+//! crate has ([`SolverKind::ALL`]) is looked for. Results that no job of today's
 //! definitions names (an edited scene) cannot be recomputed and are listed, and so are the
-//! validations and solvers whose jobs have no stored result at all.
+//! validations and solvers whose jobs have no stored result at all (a solver that a default
+//! run leaves out and of which the folder holds nothing is named once).
 //!
 //! The sample ([`pick`]): for every validation and solver, in increasing order of the
 //! cheapest job that covers the pair (by the cost model, [`super::plan::estimate_seconds`]),
@@ -90,8 +91,12 @@ pub struct Found {
     pub candidates: Vec<Candidate>,
     /// Those no job of today's definitions names (relative paths).
     pub orphans: Vec<PathBuf>,
-    /// Validations and solvers with planned jobs of which none has a stored result.
+    /// Validations and solvers with planned jobs of which none has a stored result (the
+    /// solvers of a default run, and any other the folder holds results of).
     pub unstored: Vec<Unstored>,
+    /// Solvers outside a default run ([`RunOptions::DEFAULT_SOLVERS`]) of which the folder
+    /// holds no result at all.
+    pub idle_solvers: Vec<String>,
 }
 
 /// A validation and solver whose planned jobs have no stored result in the run folder.
@@ -159,7 +164,7 @@ pub fn candidates(registry: &Registry, sources: &[Source], from: &Path) -> Resul
     let mut pairs: BTreeMap<(String, &'static str), (usize, usize)> = BTreeMap::new();
     for scale in scales_in(from) {
         let opts = RunOptions {
-            solvers: <SolverKind as clap::ValueEnum>::value_variants().to_vec(),
+            solvers: SolverKind::ALL.to_vec(),
             ..RunOptions::new(scale, from)
         };
         for source in sources {
@@ -203,9 +208,19 @@ pub fn candidates(registry: &Registry, sources: &[Source], from: &Path) -> Resul
         .into_iter()
         .filter(|p| !planned.contains(p))
         .collect();
+    // A solver the folder holds no result of at all (one a run leaves out by default) is
+    // named once, not with every validation.
+    let holds = |solver: &str| pairs.iter().any(|((_, s), (_, n))| *s == solver && *n > 0);
+    found.idle_solvers = SolverKind::ALL
+        .into_iter()
+        .filter(|s| !RunOptions::DEFAULT_SOLVERS.contains(s) && !holds(s.name()))
+        .map(|s| s.name().to_string())
+        .collect();
     found.unstored = pairs
         .into_iter()
-        .filter(|(_, (_, stored))| *stored == 0)
+        .filter(|((_, solver), (_, stored))| {
+            *stored == 0 && !found.idle_solvers.iter().any(|s| s == solver)
+        })
         .map(|((validation, solver), (planned, _))| Unstored {
             validation,
             solver: solver.into(),

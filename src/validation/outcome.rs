@@ -7,7 +7,9 @@
 
 use std::collections::BTreeMap;
 
-use serde::{Deserialize, Serialize};
+use serde::de::value::{MapAccessDeserializer, SeqAccessDeserializer};
+use serde::de::{MapAccess, SeqAccess, Visitor};
+use serde::{Deserialize, Deserializer, Serialize};
 
 use super::claims::ClaimOutcome;
 use super::definition::{Scale, Verdict, VerdictRule};
@@ -87,9 +89,11 @@ pub struct Outcome {
     /// The solver of the headline statistic.
     #[serde(default)]
     pub solver: String,
-    /// The same statistic from the other solver on the same scene, if it was run.
-    #[serde(default)]
-    pub cross_check: Option<CrossCheck>,
+    /// The same statistic from each other solver run on the same scene, in the order of
+    /// the run's solvers (none when one solver ran). An outcome written before there could
+    /// be several holds one, or `null`, as `cross_check`: it reads as a list of that one.
+    #[serde(default, alias = "cross_check", deserialize_with = "one_or_many")]
+    pub cross_checks: Vec<CrossCheck>,
     /// For an outcome merged from a sharded run: the shares that computed its jobs.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub merge: Option<MergeRecord>,
@@ -158,7 +162,7 @@ impl ShardRecord {
     }
 }
 
-/// The headline statistic measured again with the other solver (same surfaces, loads and
+/// The headline statistic measured again with another solver (same surfaces, loads and
 /// tolerance).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CrossCheck {
@@ -173,4 +177,42 @@ pub struct CrossCheck {
     /// Whether the two solvers agree within their combined error (see
     /// [`super::VerdictRule::agree`]).
     pub agrees: bool,
+}
+
+/// The cross-checks as written: a list, or (an outcome of an earlier version, under
+/// `cross_check`) one cross-check or `null`.
+fn one_or_many<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<CrossCheck>, D::Error> {
+    struct OneOrMany;
+
+    impl<'de> Visitor<'de> for OneOrMany {
+        type Value = Vec<CrossCheck>;
+
+        fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+            f.write_str("a list of cross-checks, one cross-check, or null")
+        }
+
+        fn visit_unit<E: serde::de::Error>(self) -> Result<Self::Value, E> {
+            Ok(Vec::new())
+        }
+
+        fn visit_none<E: serde::de::Error>(self) -> Result<Self::Value, E> {
+            Ok(Vec::new())
+        }
+
+        fn visit_some<D2: Deserializer<'de>>(self, d: D2) -> Result<Self::Value, D2::Error> {
+            d.deserialize_any(self)
+        }
+
+        fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<Self::Value, A::Error> {
+            Vec::deserialize(SeqAccessDeserializer::new(seq))
+        }
+
+        fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<Self::Value, A::Error> {
+            Ok(vec![CrossCheck::deserialize(MapAccessDeserializer::new(
+                map,
+            ))?])
+        }
+    }
+
+    d.deserialize_any(OneOrMany)
 }

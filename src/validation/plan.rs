@@ -12,7 +12,8 @@
 //! close its start is (a load search from cold, a step of a fraction of an octave, or a
 //! single added shell). Warm starts take about as many iterations on every grid; a search
 //! from cold takes more on larger grids, as `N^k` ([`SEARCH_GROWTH`]). The constants
-//! ([`CG_SECONDS`], [`GFMD_SECONDS`], [`SEARCH_SOLVES`], [`SHELL_SOLVES`]) are fitted to
+//! ([`CG_SECONDS`] times the solver's [`SolverKind::relative_cost`], [`SEARCH_SOLVES`],
+//! [`SHELL_SOLVES`]) are fitted to
 //! the measured job times of the reduced scenes, and [`SEARCH_GROWTH`] to a 4096^2 search
 //! (the full `c_flux` scene): each stored result records its wall time, and `--plan --out DIR` sets
 //! the estimate beside the measurement of every finished job (`measured_s`, and the range
@@ -33,12 +34,9 @@ use crate::engine::solver::SolverKind;
 use crate::error::{Error, Result};
 use crate::experiments::Work;
 
-/// Seconds per `P log2 P` per warm-started solve of constrained conjugate gradients.
+/// Seconds per `P log2 P` per warm-started solve of constrained conjugate gradients; the
+/// other solvers' are these times their [`SolverKind::relative_cost`].
 pub const CG_SECONDS: f64 = 4.38e-8;
-/// Seconds per `P log2 P` per warm-started solve of GFMD: CG's times 1.2, from a
-/// 300-shell sweep segment at 512^2 (zeta 20 -> 25.7, tol 1e-6) in which GFMD took 1.13
-/// times CG's time (2.9 times with the FIRE dynamics the first constant was fitted to).
-pub const GFMD_SECONDS: f64 = 1.2 * CG_SECONDS;
 /// A load search, in warm-started solves.
 pub const SEARCH_SOLVES: f64 = 3.5;
 /// A single-shell step, in warm-started solves.
@@ -49,10 +47,7 @@ pub const SEARCH_GROWTH: f64 = 0.6;
 /// The estimated wall time of `work` with `solver` on one core, seconds.
 pub fn estimate_seconds(work: Work, solver: SolverKind) -> f64 {
     let p = work.points.max(2) as f64;
-    let per_solve = match solver {
-        SolverKind::Cg => CG_SECONDS,
-        SolverKind::Gfmd => GFMD_SECONDS,
-    };
+    let per_solve = solver.relative_cost() * CG_SECONDS;
     let search = SEARCH_SOLVES * (p.sqrt() / 256.0).powf(SEARCH_GROWTH);
     per_solve * p * p.log2() * (search * work.searches + work.solves + SHELL_SOLVES * work.shells)
 }

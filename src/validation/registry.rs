@@ -14,7 +14,7 @@ use super::runner::{check_experiment, planned_units, run_experiment, RunOptions}
 use super::source::Source;
 use crate::error::{Error, Result};
 use crate::experiments::{
-    contact_area, flux, modes, reentry, total_energy, transitions, Experiment,
+    contact_area, flux, modes, reentry, source, total_energy, transitions, Experiment,
 };
 
 /// What the runner needs of an experiment, without its types.
@@ -59,6 +59,7 @@ pub const BUILTIN: &[(&str, &dyn Entry)] = &[
     ("mode_frozen", &Of::<modes::ModeFrozen>::NEW),
     ("mode_onset", &Of::<modes::ModeOnset>::NEW),
     ("reentry", &Of::<reentry::Reentry>::NEW),
+    ("source", &Of::<source::BoundarySource>::NEW),
     ("total_energy", &Of::<total_energy::TotalEnergy>::NEW),
 ];
 

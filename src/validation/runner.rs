@@ -42,8 +42,9 @@ pub struct RunOptions {
     pub resume: bool,
     /// Show progress bars on stderr (when it is a terminal).
     pub progress: bool,
-    /// The solvers to run every scene with: the first gives the headline statistic, the
-    /// second (if any) its cross-check.
+    /// The solvers to run every scene with, each at most once: the first gives the
+    /// headline statistic, each of the others a cross-check. A scene that fixes its solver
+    /// ([`crate::experiments::Jobs::solver`]) runs with that one alone.
     pub solvers: Vec<SolverKind>,
     /// Run everything, one share of the jobs, or merge the shares' results.
     pub mode: Mode,
@@ -72,17 +73,19 @@ pub enum Mode {
 }
 
 impl RunOptions {
-    /// The headline solver (GFMD, the paper's method) and the cross-check (CG).
-    pub const BOTH: [SolverKind; 2] = [SolverKind::Gfmd, SolverKind::Cg];
+    /// The solvers of a run unless it names others: GFMD (the paper's method) for the
+    /// headline and CG for the cross-check.
+    pub const DEFAULT_SOLVERS: [SolverKind; 2] = [SolverKind::Gfmd, SolverKind::Cg];
 
-    /// Options for `scale` written to `out`: both solvers, no resume, no progress bars.
+    /// Options for `scale` written to `out`: the default solvers, no resume, no progress
+    /// bars.
     pub fn new(scale: Scale, out: impl Into<PathBuf>) -> Self {
         Self {
             scale,
             out: out.into(),
             resume: false,
             progress: false,
-            solvers: Self::BOTH.to_vec(),
+            solvers: Self::DEFAULT_SOLVERS.to_vec(),
             mode: Mode::All,
         }
     }
@@ -138,12 +141,27 @@ pub(crate) fn prepare<E: Experiment>(source: &Source, opts: &RunOptions) -> Resu
     if opts.solvers.is_empty() {
         return Err(Error::invalid("solvers", "none", "at least one solver"));
     }
+    if let Some(twice) = opts
+        .solvers
+        .iter()
+        .enumerate()
+        .find_map(|(k, s)| opts.solvers[..k].contains(s).then_some(s))
+    {
+        return Err(Error::invalid(
+            "solvers",
+            format!("{} twice", twice.name()),
+            "each solver at most once",
+        ));
+    }
     let def = source.parse::<E::Scene>()?;
     let (scene, jobs) = checked_scene::<E>(source, &def, opts.scale)?;
     let scene_json = serde_json::to_value(scene).expect("scenes serialise");
     let state = jobs_dir(&opts.out, <E::Scene as Jobs>::FAMILY, opts.scale);
+    let solvers = scene
+        .solver()
+        .map_or_else(|| opts.solvers.clone(), |s| vec![s]);
     let mut units = Vec::new();
-    for (k, &solver) in opts.solvers.iter().enumerate() {
+    for (k, &solver) in solvers.iter().enumerate() {
         for job in &jobs {
             if k > 0 && <E::Scene as Jobs>::headline_only(job) {
                 continue;
@@ -316,7 +334,7 @@ pub fn run_experiment<E: Experiment>(
     conclude::<E>(source, &prepared, results, opts, wall_s, merge).map(Some)
 }
 
-/// The headline and the cross-check from the units' results (in unit order), the verdict,
+/// The headline and the cross-checks from the units' results (in unit order), the verdict,
 /// and the outcome and its files.
 pub(crate) fn conclude<E: Experiment>(
     source: &Source,
@@ -334,15 +352,17 @@ pub(crate) fn conclude<E: Experiment>(
         .fold(0.0, f64::max);
     let mut rest = conclusions.into_iter();
     let (solver, conclusion, measured) = rest.next().expect("at least one solver");
-    let cross_check = rest.next().map(|(s, _, m)| CrossCheck {
-        solver: s.name().to_string(),
-        value: m.value,
-        std_error: m.std_error,
-        agrees: def.verdict.agree(measured, m),
-    });
+    let cross_checks: Vec<CrossCheck> = rest
+        .map(|(s, _, m)| CrossCheck {
+            solver: s.name().to_string(),
+            value: m.value,
+            std_error: m.std_error,
+            agrees: def.verdict.agree(measured, m),
+        })
+        .collect();
     let verdict = def.verdict.judge(measured, conclusion.persson);
     let mut conclusion = conclusion;
-    let claims = judge_claims(def, &conclusion, measured, &cross_check, opts.scale);
+    let claims = judge_claims(def, &conclusion, measured, &cross_checks, opts.scale);
     papers_values(&mut conclusion.details, &claims);
     let reproduced = reproduced(def, verdict, measured, &conclusion.checks, &claims);
     let files = write_files(&opts.out, &def.name, &conclusion)?;
@@ -376,7 +396,7 @@ pub(crate) fn conclude<E: Experiment>(
         files,
         threads: rayon::current_num_threads(),
         solver: solver.name().to_string(),
-        cross_check,
+        cross_checks,
         merge,
     };
     let json = serde_json::to_vec_pretty(&outcome).expect("outcomes serialise");
@@ -414,20 +434,20 @@ fn conclude_by_solver<E: Experiment>(
         .collect()
 }
 
-/// Every claim of the definition judged on the headline solver's conclusion (and the
-/// cross-checks' headlines), by the one rule of [`super::claims::ClaimSpec::judge`].
+/// Every claim of the definition judged on the headline solver's conclusion (and each
+/// cross-check's headline, by its solver's name: `cross_check:SOLVER`), by the one rule of [`super::claims::ClaimSpec::judge`].
 fn judge_claims<S>(
     def: &Definition<S>,
     conclusion: &Conclusion,
     measured: Estimate,
-    cross_check: &Option<CrossCheck>,
+    cross_checks: &[CrossCheck],
     scale: Scale,
 ) -> Vec<ClaimOutcome> {
     let measures = Measures {
         headline: measured,
         details: &conclusion.details,
         studies: &conclusion.studies,
-        cross_checks: cross_check
+        cross_checks: cross_checks
             .iter()
             .map(|c| (c.solver.clone(), Estimate::new(c.value, c.std_error)))
             .collect(),

@@ -10,6 +10,15 @@
 //! contiguous buffer, transformed (rustfft), and scattered back. Both passes run on rayon's
 //! pool; the result does not depend on the number of threads (every 1D transform is the
 //! same computation whichever thread runs it).
+//!
+//! Three jobs, one module each:
+//!
+//! * here, the plans and the transforms ([`Fft2::forward`], [`Fft2::inverse`]), and the
+//!   kernels of convolutions ([`Kernel`]);
+//! * [`columns`]: the cache-blocked column pass, which in a convolution multiplies by the
+//!   kernel between the column transforms;
+//! * [`fused`]: the convolution ([`Fft2::convolve`]) fused with a solver's passes over its
+//!   fields ([`FusedPass`]).
 
 use std::cell::RefCell;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -21,11 +30,14 @@ use rustfft::num_complex::Complex64;
 use rustfft::{Fft, FftPlanner};
 
 use crate::engine::grid::Grid;
-use crate::engine::wide::wide;
 
 mod blocks;
+pub mod columns;
+pub mod fused;
 
-use blocks::{gather, scatter, SharedMut, COLUMN_ORDER_MAX_N};
+pub use fused::{FusedPass, PassValues};
+
+use blocks::COLUMN_ORDER_MAX_N;
 
 /// Precomputed plans for real 2D transforms on one grid size.
 ///
@@ -80,15 +92,6 @@ impl Kernel {
     }
 }
 
-/// Complex values in a gathered block of columns: 256 KiB, so that the block stays in a
-/// core's L2 cache (a size from the cache, not a measurement).
-const BLOCK_VALUES: usize = 16384;
-/// Fewest columns in a block: four complex values are one 64-byte cache line, so the
-/// gather reads whole lines of every row.
-const BLOCK_COLUMNS_MIN: usize = 4;
-/// Most columns in a block (small grids): enough for whole lines, few enough for several
-/// blocks per thread.
-const BLOCK_COLUMNS_MAX: usize = 16;
 /// Tasks per thread of a row pass: a few, for load balance on a shared machine (not a
 /// measurement).
 const TASKS_PER_THREAD: usize = 4;
@@ -120,7 +123,7 @@ impl Fft2 {
         let n = grid.n();
         let mut real_planner = RealFftPlanner::<f64>::new();
         let mut planner = FftPlanner::<f64>::new();
-        let block = (BLOCK_VALUES / n).clamp(BLOCK_COLUMNS_MIN, BLOCK_COLUMNS_MAX);
+        let block = columns::block_width(n);
         Self {
             n,
             m: grid.half_cols(),
@@ -191,9 +194,7 @@ impl Fft2 {
                     let scratch = at_least(complex, self.r2c.get_scratch_len());
                     for (o, i) in out.chunks_exact_mut(m).zip(input.chunks_exact(n)) {
                         row.copy_from_slice(i);
-                        self.r2c
-                            .process_with_scratch(row, o, scratch)
-                            .expect("r2c lengths are planned");
+                        self.row_forward(row, o, scratch);
                     }
                 })
             });
@@ -213,7 +214,6 @@ impl Fft2 {
         self.count(1);
         self.columns(spec, &self.col_inv, 1.0);
         let rows = rows_per_task(n);
-        let even = n % 2 == 0;
         spec.par_chunks_mut(m * rows)
             .zip(field.par_chunks_mut(n * rows))
             .for_each(|(input, out)| {
@@ -221,16 +221,34 @@ impl Fft2 {
                     let mut guard = cell.borrow_mut();
                     let scratch = at_least(&mut guard.complex, self.c2r.get_scratch_len());
                     for (i, o) in input.chunks_exact_mut(m).zip(out.chunks_exact_mut(n)) {
-                        i[0].im = 0.0;
-                        if even {
-                            i[m - 1].im = 0.0;
-                        }
-                        self.c2r
-                            .process_with_scratch(i, o, scratch)
-                            .expect("c2r lengths are planned and edge imaginary parts zeroed");
+                        self.row_inverse(i, o, scratch);
                     }
                 })
             });
+    }
+
+    /// The real-to-complex transform of one row, `row` (left holding garbage), into `out`,
+    /// a row of the half spectrum.
+    #[inline]
+    fn row_forward(&self, row: &mut [f64], out: &mut [Complex64], scratch: &mut [Complex64]) {
+        self.r2c
+            .process_with_scratch(row, out, scratch)
+            .expect("r2c lengths are planned");
+    }
+
+    /// The complex-to-real transform of one row of the half spectrum, `row` (left holding
+    /// garbage), into `out`; the imaginary parts that a real row cannot have (at `kx = 0`
+    /// and, for even `n`, `kx = n/2`) are ignored.
+    #[inline]
+    fn row_inverse(&self, row: &mut [Complex64], out: &mut [f64], scratch: &mut [Complex64]) {
+        let m = self.m;
+        row[0].im = 0.0;
+        if self.n % 2 == 0 {
+            row[m - 1].im = 0.0;
+        }
+        self.c2r
+            .process_with_scratch(row, out, scratch)
+            .expect("c2r lengths are planned and edge imaginary parts zeroed");
     }
 
     /// `field = F^-1[spec]`, keeping `spec`; `work` is resized and used as scratch.
@@ -238,259 +256,6 @@ impl Fft2 {
         work.clear();
         work.extend_from_slice(spec);
         self.inverse_in_place(work, field);
-    }
-
-    /// A fused convolution `out = F^-1[kernel F[x]]`, with `x` generated row by row.
-    ///
-    /// `kernel` comes from [`Fft2::kernel`]. `input(i, row, side, old)` writes row `i` of `x`
-    /// into `row` (and may write the matching row of `side`, a second field it keeps, e.g. a
-    /// search direction) and returns a value; `old` is row `i` of `out` before the call, so
-    /// a field that is only read to generate `x` can share its memory with the result. Every
-    /// row is generated before the first one is written. `output(i, row, side)` sees row `i`
-    /// of the result once it is in `out`, with the same row of `side` (empty without one),
-    /// and returns a value. Both lists of values come back in row order, so reductions over
-    /// them do not depend on the number of threads. `spec` is work space. Each row is
-    /// generated, and consumed, while it is in cache: the input and output passes of a
-    /// solver iteration cost no extra sweep over memory.
-    #[allow(clippy::too_many_arguments)]
-    pub fn convolve<A, B, I, O>(
-        &self,
-        kernel: &Kernel,
-        spec: &mut [Complex64],
-        side: Option<&mut [f64]>,
-        input: I,
-        out: &mut [f64],
-        output: O,
-    ) -> (Vec<B>, Vec<A>)
-    where
-        A: Send,
-        B: Send,
-        I: Fn(usize, &mut [f64], &mut [f64], &[f64]) -> B + Sync,
-        O: Fn(usize, &[f64], &[f64]) -> A + Sync,
-    {
-        let n = self.n;
-        assert_eq!(kernel.n, n, "kernel planned for another grid");
-        assert_eq!(spec.len(), n * self.m, "spectrum length");
-        assert_eq!(out.len(), n * n, "output length");
-        if let Some(s) = &side {
-            assert_eq!(s.len(), n * n, "side length");
-        }
-        self.count(2);
-        let rows = rows_per_task(n);
-        let mut side = side;
-        let generated = self.generate(spec, side.as_deref_mut(), out, rows, &input);
-        self.columns_with(spec, kernel);
-        let consumed = self.consume(spec, out, side.as_deref(), rows, &output);
-        (
-            generated.into_iter().flatten().collect(),
-            consumed.into_iter().flatten().collect(),
-        )
-    }
-
-    /// The input pass of [`Fft2::convolve`]: row `i` of `x` from `input(i, row, side row,
-    /// old row)`, transformed along the row into `spec`, `rows` rows per task; the values
-    /// of each task's rows, in order.
-    fn generate<B, I>(
-        &self,
-        spec: &mut [Complex64],
-        side: Option<&mut [f64]>,
-        old: &[f64],
-        rows: usize,
-        input: &I,
-    ) -> Vec<Vec<B>>
-    where
-        B: Send,
-        I: Fn(usize, &mut [f64], &mut [f64], &[f64]) -> B + Sync,
-    {
-        let (n, m) = (self.n, self.m);
-        let side_rows = if side.is_some() { n } else { 0 };
-        let forward =
-            |c: usize, spec_chunk: &mut [Complex64], side_chunk: &mut [f64], old_chunk: &[f64]| {
-                SCRATCH.with(|cell| {
-                    let mut guard = cell.borrow_mut();
-                    let Scratch { real, complex, .. } = &mut *guard;
-                    let row = at_least(real, n);
-                    let scratch = at_least(complex, self.r2c.get_scratch_len());
-                    let mut values = Vec::with_capacity(rows);
-                    for (k, o) in spec_chunk.chunks_exact_mut(m).enumerate() {
-                        let i = c * rows + k;
-                        let side_row: &mut [f64] = if side_rows > 0 {
-                            &mut side_chunk[k * n..(k + 1) * n]
-                        } else {
-                            &mut []
-                        };
-                        values.push(wide(
-                            #[inline(always)]
-                            || input(i, row, side_row, &old_chunk[k * n..(k + 1) * n]),
-                        ));
-                        self.r2c
-                            .process_with_scratch(row, o, scratch)
-                            .expect("r2c lengths are planned");
-                    }
-                    values
-                })
-            };
-        match side {
-            Some(side) => spec
-                .par_chunks_mut(m * rows)
-                .zip(side.par_chunks_mut(n * rows))
-                .zip(old.par_chunks(n * rows))
-                .enumerate()
-                .map(|(c, ((a, b), o))| forward(c, a, b, o))
-                .collect(),
-            None => spec
-                .par_chunks_mut(m * rows)
-                .zip(old.par_chunks(n * rows))
-                .enumerate()
-                .map(|(c, (chunk, o))| forward(c, chunk, &mut [], o))
-                .collect(),
-        }
-    }
-
-    /// The output pass of [`Fft2::convolve`]: `spec` transformed back along the rows into
-    /// `out`, `rows` rows per task, and `output(i, out row, side row)` of every row; the
-    /// values of each task's rows, in order.
-    fn consume<A, O>(
-        &self,
-        spec: &mut [Complex64],
-        out: &mut [f64],
-        side: Option<&[f64]>,
-        rows: usize,
-        output: &O,
-    ) -> Vec<Vec<A>>
-    where
-        A: Send,
-        O: Fn(usize, &[f64], &[f64]) -> A + Sync,
-    {
-        let (n, m) = (self.n, self.m);
-        let side_rows = if side.is_some() { n } else { 0 };
-        let even = n % 2 == 0;
-        let backward =
-            |c: usize, spec_chunk: &mut [Complex64], out_chunk: &mut [f64], side_chunk: &[f64]| {
-                SCRATCH.with(|cell| {
-                    let mut guard = cell.borrow_mut();
-                    let scratch = at_least(&mut guard.complex, self.c2r.get_scratch_len());
-                    let mut values = Vec::with_capacity(rows);
-                    for (k, (i_row, o)) in spec_chunk
-                        .chunks_exact_mut(m)
-                        .zip(out_chunk.chunks_exact_mut(n))
-                        .enumerate()
-                    {
-                        i_row[0].im = 0.0;
-                        if even {
-                            i_row[m - 1].im = 0.0;
-                        }
-                        self.c2r
-                            .process_with_scratch(i_row, o, scratch)
-                            .expect("c2r lengths are planned and edge imaginary parts zeroed");
-                        let side_row: &[f64] = if side_rows > 0 {
-                            &side_chunk[k * n..(k + 1) * n]
-                        } else {
-                            &[]
-                        };
-                        values.push(wide(
-                            #[inline(always)]
-                            || output(c * rows + k, o, side_row),
-                        ));
-                    }
-                    values
-                })
-            };
-        match side {
-            Some(side) => spec
-                .par_chunks_mut(m * rows)
-                .zip(out.par_chunks_mut(n * rows))
-                .zip(side.par_chunks(n * rows))
-                .enumerate()
-                .map(|(c, ((a, b), d))| backward(c, a, b, d))
-                .collect(),
-            None => spec
-                .par_chunks_mut(m * rows)
-                .zip(out.par_chunks_mut(n * rows))
-                .enumerate()
-                .map(|(c, (a, b))| backward(c, a, b, &[]))
-                .collect(),
-        }
-    }
-
-    /// Column pass of a convolution: forward transform, multiplication by the kernel,
-    /// inverse transform, block by block.
-    fn columns_with(&self, spec: &mut [Complex64], kernel: &Kernel) {
-        let n = self.n;
-        let scratch_len = self
-            .col_fwd
-            .get_inplace_scratch_len()
-            .max(self.col_inv.get_inplace_scratch_len());
-        self.column_blocks(spec, scratch_len, 1.0, |c0, buf, scratch| {
-            self.col_fwd.process_with_scratch(buf, scratch);
-            let k = &kernel.values[c0 * n..c0 * n + buf.len()];
-            wide(
-                #[inline(always)]
-                || {
-                    if kernel.inverse {
-                        // kv = k / N^2, and the inverse needs (1/k) / N^2 = N^-4 / kv.
-                        let norm2 = kernel.norm * kernel.norm;
-                        for (b, &kv) in buf.iter_mut().zip(k) {
-                            *b *= if kv > 0.0 { norm2 / kv } else { 0.0 };
-                        }
-                    } else {
-                        for (b, &kv) in buf.iter_mut().zip(k) {
-                            *b *= kv;
-                        }
-                    }
-                },
-            );
-            self.col_inv.process_with_scratch(buf, scratch);
-        });
-    }
-
-    /// Transforms every column of the half spectrum with `fft`, scaling by `scale`.
-    fn columns(&self, spec: &mut [Complex64], fft: &Arc<dyn Fft<f64>>, scale: f64) {
-        self.column_blocks(
-            spec,
-            fft.get_inplace_scratch_len(),
-            scale,
-            |_, buf, scratch| fft.process_with_scratch(buf, scratch),
-        );
-    }
-
-    /// The column pass: blocks of [`Fft2::new`]'s `block` columns of the half spectrum,
-    /// in parallel, each gathered column by column into a contiguous buffer, handed to
-    /// `body(first column, buffer, scratch of scratch_len)`, and scattered back times
-    /// `scale`.
-    fn column_blocks<F>(&self, spec: &mut [Complex64], scratch_len: usize, scale: f64, body: F)
-    where
-        F: Fn(usize, &mut [Complex64], &mut [Complex64]) + Sync,
-    {
-        let (n, m, block, by_column) = (self.n, self.m, self.block, self.by_column);
-        let blocks = m.div_ceil(block);
-        let base = SharedMut(spec.as_mut_ptr());
-        (0..blocks).into_par_iter().for_each(|b| {
-            SCRATCH.with(|cell| {
-                let mut guard = cell.borrow_mut();
-                let Scratch {
-                    complex,
-                    block: buf,
-                    ..
-                } = &mut *guard;
-                let c0 = b * block;
-                let width = block.min(m - c0);
-                let buf = at_least(buf, width * n);
-                let scratch = at_least(complex, scratch_len);
-                // SAFETY: block `b` owns columns c0..c0+width of every row; no other task
-                // touches them, and `spec` outlives this loop.
-                wide(
-                    #[inline(always)]
-                    || unsafe { gather(base, m, c0, buf, n, by_column) },
-                );
-                body(c0, buf, scratch);
-                // SAFETY: as above.
-                wide(
-                    #[inline(always)]
-                    || unsafe { scatter(base, m, c0, buf, n, scale, by_column) },
-                );
-            })
-        });
     }
 }
 
@@ -527,43 +292,6 @@ mod tests {
     }
 
     #[test]
-    fn both_orders_of_the_column_pass_give_the_same_bits() {
-        let mut rng = ChaCha8Rng::seed_from_u64(11);
-        for n in [6usize, 16, 33, 64] {
-            let grid = Grid::new(n, 1.0).unwrap();
-            let by_column = Fft2::new(&grid);
-            let mut by_row = Fft2::new(&grid);
-            by_row.by_column = false;
-            assert!(
-                by_column.by_column,
-                "n = {n}: small grids go column by column"
-            );
-            let field: Vec<f64> = (0..n * n).map(|_| rng.random::<f64>() - 0.5).collect();
-            let mut specs = [by_column.new_spectrum(), by_row.new_spectrum()];
-            by_column.forward(&field, &mut specs[0]);
-            by_row.forward(&field, &mut specs[1]);
-            assert_eq!(specs[0], specs[1], "n = {n}: forward");
-            let table: Vec<f64> = (0..by_row.spectrum_len()).map(|i| i as f64).collect();
-            let kernel = by_row.kernel(&table);
-            let mut outs = [vec![0.0; n * n], vec![0.0; n * n]];
-            for (fft, (spec, out)) in [&by_column, &by_row]
-                .into_iter()
-                .zip(specs.iter_mut().zip(outs.iter_mut()))
-            {
-                fft.convolve(
-                    &kernel,
-                    spec,
-                    None,
-                    |i, row, _, _| row.copy_from_slice(&field[i * n..(i + 1) * n]),
-                    out,
-                    |_, _, _| (),
-                );
-            }
-            assert_eq!(outs[0], outs[1], "n = {n}: convolution");
-        }
-    }
-
-    #[test]
     fn forward_matches_direct_sum_and_inverse_round_trips() {
         let mut rng = ChaCha8Rng::seed_from_u64(7);
         for n in [4usize, 5, 6, 7, 8, 12, 15, 16, 31, 32] {
@@ -580,93 +308,6 @@ mod tests {
             fft.inverse_in_place(&mut spec, &mut back);
             for (a, b) in back.iter().zip(&field) {
                 assert!((a - b).abs() < 1e-14, "n = {n}: round trip");
-            }
-        }
-    }
-
-    #[test]
-    fn fused_convolution_equals_transform_multiply_transform() {
-        for n in [8usize, 9, 16, 30] {
-            let grid = Grid::new(n, 1.0).unwrap();
-            let fft = Fft2::new(&grid);
-            let mut rng = ChaCha8Rng::seed_from_u64(n as u64);
-            let x: Vec<f64> = (0..n * n).map(|_| rng.random::<f64>() - 0.5).collect();
-            let kernel: Vec<f64> = (0..grid.modes()).map(|s| 1.0 + grid.q(s)).collect();
-            // Reference: forward, multiply, inverse.
-            let mut spec = fft.new_spectrum();
-            fft.forward(&x, &mut spec);
-            for (c, k) in spec.iter_mut().zip(&kernel) {
-                *c *= *k;
-            }
-            let mut want = vec![0.0; n * n];
-            fft.inverse_in_place(&mut spec, &mut want);
-            // Fused, with the input kept in `side` and row sums returned.
-            let mut side = vec![0.0; n * n];
-            let mut got = vec![0.0; n * n];
-            let (ins, outs) = fft.convolve(
-                &fft.kernel(&kernel),
-                &mut spec,
-                Some(&mut side),
-                |i, row, keep, _| {
-                    row.copy_from_slice(&x[i * n..(i + 1) * n]);
-                    keep.copy_from_slice(row);
-                    i
-                },
-                &mut got,
-                |i, row, kept| {
-                    assert_eq!(kept, &x[i * n..(i + 1) * n]);
-                    (i, row.iter().sum::<f64>())
-                },
-            );
-            assert_eq!(side, x);
-            assert_eq!(ins, (0..n).collect::<Vec<_>>());
-            for (a, b) in got.iter().zip(&want) {
-                assert!((a - b).abs() < 1e-13, "n = {n}");
-            }
-            for (i, (k, s)) in outs.iter().enumerate() {
-                assert_eq!(*k, i);
-                let direct: f64 = got[i * n..(i + 1) * n].iter().sum();
-                assert_eq!(*s, direct);
-            }
-        }
-    }
-
-    #[test]
-    fn inverse_kernel_undoes_the_kernel_in_place() {
-        // x -> k x -> (1/k) (k x) returns x minus its mean (k = 0 at q = 0), with the
-        // second convolution reading its input from the buffer it writes.
-        for n in [8usize, 15, 32] {
-            let grid = Grid::new(n, 1.0).unwrap();
-            let fft = Fft2::new(&grid);
-            let mut rng = ChaCha8Rng::seed_from_u64(7 + n as u64);
-            let x: Vec<f64> = (0..n * n).map(|_| rng.random::<f64>() - 0.5).collect();
-            let mean = x.iter().sum::<f64>() / (n * n) as f64;
-            let table: Vec<f64> = (0..grid.modes()).map(|s| grid.q(s)).collect();
-            let k = fft.kernel(&table);
-            let mut spec = fft.new_spectrum();
-            let mut y = vec![0.0; n * n];
-            fft.convolve(
-                &k,
-                &mut spec,
-                None,
-                |i, row, _, _| row.copy_from_slice(&x[i * n..(i + 1) * n]),
-                &mut y,
-                |_, _, _| (),
-            );
-            fft.convolve(
-                &k.inverse(),
-                &mut spec,
-                None,
-                |_, row, _, old| row.copy_from_slice(old),
-                &mut y,
-                |_, _, _| (),
-            );
-            for (a, b) in y.iter().zip(&x) {
-                assert!(
-                    (a - (b - mean)).abs() < 1e-13,
-                    "n = {n}: {a} vs {}",
-                    b - mean
-                );
             }
         }
     }

@@ -36,8 +36,12 @@ pub enum Verdict {
 
 /// A hard-wall method: its settings and work space, kept from solve to solve.
 pub trait Method {
-    /// Short name (`"gfmd"`, `"cg"`).
+    /// Short name, the solver's name everywhere (scenes, the command line, Python,
+    /// outcomes).
     const NAME: &'static str;
+    /// The wall time of a warm-started solve relative to CG's (1 for CG), for planning
+    /// runs: each method says where its value comes from.
+    const RELATIVE_COST: f64;
     /// One solve's state, borrowing the method's work space.
     type Solve<'a>: Iteration
     where

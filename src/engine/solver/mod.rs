@@ -5,14 +5,18 @@
 //!   mass-weighted so that every mode shares one frequency, relaxed with a momentum
 //!   schedule that restarts when the force opposes the motion.
 //! * [`ConstrainedCg`]: constrained conjugate gradients on the pressure
-//!   (Polonsky & Keer 1999), the algorithm of tamaas and ContactMechanics.
+//!   (Polonsky & Keer 1999), the algorithm of tamaas and ContactMechanics;
+//! * [`Fire`]: the fast inertial relaxation engine (Bitzek et al. 2006) on GFMD's masses:
+//!   the same mass-weighted dynamics (`dynamics.rs`), relaxed by FIRE's velocity mixing
+//!   and adaptive time step.
 //!
-//! Both are [`Solver`]s, start cold or from a previous solution, stop at the
+//! [`SolverKind::ALL`] lists them, one entry each: adding a solver is its folder and one
+//! entry. All are [`Solver`]s, start cold or from a previous solution, stop at the
 //! solver-independent [`crate::engine::contact::Residual`], and fail with
 //! [`crate::Error::NotConverged`] (carrying the residual), [`crate::Error::NonFinite`] or
 //! [`crate::Error::LostContact`] rather than return an unconverged field.
 //!
-//! # One scaffold under both
+//! # One scaffold under all
 //!
 //! A solver keeps only its own steps. What every solve does is written once:
 //!
@@ -31,11 +35,14 @@
 //!   comes from the [`Model`](crate::engine::contact::Model).
 
 mod cg;
+mod dynamics;
 pub mod executor;
+mod fire;
 mod gfmd;
 pub mod workspace;
 
 pub use cg::ConstrainedCg;
+pub use fire::{Fire, FireParams};
 pub use gfmd::{Gfmd, GfmdParams};
 
 use serde::{Deserialize, Serialize};
@@ -43,32 +50,104 @@ use serde::{Deserialize, Serialize};
 use crate::engine::contact::{ContactProblem, ContactSolution};
 use crate::error::{Error, Result};
 
-/// The solvers by name, for scenes and the command line.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default, clap::ValueEnum)]
-#[serde(rename_all = "snake_case")]
-pub enum SolverKind {
+/// Writes [`SolverKind`] from the list of methods: one entry per solver, its kind and its
+/// [`executor::Method`] (whose [`executor::Method::NAME`] is the solver's name), from which
+/// [`SolverKind::ALL`], the names, the parser, the constructor and the cost follow.
+macro_rules! solvers {
+    ($($(#[$attr:meta])* $kind:ident => $method:ty,)+) => {
+        /// The solvers, by name: for scenes, the command line, Python and the studies
+        /// ([`SolverKind::ALL`] lists them).
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+        pub enum SolverKind {
+            $($(#[$attr])* $kind,)+
+        }
+
+        /// How many solvers there are.
+        const SOLVER_COUNT: usize = [$(stringify!($kind)),+].len();
+
+        impl SolverKind {
+            /// Every solver, in the order of the list: the paper's method first.
+            pub const ALL: [SolverKind; SOLVER_COUNT] = [$(SolverKind::$kind),+];
+            /// Their names, in the same order.
+            pub const NAMES: [&'static str; SOLVER_COUNT] =
+                [$(<$method as executor::Method>::NAME),+];
+
+            /// A fresh solver of this kind.
+            pub fn build(self) -> Box<dyn Solver + Send> {
+                match self {
+                    $(SolverKind::$kind => Box::new(<$method>::default()),)+
+                }
+            }
+
+            /// The time of a warm-started solve relative to CG's
+            /// ([`executor::Method::RELATIVE_COST`]).
+            pub fn relative_cost(self) -> f64 {
+                match self {
+                    $(SolverKind::$kind => <$method as executor::Method>::RELATIVE_COST,)+
+                }
+            }
+        }
+    };
+}
+
+solvers! {
     /// Green's function molecular dynamics (mass-weighted, accelerated damped dynamics).
-    Gfmd,
+    Gfmd => Gfmd,
     /// Constrained conjugate gradients (Polonsky-Keer).
     #[default]
-    Cg,
+    Cg => ConstrainedCg,
+    /// FIRE on GFMD's masses (Bitzek et al. 2006).
+    Fire => Fire,
 }
 
 impl SolverKind {
-    /// A fresh solver of this kind.
-    pub fn build(self) -> Box<dyn Solver + Send> {
-        match self {
-            SolverKind::Gfmd => Box::new(Gfmd::default()),
-            SolverKind::Cg => Box::new(ConstrainedCg::default()),
-        }
-    }
-
     /// The solver's short name.
     pub fn name(self) -> &'static str {
-        match self {
-            SolverKind::Gfmd => "gfmd",
-            SolverKind::Cg => "cg",
+        Self::NAMES[self.index()]
+    }
+
+    /// Its place in [`SolverKind::ALL`].
+    pub fn index(self) -> usize {
+        self as usize
+    }
+
+    /// The solver named `name`, or `None`: the one parser of solver names (clap's, from
+    /// [`SolverKind::ALL`] and the names).
+    pub fn from_name(name: &str) -> Option<Self> {
+        <Self as clap::ValueEnum>::from_str(name, false).ok()
+    }
+
+    /// The names as a message lists them: `"gfmd", "cg" or "fire"`.
+    pub fn listed() -> String {
+        let quoted: Vec<String> = Self::NAMES.iter().map(|n| format!("{n:?}")).collect();
+        match quoted.split_last() {
+            Some((last, [])) => last.clone(),
+            Some((last, rest)) => format!("{} or {last}", rest.join(", ")),
+            None => String::new(),
         }
+    }
+}
+
+impl clap::ValueEnum for SolverKind {
+    fn value_variants<'a>() -> &'a [Self] {
+        &Self::ALL
+    }
+
+    fn to_possible_value(&self) -> Option<clap::builder::PossibleValue> {
+        Some(clap::builder::PossibleValue::new(self.name()))
+    }
+}
+
+impl Serialize for SolverKind {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        s.serialize_str(self.name())
+    }
+}
+
+impl<'de> Deserialize<'de> for SolverKind {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        let name = std::borrow::Cow::<str>::deserialize(d)?;
+        Self::from_name(&name).ok_or_else(|| serde::de::Error::unknown_variant(&name, &Self::NAMES))
     }
 }
 
@@ -132,7 +211,7 @@ pub struct Progress {
 /// A hard-wall contact solver. Every [`executor::Method`] is one, run by
 /// [`executor::run`].
 pub trait Solver {
-    /// Short name (`"gfmd"`, `"cg"`).
+    /// Short name ([`SolverKind::NAMES`]).
     fn name(&self) -> &'static str;
 
     /// Solves `problem` from `start` to `opts.tol`, or fails with the residual reached;
@@ -208,6 +287,30 @@ impl<F: FnMut(&ContactProblem, Progress)> Solver for Watched<F> {
 mod tests {
     use super::*;
     use crate::engine::testing::rough_contact;
+
+    #[test]
+    fn every_solver_has_one_name_that_parses_serialises_and_builds_it() {
+        for (k, kind) in SolverKind::ALL.into_iter().enumerate() {
+            let name = kind.name();
+            assert_eq!(kind.index(), k);
+            assert_eq!(SolverKind::NAMES.iter().filter(|&&n| n == name).count(), 1);
+            assert_eq!(SolverKind::from_name(name), Some(kind));
+            assert_eq!(kind.build().name(), name);
+            let json = serde_json::to_string(&kind).unwrap();
+            assert_eq!(json, format!("{name:?}"));
+            assert_eq!(serde_json::from_str::<SolverKind>(&json).unwrap(), kind);
+            assert!(kind.relative_cost() > 0.0);
+            assert!(SolverKind::listed().contains(&format!("{name:?}")));
+        }
+        assert_eq!(SolverKind::from_name("fem"), None);
+        let e = serde_json::from_str::<SolverKind>("\"fem\"").unwrap_err();
+        assert!(e.to_string().contains("unknown variant `fem`"), "{e}");
+        assert_eq!(
+            SolverKind::Cg.relative_cost(),
+            1.0,
+            "CG is the unit of cost"
+        );
+    }
 
     #[test]
     fn watched_sees_every_iteration_and_leaves_the_solution_alone() {

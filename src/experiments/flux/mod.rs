@@ -42,6 +42,7 @@ use self::reading::PaperFlux;
 use self::sensitivity::{SensitivityPlan, SensitivityRow, StudyJob, StudyResult};
 use self::steps::StepStats;
 use self::waterfall::{WaterfallPlan, WaterfallResult};
+use super::contact_change::{categories, ENTERED, LEFT};
 use super::reentry::history::pack_categories;
 use super::scene::{scene, Step};
 use super::study::Study;
@@ -49,12 +50,6 @@ use super::{Check, Detail, Experiment, JobContext, Jobs, Work};
 use crate::error::{Error, Result};
 use crate::plot::{Figure, Raster, Waterfall};
 use crate::stats::Estimate;
-
-/// Map categories: in contact at both, entered, out at both, left.
-const BOTH: u8 = 0;
-const ENTERED: u8 = 1;
-const NEITHER: u8 = 2;
-const LEFT: u8 = 3;
 
 scene! {
     /// Scene of the one-step flux.
@@ -126,16 +121,6 @@ impl FluxScene {
     /// The headline step's relative size `dzeta / zeta`, the unit of the study's steps.
     pub fn relative_step(&self) -> f64 {
         self.dzeta / self.zeta
-    }
-}
-
-/// The category of a point from its pressure before and after the step.
-fn category(before: f64, after: f64) -> u8 {
-    match (before > 0.0, after > 0.0) {
-        (true, true) => BOTH,
-        (false, true) => ENTERED,
-        (false, false) => NEITHER,
-        (true, false) => LEFT,
     }
 }
 
@@ -352,12 +337,7 @@ fn step(scene: &FluxScene, seed: u64, ctx: &JobContext) -> Result<FluxResult> {
         before: old,
         after: new,
     } = base.step(&r, ctx.solver, scene.zeta, scene.dzeta, scene.contact_area)?;
-    let categories: Vec<u8> = old
-        .pressure
-        .iter()
-        .zip(&new.pressure)
-        .map(|(&a, &b)| category(a, b))
-        .collect();
+    let categories = categories(&old.pressure, &new.pressure);
     let (flux_in, flux_out) = fluxes(&categories);
     Ok(FluxResult {
         p0,
@@ -373,16 +353,13 @@ fn step(scene: &FluxScene, seed: u64, ctx: &JobContext) -> Result<FluxResult> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::experiments::contact_change::{BOTH, NEITHER};
 
     #[test]
     fn categories_follow_the_contact_at_both_magnifications() {
         let before = [1.0, 0.0, 0.0, 2.0, 0.5];
         let after = [0.5, 0.1, 0.0, 0.0, 0.3];
-        let c: Vec<u8> = before
-            .iter()
-            .zip(&after)
-            .map(|(&a, &b)| category(a, b))
-            .collect();
+        let c = categories(&before, &after);
         assert_eq!(c, vec![BOTH, ENTERED, NEITHER, LEFT, BOTH]);
         assert_eq!(fluxes(&c), (0.2, 0.2));
     }

@@ -31,6 +31,7 @@ use serde::{Deserialize, Serialize};
 use crate::engine::solver::SolverKind;
 use crate::engine::spectrum::ShellSpectrum;
 use crate::error::{check_open, check_positive, Error, Result};
+use crate::experiments::contact_change::categories;
 use crate::experiments::reentry::net_over_gross;
 use crate::experiments::scene::Base;
 use crate::experiments::study::{Cell, Study};
@@ -322,10 +323,7 @@ impl SensitivityPlan {
             }
         }
         for &solver in &self.solvers {
-            let v = match solver {
-                SolverKind::Gfmd => 0.0,
-                SolverKind::Cg => 1.0,
-            };
+            let v = solver.index() as f64;
             let c = StudyConfig {
                 solver,
                 ..base.clone()
@@ -531,12 +529,7 @@ pub fn run(hurst: f64, job: &StudyJob) -> Result<StudyResult> {
     } else {
         sweep.solve_at(c.zeta + c.dzeta, p0)?
     };
-    let categories: Vec<u8> = old
-        .pressure
-        .iter()
-        .zip(&new.pressure)
-        .map(|(&a, &b)| super::category(a, b))
-        .collect();
+    let categories = categories(&old.pressure, &new.pressure);
     let (flux_in, flux_out) = super::fluxes(&categories);
     let (variance_added, modes_added) = step_taken(&r.surface.shells(), c.zeta, c.dzeta);
     Ok(StudyResult {

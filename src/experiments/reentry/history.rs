@@ -6,6 +6,7 @@ use serde::{Deserialize, Serialize};
 use crate::engine::contact::ContactSolution;
 use crate::error::Result;
 use crate::experiments::climb::{Arrays, Recorder};
+use crate::experiments::contact_change::{above, change, ENTERED, LEFT};
 use crate::io::checkpoint::{Array, Checkpoints};
 
 /// Map category: in contact at every step (grey).
@@ -75,7 +76,7 @@ impl History {
     /// Records the contact state after step `step` (0 = first shell).
     pub fn update(&mut self, step: usize, pressure: &[f64]) {
         for (i, &p) in pressure.iter().enumerate() {
-            let now = u8::from(p > 0.0);
+            let now = u8::from(above(p, 0.0));
             let was = self.in_contact[i];
             if was == 1 && now == 0 {
                 self.left[i] = self.left[i].saturating_add(1);
@@ -102,18 +103,13 @@ impl History {
         let mut map = Vec::with_capacity(start.len());
         for (&a, &b) in start.iter().zip(&self.in_contact) {
             out_before += f64::from(1 - a);
-            map.push(match (a, b) {
-                (1, 1) => 0,
-                (0, 1) => {
-                    enter += 1.0;
-                    1
-                }
-                (0, 0) => 2,
-                _ => {
-                    leave += 1.0;
-                    3
-                }
-            });
+            let c = change(a == 1, b == 1);
+            match c {
+                ENTERED => enter += 1.0,
+                LEFT => leave += 1.0,
+                _ => {}
+            }
+            map.push(c);
         }
         let zero_bin = if out_before > 0.0 {
             enter / out_before

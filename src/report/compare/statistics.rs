@@ -9,7 +9,7 @@
 //! |---|---|
 //! | `headline` | `value`, `std_error` |
 //! | `detail:KEY` (`detail:KEY@GRID` when `grid` is set) | `details[].value` |
-//! | `cross_check:SOLVER` | `cross_check` |
+//! | `cross_check:SOLVER` | each of `cross_checks` |
 //! | `claim:KEY` | `claims[].measured` ([`ClaimOutcome`]) |
 //! | `study:STUDY/ROW/COLUMN` | each estimate or number cell of `studies[].rows` ([`Cell`]) |
 //!
@@ -110,7 +110,7 @@ pub fn statistics(outcome: &Outcome) -> Vec<Statistic> {
         };
         out.push((key, d.value.into()));
     }
-    if let Some(c) = &outcome.cross_check {
+    for c in &outcome.cross_checks {
         out.push((
             format!("cross_check:{}", c.solver),
             Measured::new(c.value, c.std_error),
@@ -159,7 +159,7 @@ pub fn readings(outcome: &Outcome) -> Vec<Reading> {
     for claim in &outcome.claims {
         out.push((format!("claim:{}", claim.key), spelled(&claim.result)));
     }
-    if let Some(c) = &outcome.cross_check {
+    for c in &outcome.cross_checks {
         let words = if c.agrees { "agrees" } else { "disagrees" };
         out.push((format!("cross_check:{}", c.solver), words.into()));
     }

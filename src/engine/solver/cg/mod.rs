@@ -89,6 +89,7 @@ use crate::engine::solver::workspace::{warm_start, Record, Workspace};
 use crate::engine::solver::{SolveOptions, Start};
 use crate::error::{Result, Termination};
 
+mod passes;
 mod stopping;
 mod sums;
 mod update;
@@ -138,6 +139,8 @@ impl Default for ConstrainedCg {
 
 impl Method for ConstrainedCg {
     const NAME: &'static str = "cg";
+    /// The unit of the others.
+    const RELATIVE_COST: f64 = 1.0;
     type Solve<'a> = Solve<'a>;
 
     fn init<'a>(
@@ -298,27 +301,15 @@ impl<'a> Solve<'a> {
         let n = model.grid.n();
         let view = View::new(&self.p[..], &self.u[..], problem.heights, self.frame);
         let (sums, sz, rho) = if self.precond {
+            // z shares r's memory: it is read while t is generated, before r is written
+            // (see `Fft2::convolve`).
+            let pass = passes::Precondition { view, n };
             let (rows, outs) = model.fft.convolve(
                 &model.stiffness,
                 &mut self.spec[..],
                 None,
-                #[inline(always)]
-                |i, row, _, _| view.gap_sums_into(i * n..(i + 1) * n, Some(row)),
-                // z shares r's memory: it is read while t is generated, before r is
-                // written (see `Fft2::convolve`).
+                &pass,
                 &mut self.r[..],
-                #[inline(always)]
-                |i, z, _| {
-                    let (p, u, h) = view.row(i, n);
-                    let frame = view.frame;
-                    let (mut sz, mut gz) = (0.0, 0.0);
-                    for (((&zk, &pk), &uk), &hk) in z.iter().zip(p).zip(u).zip(h) {
-                        let zm = if pk > 0.0 { zk } else { 0.0 };
-                        sz += zm;
-                        gz += frame.gap(uk, hk) * zm;
-                    }
-                    [sz, gz]
-                },
             );
             let sums = rows.into_iter().fold(GapSums::default(), GapSums::add);
             let [sz, gz] = add_all(outs);
@@ -355,45 +346,19 @@ impl<'a> Solve<'a> {
         };
         self.rho_old = gap.rho;
         let view = View::new(&self.p[..], &self.u[..], problem.heights, self.frame);
+        let pass = passes::Direction {
+            view,
+            n,
+            precond,
+            zbar,
+            beta,
+        };
         let (_, outs) = model.fft.convolve(
             &model.compliance,
             &mut self.spec[..],
             Some(&mut self.t[..]),
-            #[inline(always)]
-            |i, row, t, z| {
-                let (p, u, h) = view.row(i, n);
-                let frame = view.frame;
-                if precond {
-                    for (((x, tk), &zk), &pk) in row.iter_mut().zip(t.iter_mut()).zip(z).zip(p) {
-                        let d = zk - zbar + beta * *tk;
-                        *tk = if pk > 0.0 { d } else { 0.0 };
-                        *x = *tk;
-                    }
-                } else {
-                    for ((((x, tk), &pk), &uk), &hk) in
-                        row.iter_mut().zip(t.iter_mut()).zip(p).zip(u).zip(h)
-                    {
-                        let d = frame.gap(uk, hk) + beta * *tk;
-                        *tk = if pk > 0.0 { d } else { 0.0 };
-                        *x = *tk;
-                    }
-                }
-            },
+            &pass,
             &mut self.r[..],
-            #[inline(always)]
-            |i, r, t| {
-                let (p, u, h) = view.row(i, n);
-                let frame = view.frame;
-                let (mut sr, mut st, mut gt, mut rt) = (0.0, 0.0, 0.0, 0.0);
-                // t = 0 outside contact: only the sum of r needs a mask.
-                for ((((&rk, &tk), &pk), &uk), &hk) in r.iter().zip(t).zip(p).zip(u).zip(h) {
-                    sr += if pk > 0.0 { rk } else { 0.0 };
-                    st += tk;
-                    gt += frame.gap(uk, hk) * tk;
-                    rt += rk * tk;
-                }
-                [sr, st, gt, rt]
-            },
         );
         let [sum_r, sum_t, gt, rt] = add_all(outs);
         Direction {

@@ -1,8 +1,8 @@
 //! Steps 4 to 6 of a CG iteration (see the module docs): the update of the pressure, the
 //! load, and the displacement and rigid shift of the new pressure.
 
-use super::sums::{contact_sums, Step, Update};
-use super::{Solve, KEEP_CONJUGACY};
+use super::sums::{Step, Update};
+use super::{passes, Solve, KEEP_CONJUGACY};
 use crate::engine::field::{add_all, map_chunks_mut};
 use crate::error::Result;
 
@@ -34,32 +34,18 @@ impl Solve<'_> {
         let model = problem.model;
         let n = model.grid.n();
         let h = problem.heights;
-        let t = &self.t[..];
+        let pass = passes::Update {
+            step,
+            t: &self.t[..],
+            h,
+            n,
+        };
         let (rows, outs) = model.fft.convolve(
             &model.compliance,
             &mut self.spec[..],
             Some(&mut self.p[..]),
-            |i, row, pr, ur| {
-                let rg = i * n..(i + 1) * n;
-                let mut acc = [0.0; 3];
-                for ((((x, pk), &uk), &tk), &hk) in row
-                    .iter_mut()
-                    .zip(pr.iter_mut())
-                    .zip(ur)
-                    .zip(&t[rg.clone()])
-                    .zip(&h[rg])
-                {
-                    let (q, clip, enter) = step.point(*pk, uk, hk, tk);
-                    *pk = q;
-                    *x = q;
-                    acc[0] += q;
-                    acc[1] += clip;
-                    acc[2] += enter;
-                }
-                acc
-            },
+            &pass,
             &mut self.u[..],
-            |i, u, p| contact_sums(u, p, &h[i * n..(i + 1) * n]),
         );
         Update::new(add_all(rows), add_all(outs))
     }
@@ -140,18 +126,13 @@ impl Solve<'_> {
         let n = model.grid.n();
         let h = problem.heights;
         let s = self.frame.scale;
+        let pass = passes::Rescale { scale: s, h, n };
         let (_, outs) = model.fft.convolve(
             &model.compliance,
             &mut self.spec[..],
             Some(&mut self.p[..]),
-            |_, row, p, _| {
-                for (x, pj) in row.iter_mut().zip(p.iter_mut()) {
-                    *pj *= s;
-                    *x = *pj;
-                }
-            },
+            &pass,
             &mut self.u[..],
-            |i, u, p| contact_sums(u, p, &h[i * n..(i + 1) * n]),
         );
         self.frame.scale = 1.0;
         let [su, sh, cnt] = add_all(outs);
