@@ -10,11 +10,15 @@
 //! persson-check speed    [--n N] [--floor-n N ...] [--repeats K] --out DIR
 //! persson-check check-surface --heights FILE... --pixel-size DX [--periodic]
 //!                        [--loads P1,P2,...] [--solver gfmd|cg|fire] [--no-cross-check] --out DIR
+//! persson-check audit    [--from DIR] [--budget 20m] [--seed K] [--job KEY ...]
+//!                        [--validation NAME ...] [--out DIR]
+//! persson-check compare  BASE NEW [--out FILE.md] [--z Z]
 //! persson-check claims   [--full DIR] [--reduced DIR] [--write FILE.md]
 //! ```
 //!
 //! Exit code 0 on success; otherwise a message on stderr and a non-zero code, and no
-//! partial output files.
+//! partial output files. `audit` and `compare` answer a question: 0 when nothing differs
+//! (or moved), 1 when something does, 2 when they could not answer (bad input).
 
 mod commands;
 
@@ -53,6 +57,10 @@ enum Command {
     Speed(commands::speed::Args),
     /// Check Persson's theory on measured height maps (contact area, pressures, energy).
     CheckSurface(commands::check_surface::Args),
+    /// Recompute a sample of committed job results and compare them byte for byte.
+    Audit(commands::audit::Args),
+    /// Compare two folders of outcomes statistic by statistic (z-scores, flips).
+    Compare(commands::compare::Args),
     /// The paper's claims, full and reduced scenes side by side (the README's table).
     Claims(commands::claims::Args),
 }
@@ -75,6 +83,8 @@ fn main() -> ExitCode {
         Command::Report(args) => commands::report::run(args),
         Command::Speed(args) => commands::speed::run(args),
         Command::CheckSurface(args) => commands::check_surface::run(args),
+        Command::Audit(args) => return answer(commands::audit::run(args)),
+        Command::Compare(args) => return answer(commands::compare::run(args)),
         Command::Claims(args) => commands::claims::run(args),
     };
     match result {
@@ -82,6 +92,19 @@ fn main() -> ExitCode {
         Err(e) => {
             eprintln!("error: {e}");
             ExitCode::FAILURE
+        }
+    }
+}
+
+/// The exit code of a command that answers whether something differs: 0 no, 1 yes, 2 when
+/// it could not answer (the error on stderr).
+fn answer(result: persson_check::error::Result<bool>) -> ExitCode {
+    match result {
+        Ok(true) => ExitCode::SUCCESS,
+        Ok(false) => ExitCode::from(1),
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
         }
     }
 }

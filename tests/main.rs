@@ -2,10 +2,12 @@
 //! with the helpers they share in [`common`].
 
 mod architecture;
+mod audit;
 mod bad_input;
 mod cg_bits;
 mod check_surface;
 mod common;
+mod compare;
 mod determinism;
 mod fire_bits;
 mod gfmd_bits;

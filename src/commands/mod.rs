@@ -2,8 +2,10 @@
 //! [`persson_check::tasks`] for the work the Python package offers too, and writes its
 //! outputs only once everything has been computed.
 
+pub mod audit;
 pub mod check_surface;
 pub mod claims;
+pub mod compare;
 pub mod report;
 pub mod solve;
 pub mod speed;

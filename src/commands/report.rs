@@ -29,6 +29,11 @@ pub struct Args {
     /// Points per side of the speed study's grid (its size study uses N/4 ... 2N).
     #[arg(long = "speed-n", default_value_t = 256, allow_negative_numbers = true)]
     speed_n: usize,
+    /// History of the headlines, one JSON line per night: records these outcomes' headlines
+    /// as tonight's line (created when missing) and adds the trend figure of the last
+    /// nights to the scorecard.
+    #[arg(long)]
+    history: Option<PathBuf>,
 }
 
 pub fn run(args: Args) -> Result<()> {
@@ -71,6 +76,10 @@ pub fn run(args: Args) -> Result<()> {
         speed,
     };
     let summary = write(&opts, &mut |line| eprintln!("speed study: {line}"))?;
+    if let Some(history) = &args.history {
+        persson_check::report::trend::append(&opts.out, &opts.from, history)?;
+        println!("recorded the headlines in {}", history.display());
+    }
     println!(
         "wrote {} ({} validation{})",
         summary.path.display(),

@@ -31,6 +31,9 @@ mod validation;
 pub use golden::{read_snapshot, GoldenMatch};
 pub use outcomes::{read_outcome, read_outcomes, scene_grids, scene_seeds, Loaded};
 
+pub mod compare;
+pub mod trend;
+
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 

@@ -14,6 +14,7 @@
 //! | the validations, their plan and merge | [`validations`] | `validate [--plan] [--merge]` | `validate`, `plan`, `merge` |
 //! | Persson checked on measured height maps | [`check::check_surface`] | `check-surface` | `check_surface` |
 //! | the parsers: solver names, the load, ranges | [`parse`] | flags | keywords |
+//! | stored job results recomputed and compared | [`audit::audit`] | `audit` | |
 //!
 //! # Names in messages
 //!
@@ -22,6 +23,7 @@
 //! -1: ...`). A task takes a [`Spelling`] ([`Flags`] or [`Keywords`]) and names its
 //! parameters through it; everything else in a message is the same in both.
 
+pub mod audit;
 pub mod check;
 pub mod parse;
 pub mod solve;

@@ -23,8 +23,10 @@
 //! * [`runner`]: running one experiment's definition;
 //! * [`registry`]: the table of experiments;
 //! * [`shard`] and [`plan`]: runs split into shares over many machines (a scheduler's job
-//!   array over a shared output folder) and merged into the outcomes of one run.
+//!   array over a shared output folder) and merged into the outcomes of one run;
+//! * [`audit`]: stored job results recomputed with this build and compared byte for byte.
 
+pub mod audit;
 pub mod claims;
 pub mod definition;
 pub mod outcome;
