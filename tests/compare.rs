@@ -266,3 +266,27 @@ fn bad_input_names_the_argument_and_exits_2() {
     }
     assert!(!out.exists(), "nothing written on bad input");
 }
+
+#[test]
+fn a_reader_that_closes_the_pipe_ends_compare_quietly() {
+    let tmp = tempfile::tempdir().unwrap();
+    let full = results("full");
+    let mut child = Command::new(BIN)
+        .arg("compare")
+        .arg(&full)
+        .arg(&full)
+        .arg("--out")
+        .arg(tmp.path().join("compare.md"))
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // The reader goes before compare has read its outcomes, let alone printed.
+    drop(child.stdout.take());
+    let o = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(141), "{stderr}");
+    assert!(stderr.is_empty(), "{stderr}");
+    // The files are written before the summary is printed.
+    assert!(tmp.path().join("compare.json").exists());
+}

@@ -66,7 +66,7 @@ pub fn run(args: Args) -> Result<bool> {
         Event::Planned(n, estimate) => {
             bar.set_length(n as u64);
             bar.suspend(|| {
-                println!(
+                outln!(
                     "{n} job{} sampled, estimated {} on one core",
                     if n == 1 { "" } else { "s" },
                     minutes(estimate)
@@ -80,14 +80,14 @@ pub fn run(args: Args) -> Result<bool> {
             c.solver.name()
         )),
         Event::Done(job) => {
-            bar.suspend(|| println!("{}", job.line()));
+            bar.suspend(|| outln!("{}", job.line()));
             bar.inc(1);
         }
     });
     bar.finish_and_clear();
     let audit = result?;
-    println!("{}", audit.summary);
-    println!(
+    outln!("{}", audit.summary);
+    outln!(
         "wrote {} and {}",
         opts.out.join("audit.md").display(),
         opts.out.join("audit.json").display()

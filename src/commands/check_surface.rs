@@ -141,14 +141,14 @@ pub fn run(args: Args) -> Result<()> {
         check_surface(&scans, &opts, Some(&args.out), &FLAGS, &mut events)?
     };
     for c in &result.comparisons {
-        println!("{:24} {} : {}", c.name, c.statistic, c.verdict);
+        outln!("{:24} {} : {}", c.name, c.statistic, c.verdict);
     }
     for w in &result.warnings {
-        println!("warning: {}: {}", w.name, w.message);
+        outln!("warning: {}: {}", w.name, w.message);
     }
     for f in &result.failures {
-        println!("failed: {}", f.message);
+        outln!("failed: {}", f.message);
     }
-    println!("wrote {}", args.out.join("surface.md").display());
+    outln!("wrote {}", args.out.join("surface.md").display());
     Ok(())
 }

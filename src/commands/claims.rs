@@ -39,10 +39,10 @@ pub fn run(args: Args) -> Result<()> {
         &read(&args.reduced, "--reduced")?,
     );
     match args.write {
-        None => print!("{md}"),
+        None => out!("{md}"),
         Some(path) => {
             write_between_markers(&path, &md)?;
-            println!(
+            outln!(
                 "wrote the claims into {} (between {} and {})",
                 path.display(),
                 MARKERS.0,

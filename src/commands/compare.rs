@@ -29,9 +29,9 @@ pub fn run(args: Args) -> Result<bool> {
     check_out_file(&args.out, &super::FLAGS)?;
     let c = compare(&args.base, &args.new, args.z)?;
     let (md, json) = c.write(&args.out)?;
-    println!("{}", c.summary);
+    outln!("{}", c.summary);
     for s in c.statistics.iter().filter(|s| s.beyond) {
-        println!(
+        outln!(
             "moved: {} {}: z = {:+.1}",
             s.outcome,
             s.key,
@@ -39,8 +39,8 @@ pub fn run(args: Args) -> Result<bool> {
         );
     }
     for f in &c.flips {
-        println!("flipped: {} {}: {} -> {}", f.outcome, f.key, f.base, f.new);
+        outln!("flipped: {} {}: {} -> {}", f.outcome, f.key, f.base, f.new);
     }
-    println!("wrote {} and {}", md.display(), json.display());
+    outln!("wrote {} and {}", md.display(), json.display());
     Ok(c.passed)
 }

@@ -1,6 +1,22 @@
 //! One module per subcommand; each parses nothing itself (clap does), calls the library's
 //! [`persson_check::tasks`] for the work the Python package offers too, and writes its
-//! outputs only once everything has been computed.
+//! outputs only once everything has been computed. Standard output goes through
+//! [`outln!`] and [`out!`]: a reader that closes the pipe early (`| head`) ends the
+//! command quietly, with the status a shell gives a process its pipe closed (141).
+
+/// `println!` for the command's standard output, ending quietly on a closed pipe.
+macro_rules! outln {
+    ($($arg:tt)*) => {
+        $crate::commands::write_stdout(format_args!("{}\n", format_args!($($arg)*)))
+    };
+}
+
+/// `print!` for the command's standard output, ending quietly on a closed pipe.
+macro_rules! out {
+    ($($arg:tt)*) => {
+        $crate::commands::write_stdout(format_args!($($arg)*))
+    };
+}
 
 pub mod audit;
 pub mod check_surface;
@@ -89,3 +105,23 @@ impl SurfaceArgs {
 
 /// The command line's spelling of parameters: `contact_area` is `--contact-area`.
 pub const FLAGS: Flags<'static> = Flags { renamed: &[] };
+
+/// The status of a process whose output pipe was closed: 128 + SIGPIPE (13), what a shell
+/// reports for a Unix tool killed by it.
+const CLOSED_PIPE_STATUS: i32 = 141;
+
+/// Writes to standard output. A reader that has gone (a closed pipe) ends the process
+/// with [`CLOSED_PIPE_STATUS`] and no message: the reader asked for no more. Any other
+/// failure to write ends it with a message and status 1, as `println!` would have, but
+/// without a panic.
+pub fn write_stdout(args: std::fmt::Arguments) {
+    use std::io::{ErrorKind, Write};
+    let mut stdout = std::io::stdout().lock();
+    if let Err(e) = stdout.write_fmt(args).and_then(|()| stdout.flush()) {
+        if e.kind() == ErrorKind::BrokenPipe {
+            std::process::exit(CLOSED_PIPE_STATUS);
+        }
+        eprintln!("error: writing to standard output: {e}");
+        std::process::exit(1);
+    }
+}

@@ -78,9 +78,9 @@ pub fn run(args: Args) -> Result<()> {
     let summary = write(&opts, &mut |line| eprintln!("speed study: {line}"))?;
     if let Some(history) = &args.history {
         persson_check::report::trend::append(&opts.out, &opts.from, history)?;
-        println!("recorded the headlines in {}", history.display());
+        outln!("recorded the headlines in {}", history.display());
     }
-    println!(
+    outln!(
         "wrote {} ({} validation{})",
         summary.path.display(),
         summary.validations.len(),
@@ -91,7 +91,7 @@ pub fn run(args: Args) -> Result<()> {
         }
     );
     for line in &summary.attention {
-        println!("attention: {line}");
+        outln!("attention: {line}");
     }
     match summary.speed_error {
         None => Ok(()),

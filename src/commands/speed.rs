@@ -51,10 +51,10 @@ pub fn run(args: Args) -> Result<()> {
     let study = run_study(&opts, &mut |line| eprintln!("speed: {line}"))?;
     std::fs::create_dir_all(&args.out).map_err(|e| Error::io(&args.out, e))?;
     for path in study.write(&args.out)? {
-        println!("wrote {}", path.display());
+        outln!("wrote {}", path.display());
     }
     for r in &study.floor {
-        println!(
+        outln!(
             "floor {:>4} N = {:>5}: FFT pair {:.3e} s, {} iterations in {} s, \
              {} pairs/iteration, iteration = {} pairs, each pair used = {} pairs",
             r.solver.name(),
@@ -68,7 +68,7 @@ pub fn run(args: Args) -> Result<()> {
         );
     }
     for r in &study.warm {
-        println!(
+        outln!(
             "warm  {:>4} N = {:>5}, {}: cold {} it {} s, warm {} it {} s, ratio {}",
             r.solver.name(),
             r.n,

@@ -82,7 +82,7 @@ pub fn run(args: Args) -> Result<()> {
         let plan = validations::plan(&registry, &sources, &opts, shards)?;
         if args.plan {
             let json = serde_json::to_string_pretty(&plan).expect("plans serialise");
-            println!("{json}");
+            outln!("{json}");
             return Ok(());
         }
         if let Some(shard) = shard {
@@ -107,7 +107,7 @@ pub fn run(args: Args) -> Result<()> {
     let mut failed = Vec::new();
     for (path, result) in validations::run(&registry, &sources, &opts, &|| true) {
         match result {
-            Ok(Some(o)) => println!("{}", summary_line(&o)),
+            Ok(Some(o)) => outln!("{}", summary_line(&o)),
             Ok(None) => {}
             Err(e) => {
                 eprintln!("error: {e}");
