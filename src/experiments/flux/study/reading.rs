@@ -519,7 +519,7 @@ mod tests {
     }
 
     fn step_row(factor: f64, variance: f64, flux_in: f64, flux_out: f64) -> SensitivityRow {
-        use crate::experiments::flux::sensitivity::StudyConfig;
+        use crate::experiments::flux::study::sensitivity::StudyConfig;
         let e = |v: f64| Estimate::new(v, 0.0);
         SensitivityRow {
             parameter: "dzeta_over_zeta".into(),
