@@ -26,22 +26,31 @@
 //! the discretisation and the control (what sets its magnitude, [`reading`]), and the
 //! cross-section [`waterfall`] of the paper's figure "reentry_waterfall".
 //!
+//! # Files
+//!
+//! * `mod.rs`: the scene, its jobs (a realization's step, a configuration of the
+//!   sensitivity study, the waterfall) and the [`Experiment`] implementation;
+//! * `stats.rs`: the statistics of the steps and their findings as data, and the study's
+//!   rows;
+//! * `figures.rs`: the account, the map of the first realization's step and the flux per
+//!   step against the step;
+//! * `study/`: the two studies (`study/mod.rs` says which file holds what).
+//!
 //! Unlike the re-entry histories ([`super::reentry`]), which climb through every shell, a
 //! step needs two solves, so this runs at the paper's 4096^2 in its full scene.
 
-pub mod reading;
-pub mod sensitivity;
-mod steps;
-pub mod waterfall;
+mod figures;
+pub mod stats;
+pub mod study;
 
 use serde::{Deserialize, Serialize};
 
 use std::collections::BTreeMap;
 
-use self::reading::PaperFlux;
-use self::sensitivity::{SensitivityPlan, SensitivityRow, StudyJob, StudyResult};
-use self::steps::StepStats;
-use self::waterfall::{WaterfallPlan, WaterfallResult};
+use self::stats::FluxStats;
+use self::study::reading::{self, PaperFlux};
+use self::study::sensitivity::{self, SensitivityPlan, SensitivityRow, StudyJob, StudyResult};
+use self::study::waterfall::{self, WaterfallPlan, WaterfallResult};
 use super::contact_change::{categories, ENTERED, LEFT};
 use super::reentry::history::pack_categories;
 use super::scene::{scene, Step};
@@ -202,45 +211,6 @@ impl Jobs for FluxScene {
     }
 }
 
-/// The statistics of the one-step flux: the headline steps', and the sensitivity study's
-/// rows.
-#[derive(Debug, Clone)]
-pub struct FluxStats {
-    /// The steps of the scene's realizations.
-    pub steps: StepStats,
-    /// The steps' results, by seed.
-    pub results: Vec<(u64, FluxResult)>,
-    /// The rows of the sensitivity study (none without one).
-    pub rows: Vec<SensitivityRow>,
-}
-
-impl FluxStats {
-    /// The statistics of every job's output.
-    pub fn of(scene: &FluxScene, outputs: &[(FluxJob, FluxOutput)]) -> Self {
-        let results: Vec<(u64, FluxResult)> = outputs
-            .iter()
-            .filter_map(|(j, r)| match (j, r) {
-                (FluxJob::Step(s), FluxOutput::Step(r)) => Some((*s, r.clone())),
-                _ => None,
-            })
-            .collect();
-        let study: Vec<(&StudyJob, &StudyResult)> = outputs
-            .iter()
-            .filter_map(|(j, r)| match (j, r) {
-                (FluxJob::Study(j), FluxOutput::Study(r)) => Some((j, r)),
-                _ => None,
-            })
-            .collect();
-        Self {
-            steps: StepStats::of(&results),
-            rows: scene.sensitivity.as_ref().map_or_else(Vec::new, |plan| {
-                plan.conclude(scene.relative_step(), &study)
-            }),
-            results,
-        }
-    }
-}
-
 type Run<'a> = super::Run<'a, Flux>;
 
 impl Experiment for Flux {
@@ -256,19 +226,19 @@ impl Experiment for Flux {
     }
 
     fn details(_run: &Run, s: &FluxStats) -> Vec<Detail> {
-        steps::details(&s.steps)
+        stats::details(&s.steps)
     }
 
     fn checks(run: &Run, s: &FluxStats) -> Vec<Check> {
-        vec![steps::check(run.criteria, &s.steps)]
+        vec![stats::check(run.criteria, &s.steps)]
     }
 
     fn golden(_run: &Run, s: &FluxStats) -> BTreeMap<String, f64> {
-        steps::golden(&s.steps)
+        stats::golden(&s.steps)
     }
 
     fn account(run: &Run, s: &FluxStats) -> String {
-        steps::account(run.scene, &s.steps)
+        figures::account(run.scene, &s.steps)
     }
 
     /// The sensitivity study as a table, with its reading against the paper's flux
@@ -294,11 +264,13 @@ impl Experiment for Flux {
         };
         let headline =
             same_step(run.scene, &s.rows).map(|row| (row, s.steps.flux_in, s.steps.flux_out));
-        vec![reading::figure(&s.rows, &p, headline)]
+        vec![figures::figure(&s.rows, &p, headline)]
     }
 
     fn rasters(run: &Run, s: &FluxStats) -> Vec<Raster> {
-        steps::flux_map(run.scene, &s.results).into_iter().collect()
+        figures::flux_map(run.scene, &s.results)
+            .into_iter()
+            .collect()
     }
 
     fn waterfalls(run: &Run, _s: &FluxStats) -> Vec<Waterfall> {

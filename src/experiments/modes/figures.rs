@@ -3,8 +3,9 @@
 //! 12), and, for (e), the asymptotes against `x = -d ln a_r / d ln zeta` with the paper's
 //! law.
 
-use super::asymptote::FrozenStats;
-use super::{Load, ModeEnsemble, ModeScene};
+use super::stats::FrozenStats;
+use super::stats::{Load, ModeEnsemble};
+use super::ModeScene;
 use crate::experiments::climb::step_of;
 use crate::experiments::{figure, Table};
 use crate::plot::{Axis, Figure, Series, Style};

@@ -1,11 +1,11 @@
 //! Assumption (e): a resolved mode keeps its energy as finer roughness is added. The
-//! statistics are in [`super::asymptote`]; here the findings (details, checks, golden
+//! statistics are in [`super::stats`]; here the findings (details, checks, golden
 //! values) and the account.
 
 use std::collections::BTreeMap;
 
-use super::asymptote::{FrozenStats, MODE_WINDOW};
 use super::figures::{asymptote_figure, asymptote_table, curve_figures, curve_table};
+use super::stats::{FrozenStats, MODE_WINDOW};
 use super::ModeScene;
 use crate::error::{Error, Result};
 use crate::experiments::ensemble::by_load;
@@ -314,7 +314,7 @@ impl Experiment for ModeFrozen {
 
 #[cfg(test)]
 mod tests {
-    use super::super::asymptote::asymptote;
+    use super::super::stats::asymptote;
     use super::super::tests::{shipped, synthetic};
     use super::*;
 

@@ -50,7 +50,7 @@
 //! # Statistics
 //!
 //! Ensemble values of `E_norm` are ratios of sums over realizations
-//! ([`Estimate::ratio_of_sums`]).
+//! ([`crate::stats::Estimate::ratio_of_sums`]).
 //!
 //! * (d) onset ([`ModeOnset`]): `E_norm` at `zeta = onset_ratio * zeta_t`, below the first
 //!   mode of the band (Persson: 0). Headline: per realization the mean over targets at the
@@ -67,29 +67,39 @@
 //!   line through `(ln zeta, ln a_r)` over the same window, and the points of all
 //!   partial-contact loads and targets are fitted to the paper's `K1 exp(-K2 x)` by a line
 //!   through `(x, ln E_inf)`.
+//!
+//! # Files
+//!
+//! * `mod.rs`: the scene and its jobs, each the load at full resolution, then the climb
+//!   that records the contact area and the energy of every band;
+//! * `band.rs`: a band of modes about a target and its energy, what a job measures;
+//! * `stats.rs`: the ensemble values of a load both experiments read, and the statistics
+//!   of (e): the asymptotes and the law fitted to them;
+//! * `figures.rs`: the curves of `E_norm` both show, and the asymptotes of (e);
+//! * `onset.rs`: experiment (d), its statistics, findings and account;
+//! * `frozen.rs`: experiment (e), its findings, studies and account.
 
-pub mod asymptote;
 mod band;
 mod figures;
 mod frozen;
 mod onset;
+pub mod stats;
 
-pub use asymptote::FrozenStats;
 pub use band::{band_energies, Band};
 pub use frozen::ModeFrozen;
 pub use onset::{ModeOnset, OnsetStats};
+pub use stats::FrozenStats;
 
 use serde::{Deserialize, Serialize};
 
 use super::climb::{check_steps_per_octave, climb, ladder, step_of, Recorder};
-use super::ensemble::{check_headline, seed_load_jobs, LoadGroup, SeedLoad};
+use super::ensemble::{check_headline, seed_load_jobs, SeedLoad};
 use super::scene::{check_increasing, scene};
 use super::{JobContext, Jobs, Work};
 use crate::engine::contact::{ContactSolution, Model};
 use crate::engine::solver::SolverKind;
 use crate::error::{check_open, check_positive, Error, Result};
 use crate::persson::Correction;
-use crate::stats::{round_sig, Estimate};
 
 scene! {
     /// Scene of the single-mode experiments (d) and (e).
@@ -287,46 +297,6 @@ fn run_sweep(scene: &ModeScene, job: &SeedLoad, solver: SolverKind) -> Result<Mo
         band_nominal: bands.iter().map(|b| b.nominal).collect(),
         max_residual: climbed.max_residual,
     })
-}
-
-/// Ensemble statistics of the single-mode sweeps at one load.
-pub(super) type Load<'a> = LoadGroup<'a, ModeResult>;
-
-/// The ensemble values of a load's sweeps.
-pub(super) trait ModeEnsemble {
-    /// Ensemble `E_norm` of target `t` at step `k`.
-    fn e_norm(&self, t: usize, zeta_t: f64, k: usize) -> Estimate;
-    /// Ensemble contact area at step `k`.
-    fn contact_area_at(&self, k: usize) -> Estimate;
-    /// Ensemble change `E_norm(k1) - E_norm(k0)` of target `t`.
-    fn change(&self, t: usize, zeta_t: f64, k0: usize, k1: usize) -> Estimate;
-}
-
-impl ModeEnsemble for Load<'_> {
-    fn e_norm(&self, t: usize, zeta_t: f64, k: usize) -> Estimate {
-        self.ratio(|r| (r.band_energy[t][k], r.denominator(t, zeta_t)))
-    }
-
-    fn contact_area_at(&self, k: usize) -> Estimate {
-        self.mean(|r| r.contact_area[k])
-    }
-
-    fn change(&self, t: usize, zeta_t: f64, k0: usize, k1: usize) -> Estimate {
-        self.ratio(|r| {
-            let e = &r.band_energy[t];
-            (e[k1] - e[k0], r.denominator(t, zeta_t))
-        })
-    }
-}
-
-/// A golden value of `E_norm`: two significant digits, and no digits below `1e-4` (an
-/// onset of a few `1e-6` near full contact is solver noise, not a result).
-pub(super) fn golden(x: f64) -> f64 {
-    if x.abs() < 1e-3 {
-        (x * 1e4).round() / 1e4
-    } else {
-        round_sig(x, 2)
-    }
 }
 
 #[cfg(test)]

@@ -4,7 +4,8 @@
 use std::collections::BTreeMap;
 
 use super::figures::{curve_figures, curve_table};
-use super::{golden, Load, ModeEnsemble, ModeResult, ModeScene};
+use super::stats::{golden, Load, ModeEnsemble};
+use super::{ModeResult, ModeScene};
 use crate::error::Result;
 use crate::experiments::climb::step_of;
 use crate::experiments::ensemble::{by_load, group, load_range};

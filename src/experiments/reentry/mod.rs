@@ -24,6 +24,14 @@
 //! every point ([`history`]), every `checkpoint_seconds`; a run killed mid-sweep resumes
 //! (`--resume`) from the last checkpoint and ends with the same numbers as an
 //! uninterrupted run. A run without `--resume` starts every sweep afresh.
+//!
+//! # Files
+//!
+//! * `mod.rs`: the scene, its jobs (one history sweep each) and the [`Experiment`]
+//!   implementation;
+//! * `history.rs`: the contact history of every point of a climb, what a job measures;
+//! * `stats.rs`: the re-entry shares and the flux, means over realizations;
+//! * `figures.rs`: the table and the contact maps.
 
 mod figures;
 pub mod history;

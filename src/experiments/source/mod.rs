@@ -18,7 +18,7 @@
 //! * for each width `w` of the zero bin (`bin_widths`, units of `p0 / a_r`, the mean
 //!   pressure in contact at `zeta`), the points with `p(zeta)` in `[0, w p0 / a_r)` (for
 //!   `w = 0`: `p = 0`, the non-contact) that lie above the bin after the step (for
-//!   `w = 0`: in contact) are counted ([`counts`], through the one classification of
+//!   `w = 0`: in contact) are counted ([`count`], through the one classification of
 //!   [`crate::experiments::contact_change`]), with the non-contact, the contact and all
 //!   points;
 //! * the statistics ([`stats`]) divide the count by each denominator per realization:
@@ -27,19 +27,27 @@
 //!
 //! The headline is the share of the non-contact entering contact (`w = 0`) in the first
 //! row, the paper's stated scene (Persson: 0). The study "one_percent_readings"
-//! ([`readings`]) shows every row, width and denominator, and its notes say which readings
+//! ([`study`]) shows every row, width and denominator, and its notes say which readings
 //! come within the rule of the definition's claim of the paper's "about 1%".
+//!
+//! # Files
+//!
+//! * `mod.rs`: the scene, its jobs (the step and its counts) and the [`Experiment`]
+//!   implementation;
+//! * `stats.rs`: the shares, means over realizations;
+//! * `study.rs`: the study of every reading, with its notes;
+//! * `figures.rs`: the account, the table and the figure.
 
-pub mod counts;
-pub mod readings;
+mod figures;
 pub mod stats;
+pub mod study;
 
 use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-use self::counts::{count, BinCounts};
 use self::stats::SourceStats;
+use super::contact_change::{above, across, ENTERED, NEITHER};
 use super::scene::{Base, Step};
 use super::study::Study;
 use super::{Detail, Experiment, JobContext, Jobs, Table, Work};
@@ -169,6 +177,54 @@ pub struct SourceResult {
     pub counts: BinCounts,
     /// Largest solver residual.
     pub max_residual: f64,
+}
+
+/// Counts of one step, for bins `[0, t)` of several widths `t` (`t = 0`: the non-contact,
+/// `p = 0`). Counts, not shares, so that the statistics can form any share.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct BinCounts {
+    /// Every point of the grid.
+    pub points: u64,
+    /// Points out of contact before the step (`p = 0`).
+    pub non_contact: u64,
+    /// Points in contact before the step (`p > 0`).
+    pub contact: u64,
+    /// For each width, the points in the bin before the step.
+    pub in_bin: Vec<u64>,
+    /// For each width, the points in the bin before the step and above it after (for
+    /// `t = 0`: the points that entered contact).
+    pub rose: Vec<u64>,
+}
+
+/// The counts of a step from the pressures `before` and `after` of every point, for the
+/// bins below each of `thresholds` (pressures, each `>= 0`).
+pub fn count(before: &[f64], after: &[f64], thresholds: &[f64]) -> BinCounts {
+    assert_eq!(before.len(), after.len(), "one pressure per point at both");
+    let mut c = BinCounts {
+        points: before.len() as u64,
+        non_contact: 0,
+        contact: 0,
+        in_bin: vec![0; thresholds.len()],
+        rose: vec![0; thresholds.len()],
+    };
+    for (&b, &a) in before.iter().zip(after) {
+        if above(b, 0.0) {
+            c.contact += 1;
+        } else {
+            c.non_contact += 1;
+        }
+        for (k, &t) in thresholds.iter().enumerate() {
+            match across(b, a, t) {
+                ENTERED => {
+                    c.in_bin[k] += 1;
+                    c.rose[k] += 1;
+                }
+                NEITHER => c.in_bin[k] += 1,
+                _ => {}
+            }
+        }
+    }
+    c
 }
 
 impl Jobs for SourceScene {
@@ -339,19 +395,19 @@ impl Experiment for BoundarySource {
     }
 
     fn studies(run: &Run, s: &SourceStats) -> Vec<Study> {
-        vec![readings::study(run.criteria, s)]
+        vec![study::study(run.criteria, s)]
     }
 
     fn account(run: &Run, s: &SourceStats) -> String {
-        readings::account(&run.scene.runs(), run.criteria, s)
+        figures::account(&run.scene.runs(), run.criteria, s)
     }
 
     fn tables(run: &Run, s: &SourceStats) -> Vec<Table> {
-        vec![readings::table(&run.criteria.name, s)]
+        vec![figures::table(&run.criteria.name, s)]
     }
 
     fn figures(run: &Run, s: &SourceStats) -> Vec<Figure> {
-        vec![readings::non_contact_figure(run.criteria, s)]
+        vec![figures::non_contact_figure(run.criteria, s)]
     }
 }
 
@@ -402,5 +458,24 @@ mod tests {
         refused(&|s| s.bin_widths.clear(), "bin_widths");
         refused(&|s| s.seeds.clear(), "seeds");
         refused(&|s| s.lambda_s = 1.0, "lambda_s");
+    }
+
+    #[test]
+    fn counts_follow_a_hand_made_step() {
+        // Six points: two out of contact (one enters at 0.05, one stays out), a low one
+        // (0.02) that rises to 0.3, a low one (0.04) that leaves, one at 0.5 that stays
+        // high and one at 1.0 that falls to 0.08.
+        let before = [0.0, 0.0, 0.02, 0.04, 0.5, 1.0];
+        let after = [0.05, 0.0, 0.3, 0.0, 0.6, 0.08];
+        let c = count(&before, &after, &[0.0, 0.1]);
+        assert_eq!((c.points, c.non_contact, c.contact), (6, 2, 4));
+        // t = 0: the bin holds the two out of contact, and the first entered contact.
+        // t = 0.1: the bin [0, 0.1) holds the four points below 0.1; only 0.02 -> 0.3
+        // rises above it (0 -> 0.05 stays in it, 0.04 -> 0 too).
+        assert_eq!(c.in_bin, vec![2, 4]);
+        assert_eq!(c.rose, vec![1, 1]);
+        // A point that falls into the bin from above is not counted as rising.
+        let c = count(&[1.0], &[0.0], &[0.0, 0.5]);
+        assert_eq!((c.in_bin, c.rose), (vec![0, 0], vec![0, 0]));
     }
 }

@@ -132,7 +132,7 @@ impl SourceStats {
 
 #[cfg(test)]
 mod tests {
-    use super::super::counts::BinCounts;
+    use super::super::BinCounts;
     use super::*;
 
     fn result(non_contact: u64, rose: [u64; 2], in_bin: u64) -> SourceResult {

@@ -1,12 +1,15 @@
-//! The tables and figures of the total-energy experiment: the paper's figures of the
-//! integrated normalised energy against magnification and against contact area, and of the
-//! incremental correction factor `S~`.
+//! The account, tables and figures of the total-energy experiment: the paper's figures of
+//! the integrated normalised energy against magnification and against contact area, and of
+//! the incremental correction factor `S~`.
 
-use super::stats::{corrected_area, measured_area, original_area, ratio, s_tilde, Load, Theory};
-use crate::experiments::{figure, Table};
+use super::stats::{
+    corrected_area, measured_area, original_area, ratio, s_tilde, Headline, Load, Theory,
+};
+use super::{EnergyScene, FAILS_BELOW};
+use crate::experiments::{figure, Criteria, Table};
 use crate::persson::Correction;
 use crate::plot::{Axis, Figure, Series, Style};
-use crate::stats::round_sig;
+use crate::stats::{realizations, round_sig};
 
 /// Every ensemble ratio at every step of every load.
 pub fn curve_table(name: &str, loads: &[Load], zetas: &[f64]) -> Table {
@@ -208,4 +211,36 @@ fn s_tilde_figure(
         ));
     }
     fig
+}
+
+/// The account, from the numbers.
+pub fn account(scene: &EnergyScene, zetas: &[f64], h: &Headline, criteria: &Criteria) -> String {
+    let (head, low) = (&h.head, &h.low);
+    let below = criteria.paper(FAILS_BELOW);
+    let low_text = if below.is_some_and(|b| low.area.value < b) {
+        format!(
+            " At the lowest load (a_r = {:.4}, {}) E_exa / E_c = {}.",
+            low.area.value,
+            realizations(h.low_runs),
+            low.corrected.text(1.0, 3, "")
+        )
+    } else {
+        String::new()
+    };
+    format!(
+        "{}, at the load that gives a_r = {:.3} at full resolution (zeta = {}), the \
+         measured total elastic energy is {} of the corrected theory's E_c (eq. gamma) and \
+         {} of the original theory's E_P: the corrected theory's energy exceeds the \
+         measurement by {:+.1}% ({}), the original theory's by {:+.0}%.{} Each theory uses \
+         its own a_r(p0, zeta).",
+        scene.base().over(),
+        head.area.value,
+        round_sig(zetas[zetas.len() - 1], 4),
+        head.corrected.text(1.0, 3, ""),
+        head.original.text(1.0, 3, ""),
+        100.0 * (1.0 / head.corrected.value - 1.0),
+        head.corrected.z_text(1.0, "Persson's 1"),
+        100.0 * (1.0 / head.original.value - 1.0),
+        low_text,
+    )
 }

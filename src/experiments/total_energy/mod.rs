@@ -38,16 +38,22 @@
 //! solve warm-started from the previous one. Ensemble ratios are ratios of sums over
 //! realizations ([`crate::stats::Estimate::ratio_of_sums`]). The headline is `E_exa / E_c` at full
 //! resolution and the headline load.
+//!
+//! # Files
+//!
+//! * `mod.rs`: the scene, its jobs (the load, then the climb recording every theory's
+//!   energy) and the [`Experiment`] implementation;
+//! * `stats.rs`: the statistics of the sweeps, and the findings as data;
+//! * `figures.rs`: the account, the tables and the figures.
 
 mod figures;
-mod findings;
 pub mod stats;
 
 use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-use self::stats::{Headline, Load};
+use self::stats::{EnergyStats, Headline, Load};
 use super::climb::{check_steps_per_octave, climb, ladder, step_of, Recorder};
 use super::ensemble::{by_load, check_headline, load_range, seed_load_jobs, SeedLoad};
 use super::scene::scene;
@@ -289,18 +295,6 @@ impl Jobs for EnergyScene {
     }
 }
 
-/// The statistics of the total energy: the sweeps' steps and windows (the same in every
-/// job) and the headline and lowest loads.
-#[derive(Debug, Clone)]
-pub struct EnergyStats {
-    /// Magnifications of the sweeps.
-    pub zetas: Vec<f64>,
-    /// The increment windows, indices into `zetas`.
-    pub windows: Vec<Vec<usize>>,
-    /// The headline and the lowest load.
-    pub headline: Headline,
-}
-
 type Run<'a> = super::Run<'a, TotalEnergy>;
 
 /// The realizations of every load, in the scene's order.
@@ -336,19 +330,19 @@ impl Experiment for TotalEnergy {
     }
 
     fn details(run: &Run, s: &EnergyStats) -> Vec<Detail> {
-        findings::details(run.scene, &loads(run), &s.zetas, &s.windows, &s.headline)
+        stats::details(run.scene, &loads(run), &s.zetas, &s.windows, &s.headline)
     }
 
     fn checks(run: &Run, s: &EnergyStats) -> Vec<Check> {
-        findings::checks(run.criteria, &s.headline)
+        stats::checks(run.criteria, &s.headline)
     }
 
     fn golden(run: &Run, s: &EnergyStats) -> BTreeMap<String, f64> {
-        findings::golden(&loads(run), s.zetas.len() - 1, &s.headline)
+        stats::golden(&loads(run), s.zetas.len() - 1, &s.headline)
     }
 
     fn account(run: &Run, s: &EnergyStats) -> String {
-        findings::account(run.scene, &s.zetas, &s.headline, run.criteria)
+        figures::account(run.scene, &s.zetas, &s.headline, run.criteria)
     }
 
     fn tables(run: &Run, s: &EnergyStats) -> Vec<Table> {

@@ -3,11 +3,11 @@
 
 use std::collections::BTreeMap;
 
-use super::bins::{
+use super::figures::{bin_figure, bin_points, bin_table, common_account, level, transition_table};
+use super::stats::{
     bin_rows, mean_of, over_realizations, region_mean, small_pressure_exponent, BinRow,
     SMALL_PRESSURE,
 };
-use super::tables::{bin_figure, bin_points, bin_table, common_account, level, transition_table};
 use super::{TransitionResult, TransitionScene};
 use crate::error::Result;
 use crate::experiments::{Check, Detail, Experiment, Table};

@@ -3,8 +3,8 @@
 
 use std::collections::BTreeMap;
 
-use super::bins::{bin_rows, mean_of, over_realizations, region_mean, BinRow};
-use super::tables::{bin_figure, bin_points, bin_table, common_account, level};
+use super::figures::{bin_figure, bin_points, bin_table, common_account, level};
+use super::stats::{bin_rows, mean_of, over_realizations, region_mean, BinRow};
 use super::{TransitionResult, TransitionScene};
 use crate::error::Result;
 use crate::experiments::{Check, Detail, Experiment, Table};

@@ -31,15 +31,19 @@
 //! Error bars are standard errors over realizations: walkers of one realization are
 //! correlated (neighbouring points feel the same added roughness), realizations are not.
 //!
-//! Both validations share the scene and its jobs (one realization each). The statistics of
-//! the bins are pure functions (`bins`); each validation derives its statistics, then its
-//! findings (details, checks, golden values), then its account and figure (`diffusion`,
-//! `drift`); the tables both show are in `tables`.
+//! Both validations share the scene and its jobs (one realization each), here in `mod.rs`.
+//! The files:
+//!
+//! * `stats.rs`: the statistics of the bins, pure functions of the binned walkers;
+//! * `figures.rs`: what both validations show: the table of the bins, the transition
+//!   probabilities, the account of the runs and the pressure axis of their figures;
+//! * `diffusion.rs`, `drift.rs`: one validation each, its statistics, then its findings
+//!   (details, checks, golden values), then its account and figure.
 
-mod bins;
 mod diffusion;
 mod drift;
-mod tables;
+mod figures;
+mod stats;
 
 pub use diffusion::{Diffusion, DiffusionStats};
 pub use drift::{contact_drift, Drift, DriftStats};

@@ -10,9 +10,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::FluxScene;
 use crate::engine::solver::SolverKind;
 use crate::error::{check_open, Error, Result};
+use crate::experiments::flux::FluxScene;
 use crate::plot::{CutPanel, Waterfall};
 
 /// The waterfall, as a scene states it (`[reduced.waterfall]`).

@@ -1,14 +1,13 @@
-//! The headline from the steps of every realization: statistics (means over
-//! realizations), then findings (details, the check, golden values), then the account and
-//! the map of the first realization.
+//! The statistics of the one-step flux: the headline from the steps of every realization
+//! (means over realizations), then its findings (details, the check, golden values); and
+//! the rows of the sensitivity study.
 
 use std::collections::BTreeMap;
 
-use super::{FluxResult, FluxScene};
-use crate::experiments::reentry::history::unpack_categories;
-use crate::experiments::reentry::{net_over_gross, step_palette};
+use super::study::sensitivity::{SensitivityRow, StudyJob, StudyResult};
+use super::{FluxJob, FluxOutput, FluxResult, FluxScene};
+use crate::experiments::reentry::net_over_gross;
 use crate::experiments::{Check, Criteria, Detail};
-use crate::plot::Raster;
 use crate::stats::{decide, round_sig, Claim, Estimate};
 
 /// The statistics of the steps, means over realizations.
@@ -93,39 +92,41 @@ pub fn golden(s: &StepStats) -> BTreeMap<String, f64> {
     .into()
 }
 
-/// The account, from the numbers.
-pub fn account(scene: &FluxScene, s: &StepStats) -> String {
-    format!(
-        "{}, at the load that gives a_r = {:.3} at zeta = {}, the step to zeta = {} moves \
-         {:.3}% of the nominal area into contact and {:.3}% out of it: {} points enter per \
-         point that leaves, where Persson's absorbing boundary allows none. The net flux is \
-         {} of the mean one-way flux; a_r goes from {:.4} to {:.4}.",
-        scene.base().over(),
-        s.a_before.value,
-        scene.zeta,
-        scene.zeta + scene.dzeta,
-        100.0 * s.flux_in.value,
-        100.0 * s.flux_out.value,
-        s.ratio.text(1.0, 3, ""),
-        s.net.text(1.0, 3, ""),
-        s.a_before.value,
-        s.a_after.value,
-    )
+/// The statistics of the one-step flux: the headline steps', and the sensitivity study's
+/// rows.
+#[derive(Debug, Clone)]
+pub struct FluxStats {
+    /// The steps of the scene's realizations.
+    pub steps: StepStats,
+    /// The steps' results, by seed.
+    pub results: Vec<(u64, FluxResult)>,
+    /// The rows of the sensitivity study (none without one).
+    pub rows: Vec<SensitivityRow>,
 }
 
-/// The map of the first realization's step, coloured as the paper's figure.
-pub fn flux_map(scene: &FluxScene, results: &[(u64, FluxResult)]) -> Option<Raster> {
-    let (seed, r) = results.iter().find(|(_, r)| r.map.is_some())?;
-    Some(Raster {
-        name: "flux_map".into(),
-        title: format!(
-            "Contact changes from zeta = {} to {} (seed {seed}, a_r = {:.3})",
-            scene.zeta,
-            scene.zeta + scene.dzeta,
-            r.a_r_old
-        ),
-        n: scene.n,
-        pixels: unpack_categories(r.map.as_deref().unwrap_or(""), scene.n * scene.n),
-        palette: step_palette(),
-    })
+impl FluxStats {
+    /// The statistics of every job's output.
+    pub fn of(scene: &FluxScene, outputs: &[(FluxJob, FluxOutput)]) -> Self {
+        let results: Vec<(u64, FluxResult)> = outputs
+            .iter()
+            .filter_map(|(j, r)| match (j, r) {
+                (FluxJob::Step(s), FluxOutput::Step(r)) => Some((*s, r.clone())),
+                _ => None,
+            })
+            .collect();
+        let study: Vec<(&StudyJob, &StudyResult)> = outputs
+            .iter()
+            .filter_map(|(j, r)| match (j, r) {
+                (FluxJob::Study(j), FluxOutput::Study(r)) => Some((j, r)),
+                _ => None,
+            })
+            .collect();
+        Self {
+            steps: StepStats::of(&results),
+            rows: scene.sensitivity.as_ref().map_or_else(Vec::new, |plan| {
+                plan.conclude(scene.relative_step(), &study)
+            }),
+            results,
+        }
+    }
 }

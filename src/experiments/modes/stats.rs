@@ -1,13 +1,54 @@
-//! The statistics of assumption (e), as pure functions of the sweeps: the change of
-//! `E_norm` after resolution, the asymptote `E_inf` of each realization (the intercept of
-//! `E_norm` against `1/zeta` over the frozen window) with `x = -d ln a_r / d ln zeta` over
-//! the same window, and the paper's law `E_inf = K1 exp(-K2 x)` fitted to the
-//! partial-contact points.
+//! The statistics of the single-mode sweeps, as pure functions of the sweeps: the
+//! ensemble values of a load that both experiments read, and those of assumption (e): the
+//! change of `E_norm` after resolution, the asymptote `E_inf` of each realization (the
+//! intercept of `E_norm` against `1/zeta` over the frozen window) with
+//! `x = -d ln a_r / d ln zeta` over the same window, and the paper's law
+//! `E_inf = K1 exp(-K2 x)` fitted to the partial-contact points.
 
-use super::{Load, ModeEnsemble, ModeResult, ModeScene};
+use super::{ModeResult, ModeScene};
 use crate::experiments::climb::step_of;
-use crate::experiments::ensemble::{group, load_range};
-use crate::stats::{Estimate, LineFit};
+use crate::experiments::ensemble::{group, load_range, LoadGroup};
+use crate::stats::{round_sig, Estimate, LineFit};
+
+/// Ensemble statistics of the single-mode sweeps at one load.
+pub(super) type Load<'a> = LoadGroup<'a, ModeResult>;
+
+/// The ensemble values of a load's sweeps.
+pub(super) trait ModeEnsemble {
+    /// Ensemble `E_norm` of target `t` at step `k`.
+    fn e_norm(&self, t: usize, zeta_t: f64, k: usize) -> Estimate;
+    /// Ensemble contact area at step `k`.
+    fn contact_area_at(&self, k: usize) -> Estimate;
+    /// Ensemble change `E_norm(k1) - E_norm(k0)` of target `t`.
+    fn change(&self, t: usize, zeta_t: f64, k0: usize, k1: usize) -> Estimate;
+}
+
+impl ModeEnsemble for Load<'_> {
+    fn e_norm(&self, t: usize, zeta_t: f64, k: usize) -> Estimate {
+        self.ratio(|r| (r.band_energy[t][k], r.denominator(t, zeta_t)))
+    }
+
+    fn contact_area_at(&self, k: usize) -> Estimate {
+        self.mean(|r| r.contact_area[k])
+    }
+
+    fn change(&self, t: usize, zeta_t: f64, k0: usize, k1: usize) -> Estimate {
+        self.ratio(|r| {
+            let e = &r.band_energy[t];
+            (e[k1] - e[k0], r.denominator(t, zeta_t))
+        })
+    }
+}
+
+/// A golden value of `E_norm`: two significant digits, and no digits below `1e-4` (an
+/// onset of a few `1e-6` near full contact is solver noise, not a result).
+pub(super) fn golden(x: f64) -> f64 {
+    if x.abs() < 1e-3 {
+        (x * 1e4).round() / 1e4
+    } else {
+        round_sig(x, 2)
+    }
+}
 
 /// Loads with a measured contact area at the end of the sweep at or above this are full
 /// contact (`x ~ 0`) and left out of the fit of the asymptote law, as in the paper.

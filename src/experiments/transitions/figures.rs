@@ -1,7 +1,7 @@
 //! What both transition validations show: the table of the bins, the transition
 //! probabilities, the account of the runs, and the pressure axis of their figures.
 
-use super::bins::{mean_of, BinRow};
+use super::stats::{mean_of, BinRow};
 use super::{TransitionResult, TransitionScene};
 use crate::experiments::{figure, Table};
 use crate::plot::{Axis, Figure, Series};

@@ -530,7 +530,7 @@ pub fn run(hurst: f64, job: &StudyJob) -> Result<StudyResult> {
         sweep.solve_at(c.zeta + c.dzeta, p0)?
     };
     let categories = categories(&old.pressure, &new.pressure);
-    let (flux_in, flux_out) = super::fluxes(&categories);
+    let (flux_in, flux_out) = crate::experiments::flux::fluxes(&categories);
     let (variance_added, modes_added) = step_taken(&r.surface.shells(), c.zeta, c.dzeta);
     Ok(StudyResult {
         a_r_old: old.contact_area(),

@@ -2,12 +2,12 @@
 //! "reentry_visualization"; the numbers are the definition's claims, [`PaperFlux`]):
 //! which rows, in which measure (fraction of the nominal or of the true contact area),
 //! give the paper's numbers; how the flux scales with the step; the relative step the
-//! paper's magnitude would need; and the figure of flux per step against `dzeta / zeta`.
+//! paper's magnitude would need.
 
 use super::sensitivity::SensitivityRow;
 use crate::experiments::reentry::net_over_gross;
 use crate::experiments::Criteria;
-use crate::plot::{significant, Axis, Figure, Point, Series, Style};
+use crate::plot::significant;
 use crate::stats::{decide, Claim, Estimate, LineFit};
 
 /// The claim keys of the paper's flux into and out of contact in its contact-change
@@ -54,13 +54,13 @@ impl PaperFlux {
     }
 
     /// Whether `r` is a row of the stated step.
-    fn is_stated_step(&self, r: &SensitivityRow) -> bool {
+    pub(in crate::experiments::flux) fn is_stated_step(&self, r: &SensitivityRow) -> bool {
         r.parameter == "dzeta_over_zeta" && (r.value / self.step - 1.0).abs() < 1e-9
     }
 }
 
 /// A fraction as a percentage with three decimals ("0.675%").
-fn percent(x: f64) -> String {
+pub(in crate::experiments::flux) fn percent(x: f64) -> String {
     format!("{:.3}%", 100.0 * x)
 }
 
@@ -186,7 +186,9 @@ pub struct StepScaling {
 }
 
 /// The step rows with a recorded, non-zero added variance and a flux, in row order.
-fn step_rows(rows: &[SensitivityRow]) -> Vec<(&SensitivityRow, f64)> {
+pub(in crate::experiments::flux) fn step_rows(
+    rows: &[SensitivityRow],
+) -> Vec<(&SensitivityRow, f64)> {
     rows.iter()
         .filter(|r| r.parameter == "dzeta_over_zeta")
         .filter_map(|r| Some((r, r.variance_added?.value)))
@@ -477,76 +479,6 @@ fn hypothesis_notes(rows: &[SensitivityRow], p: &PaperFlux) -> Vec<String> {
     notes
 }
 
-/// Flux per step against the height variance the step adds (relative to the variance at
-/// `zeta`), log-log: the step rows in both directions, the headline step where a step row
-/// is the same step (`headline`: that row's index with the headline's fluxes), and the
-/// paper's numbers at the variance of the stated step.
-pub fn figure(
-    rows: &[SensitivityRow],
-    p: &PaperFlux,
-    headline: Option<(usize, Estimate, Estimate)>,
-) -> Figure {
-    let steps = step_rows(rows);
-    let with = |f: fn(&SensitivityRow) -> Estimate| {
-        steps
-            .iter()
-            .map(|(r, v)| (*v, f(r).value, f(r).std_error))
-            .collect::<Vec<_>>()
-    };
-    let n = steps.first().map_or(0, |(r, _)| r.config.n);
-    let mut series = vec![
-        Series::with_errors(
-            format!("into contact ({n}x{n} study)"),
-            Style::LinePoints,
-            with(|r| r.flux_in),
-        ),
-        Series::with_errors(
-            format!("out of contact ({n}x{n} study)"),
-            Style::LinePoints,
-            with(|r| r.flux_out),
-        ),
-    ];
-    let variance_of = |i: usize| rows.get(i).and_then(|r| r.variance_added).map(|v| v.value);
-    if let Some((x, fin, fout)) = headline.and_then(|(i, a, b)| Some((variance_of(i)?, a, b))) {
-        series.push(Series {
-            label: "headline step, into / out of contact".into(),
-            style: Style::Points,
-            side: Default::default(),
-            points: [fin, fout]
-                .iter()
-                .map(|e| Point {
-                    x,
-                    y: e.value,
-                    err: Some(e.std_error),
-                })
-                .collect(),
-        });
-    }
-    let stated = steps.iter().find(|(r, _)| p.is_stated_step(r));
-    if let Some((_, v)) = stated {
-        series.push(Series::xy(
-            format!(
-                "paper: {} in, {} out, at the stated step",
-                percent(p.flux_in),
-                percent(p.flux_out)
-            ),
-            Style::Points,
-            [(*v, p.flux_in), (*v, p.flux_out)],
-        ));
-    }
-    let a_r = steps
-        .first()
-        .map_or(f64::NAN, |(r, _)| r.config.contact_area);
-    Figure {
-        name: "flux_vs_step".into(),
-        title: format!("Flux per step against the height variance the step adds (a_r = {a_r})"),
-        x: Axis::log("added height variance / variance at zeta"),
-        y: Axis::log("flux per step (fraction of the nominal area)"),
-        y2: None,
-        series,
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -587,7 +519,7 @@ mod tests {
     }
 
     fn step_row(factor: f64, variance: f64, flux_in: f64, flux_out: f64) -> SensitivityRow {
-        use crate::experiments::flux::sensitivity::StudyConfig;
+        use crate::experiments::flux::study::sensitivity::StudyConfig;
         let e = |v: f64| Estimate::new(v, 0.0);
         SensitivityRow {
             parameter: "dzeta_over_zeta".into(),
