@@ -92,7 +92,7 @@ use rustfft::num_complex::Complex64;
 
 use crate::engine::contact::{ContactProblem, ContactSolution};
 use crate::engine::field::add_all;
-use crate::engine::solver::executor::{Iteration, Method, Verdict};
+use crate::engine::solver::executor::{Iteration, Judgement, Method};
 use crate::engine::solver::workspace::{warm_start, Record, Workspace};
 use crate::engine::solver::{SolveOptions, Start};
 use crate::error::{Result, Termination};
@@ -182,9 +182,9 @@ impl Iteration for Solve<'_> {
         gap.estimate
     }
 
-    fn judge(&mut self, it: usize, gap: &Gap) -> Verdict {
+    fn judge(&mut self, it: usize, gap: &Gap) -> Judgement {
         if self.safeguard(it, gap.estimate) {
-            return Verdict::Stopped(Termination::Stalled);
+            return Judgement::Stopped(Termination::Stalled);
         }
         self.check(it, gap.estimate)
     }
