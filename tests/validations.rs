@@ -177,10 +177,10 @@ fn one_step_moves_points_into_contact() {
     // The misprint hypotheses and the paper's transition scene are rows of their own.
     for prefix in ["hurst=", "contact_area=", "transition"] {
         let row = study.rows.iter().find(|r| r.key.starts_with(prefix));
-        let zero_bin = row.and_then(|r| cell(&r.key, "zero_bin")).map(|e| e.value);
+        let of_noncontact = row.and_then(|r| cell(&r.key, "zero_bin")).map(|e| e.value);
         assert!(
-            zero_bin.is_some_and(|z| z > 0.0 && z < 1.0),
-            "{prefix}: {zero_bin:?}"
+            of_noncontact.is_some_and(|z| z > 0.0 && z < 1.0),
+            "{prefix}: {of_noncontact:?}"
         );
     }
 }

@@ -28,15 +28,16 @@ pub trait Entry: Send + Sync {
     fn jobs(&self, source: &Source, opts: &RunOptions) -> Result<Vec<PlannedUnit>>;
 }
 
-/// The entry of experiment `E`.
-pub struct Of<E>(PhantomData<fn() -> E>);
+/// The registry's entry for the experiment type `E`: runs, checks and plans a definition
+/// through `E`'s [`Experiment`] implementation. It holds no data, only the type.
+pub struct EntryOf<E>(PhantomData<fn() -> E>);
 
-impl<E> Of<E> {
-    /// The entry.
-    pub const NEW: Self = Of(PhantomData);
+impl<E> EntryOf<E> {
+    /// The entry (a constant, so that [`BUILTIN`] can hold a `'static` reference to it).
+    pub const NEW: Self = EntryOf(PhantomData);
 }
 
-impl<E: Experiment> Entry for Of<E> {
+impl<E: Experiment> Entry for EntryOf<E> {
     fn run(&self, source: &Source, opts: &RunOptions) -> Result<Option<Outcome>> {
         run_experiment::<E>(source, opts)
     }
@@ -52,15 +53,15 @@ impl<E: Experiment> Entry for Of<E> {
 
 /// Every built-in experiment, by the name definitions give in `experiment = "..."`.
 pub const BUILTIN: &[(&str, &dyn Entry)] = &[
-    ("contact_area", &Of::<contact_area::ContactArea>::NEW),
-    ("diffusion", &Of::<transitions::Diffusion>::NEW),
-    ("drift", &Of::<transitions::Drift>::NEW),
-    ("flux", &Of::<flux::Flux>::NEW),
-    ("mode_frozen", &Of::<modes::ModeFrozen>::NEW),
-    ("mode_onset", &Of::<modes::ModeOnset>::NEW),
-    ("reentry", &Of::<reentry::Reentry>::NEW),
-    ("source", &Of::<source::BoundarySource>::NEW),
-    ("total_energy", &Of::<total_energy::TotalEnergy>::NEW),
+    ("contact_area", &EntryOf::<contact_area::ContactArea>::NEW),
+    ("diffusion", &EntryOf::<transitions::Diffusion>::NEW),
+    ("drift", &EntryOf::<transitions::Drift>::NEW),
+    ("flux", &EntryOf::<flux::Flux>::NEW),
+    ("mode_frozen", &EntryOf::<modes::ModeFrozen>::NEW),
+    ("mode_onset", &EntryOf::<modes::ModeOnset>::NEW),
+    ("reentry", &EntryOf::<reentry::Reentry>::NEW),
+    ("source", &EntryOf::<source::BoundarySource>::NEW),
+    ("total_energy", &EntryOf::<total_energy::TotalEnergy>::NEW),
 ];
 
 /// Experiments by name.
@@ -68,10 +69,11 @@ pub struct Registry {
     entries: Vec<(String, Box<dyn Entry>)>,
 }
 
-/// A boxed reference to a `'static` entry.
-struct Static(&'static dyn Entry);
+/// An entry of [`BUILTIN`] in a [`Registry`]: the `'static` entry borrowed, so that the
+/// built-in experiments and those added at run time ([`Registry::with`]) are boxed alike.
+struct BuiltinEntry(&'static dyn Entry);
 
-impl Entry for Static {
+impl Entry for BuiltinEntry {
     fn run(&self, source: &Source, opts: &RunOptions) -> Result<Option<Outcome>> {
         self.0.run(source, opts)
     }
@@ -91,7 +93,12 @@ impl Registry {
         Self {
             entries: BUILTIN
                 .iter()
-                .map(|&(name, e)| (name.to_string(), Box::new(Static(e)) as Box<dyn Entry>))
+                .map(|&(name, e)| {
+                    (
+                        name.to_string(),
+                        Box::new(BuiltinEntry(e)) as Box<dyn Entry>,
+                    )
+                })
                 .collect(),
         }
     }
@@ -100,7 +107,7 @@ impl Registry {
     pub fn with<E: Experiment + 'static>(mut self, name: &str) -> Self {
         self.entries.retain(|(n, _)| n != name);
         self.entries
-            .push((name.to_string(), Box::new(Of::<E>::NEW)));
+            .push((name.to_string(), Box::new(EntryOf::<E>::NEW)));
         self
     }
 

@@ -46,7 +46,7 @@ use rustfft::num_complex::Complex64;
 
 use crate::engine::contact::{ContactProblem, ContactSolution, Residual};
 use crate::engine::fft::{FusedPass, Kernel, PassValues};
-use crate::engine::solver::workspace::{warm_start, Record, Workspace};
+use crate::engine::solver::workspace::{warm_start, SolveRecord, Workspace};
 use crate::engine::solver::{SolveOptions, Start};
 use crate::error::{Result, Termination};
 
@@ -54,7 +54,7 @@ use crate::error::{Result, Termination};
 pub(super) struct State<'a> {
     pub(super) problem: &'a ContactProblem<'a>,
     inverse_mass: &'a Kernel,
-    pub(super) record: Record,
+    pub(super) record: SolveRecord,
     pub(super) tol: f64,
     spec: &'a mut [Complex64],
     /// Position `u`.
@@ -80,7 +80,7 @@ impl<'a> State<'a> {
         opts: &SolveOptions,
         work: &'a mut Workspace<4>,
     ) -> Result<(Self, bool)> {
-        let record = Record::begin(name, matches!(start, Start::Warm(_)));
+        let record = SolveRecord::begin(name, matches!(start, Start::Warm(_)));
         let grid = &problem.model.grid;
         let h = problem.heights;
         let prev = warm_start(start, grid)?;

@@ -21,8 +21,9 @@ use crate::engine::contact::{ContactProblem, ContactSolution};
 use crate::engine::solver::{Progress, SolveOptions, Start};
 use crate::error::{Result, Termination};
 
-/// What [`Iteration::judge`] decided.
-pub enum Verdict {
+/// What [`Iteration::judge`] decided at one iteration: the solve ends (converged or
+/// stopped), measures again, or goes on with its step.
+pub enum Judgement {
     /// The full residual is below the tolerance: the solve returns this solution.
     Converged(ContactSolution),
     /// The solve stops for this reason before the step (see [`Iteration::terminate`]).
@@ -70,7 +71,7 @@ pub trait Iteration: Sized {
     fn estimate(measured: &Self::Measure) -> f64;
 
     /// Whether the solve ends, measures again or goes on at iteration `it`.
-    fn judge(&mut self, it: usize, measured: &Self::Measure) -> Verdict;
+    fn judge(&mut self, it: usize, measured: &Self::Measure) -> Judgement;
 
     /// The rest of iteration `it`; a reason to stop ends the solve after it.
     fn step(&mut self, it: usize, measured: Self::Measure) -> Result<Option<Termination>>;
@@ -93,10 +94,10 @@ pub fn run<S: Iteration>(
             residual: S::estimate(&measured),
         });
         match solve.judge(it, &measured) {
-            Verdict::Converged(solution) => return Ok(solution),
-            Verdict::Stopped(reason) => return solve.terminate(it, reason),
-            Verdict::Remeasure => continue,
-            Verdict::Go => {}
+            Judgement::Converged(solution) => return Ok(solution),
+            Judgement::Stopped(reason) => return solve.terminate(it, reason),
+            Judgement::Remeasure => continue,
+            Judgement::Go => {}
         }
         if let Some(reason) = solve.step(it, measured)? {
             return solve.terminate(it + 1, reason);

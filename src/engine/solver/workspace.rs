@@ -67,16 +67,19 @@ pub fn warm_start<'s>(start: Start<'s>, grid: &Grid) -> Result<Option<&'s Contac
     Ok(Some(prev))
 }
 
-/// What a solve records about itself for its [`SolveStats`]: the solver, whether it
-/// started warm, and when it began.
+/// What one solve records about itself, the solver, whether it started warm and when it
+/// began, and what it makes from that: the [`ContactSolution`] with its [`SolveStats`]
+/// ([`SolveRecord::solution`], [`SolveRecord::accept`]) and the errors that name the
+/// solver ([`SolveRecord::not_converged`], [`SolveRecord::non_finite`],
+/// [`SolveRecord::lost_contact`]).
 #[derive(Debug, Clone, Copy)]
-pub struct Record {
+pub struct SolveRecord {
     solver: &'static str,
     warm: bool,
     began: Instant,
 }
 
-impl Record {
+impl SolveRecord {
     /// The record of a solve by `solver` beginning now.
     pub fn begin(solver: &'static str, warm: bool) -> Self {
         Self {

@@ -30,6 +30,8 @@ pub fn table(name: &str, scene: &ReentryScene, results: &[(SeedLoad, ReentryResu
             "share_after_first",
             "flux_in",
             "flux_out",
+            // The column of `flux_in_of_noncontact`: the stored name is kept for the
+            // committed results.
             "zero_bin_reentry",
             "shells",
             "iterations",
@@ -46,7 +48,7 @@ pub fn table(name: &str, scene: &ReentryScene, results: &[(SeedLoad, ReentryResu
                 r.share_after_first(),
                 r.flux_in,
                 r.flux_out,
-                r.zero_bin_reentry,
+                r.flux_in_of_noncontact,
                 r.shells as f64,
                 r.iterations as f64,
                 r.wall_s,

@@ -28,7 +28,7 @@ pub struct Flux {
     /// Fraction of the nominal area leaving contact.
     pub out_of: f64,
     /// Share of the non-contact at the start that is in contact at the end.
-    pub zero_bin: f64,
+    pub into_of_noncontact: f64,
     /// Change of every point.
     pub map: Vec<u8>,
 }
@@ -111,7 +111,7 @@ impl History {
             }
             map.push(c);
         }
-        let zero_bin = if out_before > 0.0 {
+        let into_of_noncontact = if out_before > 0.0 {
             enter / out_before
         } else {
             0.0
@@ -119,7 +119,7 @@ impl History {
         self.flux = Some(Flux {
             into: enter / n,
             out_of: leave / n,
-            zero_bin,
+            into_of_noncontact,
             map,
         });
     }
@@ -170,7 +170,10 @@ impl Recorder for History {
 
     fn state(&self) -> (serde_json::Value, Arrays<'_>) {
         let meta = Meta {
-            flux: self.flux.as_ref().map(|f| (f.into, f.out_of, f.zero_bin)),
+            flux: self
+                .flux
+                .as_ref()
+                .map(|f| (f.into, f.out_of, f.into_of_noncontact)),
             has_flux_start: self.flux_start.is_some(),
         };
         let arrays = vec![
@@ -206,10 +209,10 @@ impl Recorder for History {
             None
         };
         self.flux = match meta.flux {
-            Some((into, out_of, zero_bin)) => Some(Flux {
+            Some((into, out_of, into_of_noncontact)) => Some(Flux {
                 into,
                 out_of,
-                zero_bin,
+                into_of_noncontact,
                 map: ck.load_u8("flux_map")?,
             }),
             None => None,
@@ -291,6 +294,6 @@ mod tests {
         let f = h.flux.as_ref().unwrap();
         assert_eq!(f.map, vec![3, 1, 1, 0]);
         assert_eq!((f.into, f.out_of), (0.5, 0.25));
-        assert_eq!(f.zero_bin, 1.0);
+        assert_eq!(f.into_of_noncontact, 1.0);
     }
 }

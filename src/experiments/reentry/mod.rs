@@ -87,7 +87,9 @@ pub struct ReentryResult {
     /// Fraction of the nominal area leaving contact over the flux interval.
     pub flux_out: f64,
     /// Share of the non-contact at `flux_zeta` in contact at `flux_zeta + flux_dzeta`.
-    pub zero_bin_reentry: f64,
+    // Serialised as "zero_bin_reentry": the stored name is kept for the committed results.
+    #[serde(rename = "zero_bin_reentry")]
+    pub flux_in_of_noncontact: f64,
     /// Shells added.
     pub shells: usize,
     /// Solver iterations over the sweep.
@@ -175,7 +177,7 @@ fn run_history(
         reentered_after_first,
         flux_in: flux.into,
         flux_out: flux.out_of,
-        zero_bin_reentry: flux.zero_bin,
+        flux_in_of_noncontact: flux.into_of_noncontact,
         shells: steps.len(),
         iterations: climbed.iterations,
         wall_s: climbed.wall_s,
@@ -286,10 +288,12 @@ impl Experiment for Reentry {
                 "net flux / mean one-way flux".to_string(),
                 s.net_over_gross,
             ),
+            // The detail of `flux_in_of_noncontact`: the stored key is kept for the
+            // committed results.
             (
                 "zero_bin_reentry",
                 "share of non-contact entering contact (transition out of p = 0)".to_string(),
-                s.zero_bin,
+                s.flux_in_of_noncontact,
             ),
         ];
         details.extend(

@@ -29,7 +29,7 @@ pub struct ReentryStats {
     /// The net flux over the mean one-way flux.
     pub net_over_gross: Estimate,
     /// The share of non-contact that enters contact over the interval.
-    pub zero_bin: Estimate,
+    pub flux_in_of_noncontact: Estimate,
 }
 
 impl ReentryStats {
@@ -48,7 +48,7 @@ impl ReentryStats {
             flux_in: head.mean(|r| r.flux_in),
             flux_out: head.mean(|r| r.flux_out),
             net_over_gross: head.mean(ReentryResult::net_over_gross),
-            zero_bin: head.mean(|r| r.zero_bin_reentry),
+            flux_in_of_noncontact: head.mean(|r| r.flux_in_of_noncontact),
         }
     }
 }

@@ -92,8 +92,8 @@ use rustfft::num_complex::Complex64;
 
 use crate::engine::contact::{ContactProblem, ContactSolution};
 use crate::engine::field::add_all;
-use crate::engine::solver::executor::{Iteration, Method, Verdict};
-use crate::engine::solver::workspace::{warm_start, Record, Workspace};
+use crate::engine::solver::executor::{Iteration, Judgement, Method};
+use crate::engine::solver::workspace::{warm_start, SolveRecord, Workspace};
 use crate::engine::solver::{SolveOptions, Start};
 use crate::error::{Result, Termination};
 
@@ -182,9 +182,9 @@ impl Iteration for Solve<'_> {
         gap.estimate
     }
 
-    fn judge(&mut self, it: usize, gap: &Gap) -> Verdict {
+    fn judge(&mut self, it: usize, gap: &Gap) -> Judgement {
         if self.safeguard(it, gap.estimate) {
-            return Verdict::Stopped(Termination::Stalled);
+            return Judgement::Stopped(Termination::Stalled);
         }
         self.check(it, gap.estimate)
     }
@@ -211,7 +211,7 @@ impl Iteration for Solve<'_> {
 pub struct Solve<'a> {
     problem: &'a ContactProblem<'a>,
     refresh_every: usize,
-    record: Record,
+    record: SolveRecord,
     /// The pressure as stored: the true pressure is `scale p` ([`Frame`]).
     p: &'a mut Vec<f64>,
     /// The displacement `K^-1 p` of the stored pressure (the true one is `scale u`).
@@ -253,7 +253,7 @@ impl<'a> Solve<'a> {
         start: Start,
         tol: f64,
     ) -> Result<Self> {
-        let record = Record::begin(ConstrainedCg::NAME, matches!(start, Start::Warm(_)));
+        let record = SolveRecord::begin(ConstrainedCg::NAME, matches!(start, Start::Warm(_)));
         let grid = &problem.model.grid;
         let n2 = grid.points();
         let p0 = problem.p0;

@@ -7,7 +7,7 @@ use rayon::prelude::*;
 use super::sums::View;
 use super::{Solve, DAMPING, STAGNATION};
 use crate::engine::contact::ContactSolution;
-use crate::engine::solver::executor::Verdict;
+use crate::engine::solver::executor::Judgement;
 use crate::error::{Result, Termination};
 
 /// An estimate counts as progress when it is below this fraction of the best before it
@@ -85,7 +85,7 @@ impl Solve<'_> {
     /// if that fails, the target is lowered and the iteration goes on. When the estimate
     /// no longer holds for the exact state, that state is measured again, as the next
     /// iteration.
-    pub(super) fn check(&mut self, it: usize, estimate: f64) -> Verdict {
+    pub(super) fn check(&mut self, it: usize, estimate: f64) -> Judgement {
         if estimate <= self.stopping.target {
             if !self.exact {
                 self.exact_displacement();
@@ -93,19 +93,19 @@ impl Solve<'_> {
                 // transforms: if it still holds, the solve is done.
                 let view = View::new(&self.p[..], &self.u[..], self.problem.heights, self.frame);
                 if view.gap_sums().estimate(self.problem.length_scale) > self.stopping.target {
-                    return Verdict::Remeasure;
+                    return Judgement::Remeasure;
                 }
             }
             let solution = self.finish(it);
             let residual = solution.stats.residual.value();
             if residual <= self.stopping.tol {
-                return Verdict::Converged(solution);
+                return Judgement::Converged(solution);
             }
             self.stopping.reached = self.stopping.reached.min(residual);
             self.stopping.target *= TARGET_CUT;
             self.resume(solution);
         }
-        Verdict::Go
+        Judgement::Go
     }
 
     /// Packs the current state into a solution with its residual, moving `p` and `u`

@@ -41,7 +41,7 @@ use crate::engine::contact::{ContactProblem, ContactSolution};
 use crate::engine::fft::FusedPass;
 use crate::engine::field::{add_all, map_chunks_mut};
 use crate::engine::solver::dynamics::{held, Balance, ForcePass, State};
-use crate::engine::solver::executor::{Iteration, Method, Verdict};
+use crate::engine::solver::executor::{Iteration, Judgement, Method};
 use crate::engine::solver::workspace::Workspace;
 use crate::engine::solver::{SolveOptions, Start};
 use crate::error::{Result, Termination};
@@ -116,14 +116,14 @@ impl Iteration for Relaxation<'_> {
     }
 
     /// When the cheap parts of the residual pass, the full residual of the state decides.
-    fn judge(&mut self, it: usize, balance: &Balance) -> Verdict {
+    fn judge(&mut self, it: usize, balance: &Balance) -> Judgement {
         if balance.value() <= self.state.tol {
             let solution = self.state.solution(it);
             if solution.stats.residual.value() <= self.state.tol {
-                return Verdict::Converged(solution);
+                return Judgement::Converged(solution);
             }
         }
-        Verdict::Go
+        Judgement::Go
     }
 
     /// Steps 2 to 4; the schedule may give up (the residual cannot improve).

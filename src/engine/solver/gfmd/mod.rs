@@ -63,7 +63,7 @@ use crate::engine::contact::ContactProblem;
 use crate::engine::contact::ContactSolution;
 use crate::engine::field::map_chunks_mut;
 use crate::engine::solver::dynamics::{held, look_ahead, total_force, Balance, State};
-use crate::engine::solver::executor::{Iteration, Method, Verdict};
+use crate::engine::solver::executor::{Iteration, Judgement, Method};
 use crate::engine::solver::workspace::Workspace;
 use crate::engine::solver::{SolveOptions, Start};
 use crate::error::{Result, Termination};
@@ -145,16 +145,16 @@ impl Iteration for Dynamics<'_> {
 
     /// When the cheap parts of the residual pass, the look-ahead position becomes the
     /// state and its full residual decides; if it fails, the dynamics goes on from there.
-    fn judge(&mut self, it: usize, balance: &Balance) -> Verdict {
+    fn judge(&mut self, it: usize, balance: &Balance) -> Judgement {
         if balance.value() <= self.state.tol {
             self.settle();
             let solution = self.state.solution(it);
             if solution.stats.residual.value() <= self.state.tol {
                 *self.last_tau = Some(self.momentum.tau);
-                return Verdict::Converged(solution);
+                return Judgement::Converged(solution);
             }
         }
-        Verdict::Go
+        Judgement::Go
     }
 
     /// Steps 2 to 4; the step control may give up (the residual cannot improve).

@@ -455,7 +455,7 @@ fn hypothesis_notes(rows: &[SensitivityRow], p: &PaperFlux) -> Vec<String> {
         ));
     }
     for r in rows.iter().filter(|r| r.parameter == "transition") {
-        if let Some(z) = r.zero_bin {
+        if let Some(z) = r.flux_in_of_noncontact {
             let paper = p.transition_share.map_or(String::new(), |share| {
                 format!(
                     " (paper: about {}, {:.0} times as much)",
@@ -546,7 +546,7 @@ mod tests {
             net_over_gross: Some(e(crate::experiments::reentry::net_over_gross(
                 flux_in, flux_out,
             ))),
-            zero_bin: Some(e(flux_in / 0.86)),
+            flux_in_of_noncontact: Some(e(flux_in / 0.86)),
             variance_added: Some(e(variance)),
             modes_added: Some(8.0),
         }

@@ -190,8 +190,9 @@ pub struct SensitivityRow {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub net_over_gross: Option<Estimate>,
     /// Share of the non-contact at `zeta` in contact after the step, `in / (1 - a_r)`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub zero_bin: Option<Estimate>,
+    // Serialised as "zero_bin": the stored name is kept for the committed results.
+    #[serde(rename = "zero_bin", default, skip_serializing_if = "Option::is_none")]
+    pub flux_in_of_noncontact: Option<Estimate>,
     /// Height variance the step adds over the variance at `zeta` (absent where the
     /// results did not record it).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -424,7 +425,7 @@ impl SensitivityPlan {
                     flux_out_of_contact: mean(&|r| of_contact(r.flux_out, r)),
                     contact_area: mean(&|r| r.a_r_old),
                     net_over_gross: Some(mean(&|r| net_over_gross(r.flux_in, r.flux_out))),
-                    zero_bin: Some(mean(&of_noncontact)),
+                    flux_in_of_noncontact: Some(mean(&of_noncontact)),
                     variance_added: variances.map(|v| Estimate::mean_of(&v)),
                     modes_added: modes
                         .map(|m| m.iter().map(|&x| x as f64).sum::<f64>() / m.len() as f64),
@@ -454,6 +455,8 @@ pub fn study(rows: &[SensitivityRow]) -> Study {
                 "out of contact, % of the contact area",
             ),
             ("net_over_gross", "net / mean one-way flux"),
+            // The column of `flux_in_of_noncontact`: the stored name is kept for the
+            // committed results.
             ("zero_bin", "non-contact entering contact, %"),
             ("contact_area", "a_r at zeta"),
             ("variance_added", "height variance added, % of that at zeta"),
@@ -493,7 +496,7 @@ pub fn study(rows: &[SensitivityRow]) -> Study {
                 r.flux_in_of_contact.into(),
                 r.flux_out_of_contact.into(),
                 r.net_over_gross.into(),
-                r.zero_bin.into(),
+                r.flux_in_of_noncontact.into(),
                 r.contact_area.into(),
                 r.variance_added.into(),
                 r.modes_added.map_or(Cell::Empty, Cell::from),
@@ -672,8 +675,8 @@ mod tests {
         assert!((r.flux_in.value - 0.0015).abs() < 1e-15);
         assert!((r.flux_in_of_contact.value - 0.015).abs() < 1e-14);
         assert!((r.flux_out.std_error).abs() < 1e-15);
-        // Zero-bin share: flux in over the non-contact at zeta.
-        assert!((r.zero_bin.unwrap().value - 0.0015 / 0.9).abs() < 1e-15);
+        // Share of the non-contact entering contact: flux in over the non-contact at zeta.
+        assert!((r.flux_in_of_noncontact.unwrap().value - 0.0015 / 0.9).abs() < 1e-15);
         assert_eq!(r.variance_added.unwrap().value, 0.01);
         assert_eq!(r.modes_added, Some(8.0));
         let net = r.net_over_gross.unwrap().value;
