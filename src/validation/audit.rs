@@ -377,63 +377,13 @@ pub fn recompute(
     Ok(Recomputed { bytes, wall_s })
 }
 
-/// The bytes of the value of the key `key` of the JSON object `bytes` (top level only,
-/// surrounding white space trimmed), or `None` when it has no such key.
+/// The bytes of the value of the key `key` of the JSON object `bytes` (top level only, as
+/// written, without the white space around it), or `None` when it has no such key or is
+/// not a JSON object.
 pub fn top_level_value<'a>(bytes: &'a [u8], key: &str) -> Option<&'a [u8]> {
-    let first = bytes.iter().position(|b| !b.is_ascii_whitespace())?;
-    if bytes[first] != b'{' {
-        return None;
-    }
-    let trim = |s: &'a [u8]| -> &'a [u8] {
-        let end = s
-            .iter()
-            .rposition(|b| !b.is_ascii_whitespace())
-            .map_or(0, |k| k + 1);
-        &s[..end]
-    };
-    let (mut depth, mut i) = (0usize, first);
-    let (mut expect_key, mut start) = (false, None);
-    while i < bytes.len() {
-        match bytes[i] {
-            b'"' => {
-                let open = i + 1;
-                i += 1;
-                while i < bytes.len() && bytes[i] != b'"' {
-                    i += if bytes[i] == b'\\' { 2 } else { 1 };
-                }
-                if depth == 1 && expect_key {
-                    expect_key = false;
-                    if bytes.get(open..i) == Some(key.as_bytes()) {
-                        let mut j = i + 1;
-                        while j < bytes.len() && bytes[j] != b':' {
-                            j += 1;
-                        }
-                        start = Some(j + 1);
-                        i = j;
-                    }
-                }
-            }
-            b'{' | b'[' => {
-                depth += 1;
-                expect_key = depth == 1;
-            }
-            b'}' | b']' => {
-                if depth == 1 {
-                    return start.map(|s| trim(&bytes[s..i]).trim_ascii_start());
-                }
-                depth -= 1;
-            }
-            b',' if depth == 1 => {
-                if let Some(s) = start {
-                    return Some(trim(&bytes[s..i]).trim_ascii_start());
-                }
-                expect_key = true;
-            }
-            _ => {}
-        }
-        i += 1;
-    }
-    None
+    let object: std::collections::BTreeMap<String, &'a serde_json::value::RawValue> =
+        serde_json::from_slice(bytes).ok()?;
+    object.get(key).map(|raw| raw.get().as_bytes())
 }
 
 /// A number (or any value) that differs between a stored and a recomputed result.
