@@ -37,7 +37,7 @@ use super::units::{check_unit, square_pixel};
 use super::warnings::{self, Warning};
 use crate::engine::solver::{Progress, SolverKind};
 use crate::error::{check_positive, Error, Result};
-use crate::stats::Estimate;
+use crate::stats::{Bins, Decision, Estimate, Histogram};
 use crate::validation::{Verdict, VerdictRule};
 
 /// The rule of every comparison: three standard errors, 10% of Persson's value.
@@ -109,29 +109,6 @@ impl Default for CheckOptions {
     }
 }
 
-/// A value over the scans: mean and standard error (`None` with one scan).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct Mean {
-    /// Mean over the scans.
-    pub value: f64,
-    /// Its standard error; absent with one scan.
-    pub std_error: Option<f64>,
-}
-
-impl Mean {
-    fn of(samples: &[f64]) -> Self {
-        let e = Estimate::mean_of(samples);
-        Self {
-            value: e.value,
-            std_error: e.has_error().then_some(e.std_error),
-        }
-    }
-
-    fn estimate(&self) -> Estimate {
-        Estimate::new(self.value, self.std_error.unwrap_or(f64::NAN))
-    }
-}
-
 /// One load of the curve.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CurvePoint {
@@ -150,7 +127,7 @@ pub struct CurvePoint {
     /// Persson's corrected theory.
     pub a_r_persson_corrected: f64,
     /// `a_r / a_r,P` over the scans.
-    pub area_ratio: Mean,
+    pub area_ratio: Estimate,
     /// The contact-area verdict at this load.
     pub area_verdict: Verdict,
     /// The mean pressure in contact, `p0 / a_r`, in units of `E*`.
@@ -169,7 +146,7 @@ pub struct CurvePoint {
     /// Persson's energy, corrected theory.
     pub energy_persson_corrected: f64,
     /// `E_el / E_P` over the scans.
-    pub energy_ratio: Mean,
+    pub energy_ratio: Estimate,
     /// The energy verdict at this load.
     pub energy_verdict: Verdict,
 }
@@ -183,7 +160,7 @@ pub struct Distribution {
     /// points, so that it integrates to `a_r`), Persson's original and corrected.
     pub bins: Vec<[f64; 4]>,
     /// Rms pressure over Persson's (original), over the scans.
-    pub rms_ratio: Mean,
+    pub rms_ratio: Estimate,
     /// Its verdict.
     pub verdict: Verdict,
 }
@@ -235,19 +212,19 @@ pub struct Failure {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Statistics {
     /// Rms height (length unit), after detrending.
-    pub h_rms: Mean,
+    pub h_rms: Estimate,
     /// Rms slope from finite differences.
-    pub slope_rms: Mean,
+    pub slope_rms: Estimate,
     /// Rms slope from the spectrum (Persson's `g_bar`).
-    pub slope_rms_spectral: Mean,
+    pub slope_rms_spectral: Estimate,
     /// Skewness of the heights.
-    pub skewness: Mean,
+    pub skewness: Estimate,
     /// Excess kurtosis of the heights.
-    pub kurtosis: Mean,
+    pub kurtosis: Estimate,
     /// `sqrt(l_min / l_max)` of the slope tensor.
-    pub anisotropy: Mean,
+    pub anisotropy: Estimate,
     /// Log-log slope of `C(q)` over the highest octave (absent where too few bins).
-    pub high_q_slope: Option<Mean>,
+    pub high_q_slope: Option<Estimate>,
     /// The radially averaged power spectrum, mean over scans.
     pub psd: Vec<RadialBin>,
 }
@@ -594,7 +571,7 @@ fn conclude(
     let distribution = reached
         .get(reached.len() / 2)
         .map(|&i| distribution(measured, loads[i], i));
-    let over = |f: fn(&CurvePoint) -> Verdict| combine(curve.iter().map(f));
+    let over = |f: fn(&CurvePoint) -> Verdict| over_loads(curve.iter().map(f));
     let mut comparisons = vec![
         Comparison {
             name: "contact_area".into(),
@@ -731,22 +708,25 @@ fn relative(a: f64, b: f64) -> f64 {
     }
 }
 
-/// Violated when any is, holds when all hold, inconclusive otherwise (also with none).
-fn combine(verdicts: impl Iterator<Item = Verdict>) -> Verdict {
-    let mut all_hold = true;
-    let mut any = false;
-    for v in verdicts {
-        any = true;
-        match v {
-            Verdict::Violated => return Verdict::Violated,
-            Verdict::Inconclusive => all_hold = false,
-            Verdict::Holds => {}
-        }
+/// A comparison's verdict over its loads: the conjunction of theirs by
+/// [`Decision::all`] (violated when any is violated, else inconclusive when any is
+/// inconclusive, else holds), except that a comparison of no load at all is inconclusive:
+/// nothing was measured, where [`Decision::all`] of nothing passes.
+fn over_loads(verdicts: impl Iterator<Item = Verdict>) -> Verdict {
+    let decisions: Vec<Decision> = verdicts
+        .map(|v| match v {
+            Verdict::Holds => Decision::Passed,
+            Verdict::Violated => Decision::Failed,
+            Verdict::Inconclusive => Decision::Undecided,
+        })
+        .collect();
+    if decisions.is_empty() {
+        return Verdict::Inconclusive;
     }
-    if all_hold && any {
-        Verdict::Holds
-    } else {
-        Verdict::Inconclusive
+    match Decision::all(decisions) {
+        Decision::Passed => Verdict::Holds,
+        Decision::Failed => Verdict::Violated,
+        Decision::Undecided => Verdict::Inconclusive,
     }
 }
 
@@ -762,8 +742,13 @@ fn spectrum_method(boundary: Boundary) -> String {
 }
 
 /// The mean over scans of `f`.
-fn mean_over(measured: &[Measured], f: impl Fn(&Measured) -> f64) -> Mean {
-    Mean::of(&measured.iter().map(f).collect::<Vec<_>>())
+fn mean_over(measured: &[Measured], f: impl Fn(&Measured) -> f64) -> Estimate {
+    Estimate::mean_of(&measured.iter().map(f).collect::<Vec<_>>())
+}
+
+/// The standard error of `e`, `None` without an error bar (one scan).
+fn error(e: Estimate) -> Option<f64> {
+    e.has_error().then_some(e.std_error)
 }
 
 /// Load `i` of the curve, which every scan's headline solve reached; energies converted
@@ -794,21 +779,21 @@ fn curve_point(measured: &[Measured], i: usize, pixel: f64, modulus: Option<f64>
         p0,
         p0_pa: modulus.map(|e| p0 * e),
         a_r: area.value,
-        a_r_std_error: area.std_error,
+        a_r_std_error: error(area),
         a_r_cross_check: cross_mean(|s| s.contact_area),
         a_r_persson: persson(|p| p.contact_area),
         a_r_persson_corrected: persson(|p| p.contact_area_corrected),
         area_ratio,
-        area_verdict: RULE.judge(area_ratio.estimate(), 1.0),
+        area_verdict: RULE.judge(area_ratio, 1.0),
         contact_pressure,
         past_yield: warnings::CONTACT_PRESSURE.crossed(contact_pressure),
         energy: pixel * energy.value,
-        energy_std_error: energy.std_error.map(|e| pixel * e),
+        energy_std_error: error(energy).map(|e| pixel * e),
         energy_cross_check: cross_mean(|s| s.energy).map(|e| pixel * e),
         energy_persson: pixel * persson(|p| p.energy),
         energy_persson_corrected: pixel * persson(|p| p.energy_corrected),
         energy_ratio,
-        energy_verdict: RULE.judge(energy_ratio.estimate(), 1.0),
+        energy_verdict: RULE.judge(energy_ratio, 1.0),
     }
 }
 
@@ -827,12 +812,15 @@ fn distribution(measured: &[Measured], p0: f64, kept: usize) -> Distribution {
         .map(|&x| f64::from(x))
         .fold(0.0, f64::max)
         .max(1.0);
-    let width = top / HISTOGRAM_BINS as f64;
+    let mut histogram = Histogram::new(Bins::linear(
+        0.0,
+        top / HISTOGRAM_BINS as f64,
+        HISTOGRAM_BINS,
+    ));
     let total: usize = all.iter().map(|p| p.len()).sum();
-    let mut counts = vec![0usize; HISTOGRAM_BINS];
     for x in all.iter().flat_map(|p| p.iter()).map(|&x| f64::from(x)) {
         if x > 0.0 {
-            counts[((x / width) as usize).min(HISTOGRAM_BINS - 1)] += 1;
+            histogram.count(x);
         }
     }
     let original = |x: f64| {
@@ -847,17 +835,13 @@ fn distribution(measured: &[Measured], p0: f64, kept: usize) -> Distribution {
         })
         .value
     };
-    let bins = counts
-        .iter()
+    let bins = histogram
+        .density(total)
+        .into_iter()
         .enumerate()
-        .map(|(b, &c)| {
-            let x = (b as f64 + 0.5) * width;
-            [
-                x,
-                c as f64 / (total as f64 * width),
-                original(x),
-                corrected(x),
-            ]
+        .map(|(b, density)| {
+            let x = histogram.bins().centre(b);
+            [x, density, original(x), corrected(x)]
         })
         .collect();
     let rms_ratio = mean_over(measured, |m| {
@@ -869,7 +853,7 @@ fn distribution(measured: &[Measured], p0: f64, kept: usize) -> Distribution {
     Distribution {
         p0,
         bins,
-        verdict: RULE.judge(rms_ratio.estimate(), 1.0),
+        verdict: RULE.judge(rms_ratio, 1.0),
         rms_ratio,
     }
 }
@@ -894,7 +878,7 @@ fn statistics(measured: &[Measured]) -> Statistics {
         skewness: mean_over(measured, |m| m.spectrum.skewness),
         kurtosis: mean_over(measured, |m| m.spectrum.kurtosis),
         anisotropy: mean_over(measured, |m| m.spectrum.anisotropy),
-        high_q_slope: slopes.map(|s| Mean::of(&s)),
+        high_q_slope: slopes.map(|s| Estimate::mean_of(&s)),
         psd,
     }
 }
