@@ -3,11 +3,15 @@
 //! ([`units`]), statistics and spectrum ([`psd`]), the contact problem along a load curve
 //! ([`body`]), Persson's predictions ([`theory`]), the re-entry share over magnification
 //! ([`reentry`]), the words where the theory does not apply ([`warnings`]), the check
-//! ([`check`]) and its page ([`page`]).
+//! ([`check`]: its [`options`], its [`curves`] and its [`findings`]) and its page
+//! ([`page`]).
 
 pub mod body;
 pub mod check;
+pub mod curves;
 pub mod fill;
+pub mod findings;
+pub mod options;
 pub mod page;
 pub mod psd;
 pub mod reentry;

@@ -12,7 +12,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use super::check::{
-    CurvePoint, Mean, SurfaceCheck, CROSS_CHECK_MIN_S, CROSS_CHECK_TIME, RULE, SOLVER_AGREEMENT,
+    CurvePoint, SurfaceCheck, CROSS_CHECK_MIN_S, CROSS_CHECK_TIME, RULE, SOLVER_AGREEMENT,
 };
 use super::fill::{Fill, MAX_FILLED_SHARE};
 use super::psd::Boundary;
@@ -20,6 +20,7 @@ use super::units::{eng, length, metres, percent, SQUARE_PIXEL_TOLERANCE};
 use super::warnings::{CONTACT_PRESSURE, LIMITS};
 use crate::error::Result;
 use crate::plot::{Axis, Figure, Series, Style};
+use crate::stats::Estimate;
 use crate::validation::Verdict;
 
 /// Writes `surface.json`, `surface.md` and the figures into `dir`; returns the files.
@@ -39,10 +40,11 @@ pub fn write(check: &SurfaceCheck, dir: &Path) -> Result<Vec<PathBuf>> {
 }
 
 /// `value ± error`, or the value and "(one scan: no error bar)".
-fn mean_text(m: &Mean) -> String {
-    match m.std_error {
-        Some(e) => format!("{} ± {}", eng(m.value), eng(e)),
-        None => format!("{} (one scan: no error bar)", eng(m.value)),
+fn mean_text(m: &Estimate) -> String {
+    if m.has_error() {
+        format!("{} ± {}", eng(m.value), eng(m.std_error))
+    } else {
+        format!("{} (one scan: no error bar)", eng(m.value))
     }
 }
 
@@ -256,7 +258,7 @@ struct CurveTable {
     /// [value, error, cross-check, Persson, corrected] of a point.
     pick: fn(&CurvePoint) -> [Option<f64>; 5],
     /// The ratio to Persson and its verdict.
-    ratio: fn(&CurvePoint) -> (&Mean, Verdict),
+    ratio: fn(&CurvePoint) -> (&Estimate, Verdict),
     /// The figure's file stem and caption.
     figure: (&'static str, &'static str),
 }

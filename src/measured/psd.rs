@@ -39,6 +39,7 @@ use crate::engine::grid::{signed_index, Grid};
 use crate::engine::spectrum::{Shell, ShellSpectrum};
 use crate::engine::surface::Surface;
 use crate::error::{Error, Result};
+use crate::stats::{Bins, Histogram};
 
 /// How a scan's edges are treated.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
@@ -436,20 +437,21 @@ const BINS_PER_DECADE: f64 = 10.0;
 /// `C pixel^4`).
 fn radial_average(modes: &[Mode], shape: Shape, pixel: f64) -> Vec<RadialBin> {
     let q_min = 2.0 * std::f64::consts::PI / shape.longer() as f64;
-    let bin_of = |q: f64| ((q / q_min).log10() * BINS_PER_DECADE).floor().max(0.0) as usize;
-    let mut sums: Vec<(f64, f64, u32)> = Vec::new();
-    for m in modes.iter().filter(|m| !m.nyquist) {
+    let averaged = || modes.iter().filter(|m| !m.nyquist);
+    let top = averaged().map(|m| m.qx.hypot(m.qy)).fold(0.0, f64::max);
+    let bins = Bins::log10_up_to(q_min, BINS_PER_DECADE, top);
+    // Per bin: sums of |q| and of the power, and the modes, each weighted.
+    let mut sums = Histogram::<(f64, f64, u32)>::new(bins);
+    for m in averaged() {
         let q = m.qx.hypot(m.qy);
-        let b = bin_of(q);
-        if sums.len() <= b {
-            sums.resize(b + 1, (0.0, 0.0, 0));
-        }
-        sums[b].0 += m.weight * q;
-        sums[b].1 += m.weight * m.power;
-        sums[b].2 += m.weight as u32;
+        let bin = sums.at(q);
+        bin.0 += m.weight * q;
+        bin.1 += m.weight * m.power;
+        bin.2 += m.weight as u32;
     }
     let area = shape.points() as f64 / (2.0 * std::f64::consts::PI).powi(2);
-    sums.into_iter()
+    sums.into_cells()
+        .into_iter()
         .filter(|s| s.2 > 0)
         .map(|(sq, sh, count)| RadialBin {
             q: sq / f64::from(count) / pixel,

@@ -1,5 +1,5 @@
-//! Estimates with error bars: means over realizations, linear fits, and the rule that
-//! decides a claim about an estimate ([`decision`]).
+//! Estimates with error bars: means over realizations, linear fits, the rule that
+//! decides a claim about an estimate ([`decision`]), and histograms ([`histogram`]).
 //!
 //! Every statistic a validation reports is an [`Estimate`]: a value and its standard error.
 //! Ensemble averages use the spread over independent realizations (seeds), which is the
@@ -9,8 +9,10 @@
 //! CSV.
 
 pub mod decision;
+pub mod histogram;
 
 pub use decision::{decide, Claim, Decision};
+pub use histogram::{Bins, Histogram};
 
 use serde::{Deserialize, Deserializer, Serialize};
 

@@ -73,7 +73,7 @@ pub fn transition_table(scene: &TransitionScene, results: &[(u64, TransitionResu
         ],
     );
     let size = scene.bins + 1;
-    let w = scene.bin_width;
+    let axis = scene.pressure_bins(1.0);
     for row in 0..size {
         let counts: Vec<u64> = (0..size)
             .map(|col| {
@@ -87,7 +87,8 @@ pub fn transition_table(scene: &TransitionScene, results: &[(u64, TransitionResu
         if total == 0 {
             continue;
         }
-        let centre = |b: usize| if b == 0 { 0.0 } else { (b as f64 - 0.5) * w };
+        // Index 0 is out of contact, index b the pressure bin b - 1.
+        let centre = |b: usize| if b == 0 { 0.0 } else { axis.centre(b - 1) };
         for (col, &c) in counts.iter().enumerate() {
             if c > 0 {
                 table.push(vec![
@@ -133,6 +134,6 @@ pub fn bin_figure(name: &str, title: &str, y: &str, series: Vec<Series>) -> Figu
 
 /// A horizontal line at `y` across the pressure axis, to the last bin's upper edge.
 pub fn level(scene: &TransitionScene, y: f64) -> [(f64, f64); 2] {
-    let xmax = scene.bins as f64 * scene.bin_width;
+    let xmax = scene.pressure_bins(1.0).edge(scene.bins);
     [(0.0, y), (xmax, y)]
 }

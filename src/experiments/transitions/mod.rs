@@ -55,6 +55,7 @@ use super::{JobContext, Jobs, Work};
 use crate::engine::solver::SolverKind;
 use crate::error::{check_positive, Error, Result};
 use crate::persson::Broadening;
+use crate::stats::{Bins, Histogram};
 
 scene! {
     /// Scene of the transition experiment.
@@ -169,8 +170,10 @@ impl Jobs for TransitionScene {
 }
 
 impl TransitionScene {
-    fn unit_bin(&self, p: f64, unit: f64) -> usize {
-        ((p / (self.bin_width * unit)) as usize).min(self.bins - 1)
+    /// The pressure bins, pressures in units of `unit` (`p0 / a_r` in pascals or `E*`; 1
+    /// for pressures already in units of `p0 / a_r`): the last collects the rest.
+    fn pressure_bins(&self, unit: f64) -> Bins {
+        Bins::linear(0.0, self.bin_width * unit, self.bins)
     }
 }
 
@@ -189,23 +192,19 @@ fn run_transition(
     } = base.step(&r, solver, scene.zeta, scene.dzeta, scene.contact_area)?;
     let a_r_old = old.contact_area();
     let unit = p0 / a_r_old;
-    let mut bins = vec![BinSums::default(); scene.bins];
+    let axis = scene.pressure_bins(unit);
+    let mut bins = Histogram::<BinSums>::new(axis);
     let mut zero = BinSums::default();
     let mut histogram = vec![vec![0u32; scene.bins + 1]; scene.bins + 1];
     for (&po, &pn) in old.pressure.iter().zip(&new.pressure) {
         let row = if po > 0.0 {
-            let b = scene.unit_bin(po, unit);
-            bins[b].add(po, pn);
-            b + 1
+            bins.at(po).add(po, pn);
+            axis.index(po) + 1
         } else {
             zero.add(po, pn);
             0
         };
-        let col = if pn > 0.0 {
-            scene.unit_bin(pn, unit) + 1
-        } else {
-            0
-        };
+        let col = if pn > 0.0 { axis.index(pn) + 1 } else { 0 };
         histogram[row][col] += 1;
     }
     let broadening = Broadening::new(&r.surface.shells(), r.model.halfspace.e_star())?;
@@ -214,7 +213,7 @@ fn run_transition(
         a_r_old,
         a_r_new: new.contact_area(),
         d_persson: broadening.diffusion_coefficient(scene.zeta, scene.dzeta)?,
-        bins,
+        bins: bins.into_cells(),
         zero,
         histogram,
         max_residual: old.stats.residual.value().max(new.stats.residual.value()),

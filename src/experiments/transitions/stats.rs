@@ -4,7 +4,7 @@
 
 use super::{BinSums, TransitionResult, TransitionScene};
 use crate::persson::moments;
-use crate::stats::Estimate;
+use crate::stats::{Bins, Estimate};
 
 /// The moment analysis of one bin (Appendix), in units of `p0 / a_r`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -162,7 +162,10 @@ pub const SMALL_PRESSURE: f64 = 0.2;
 /// `bin_width`, in units of `p0 / a_r`). Persson's distribution, eq. (pressureDistOri),
 /// vanishes linearly at `p = 0` (`alpha = 1`). `None` with fewer than two non-empty bins.
 pub fn small_pressure_exponent(bins: &[BinSums], bin_width: f64) -> Option<f64> {
-    let last = (SMALL_PRESSURE / bin_width + 1e-9).floor() as usize;
+    if bins.len() < 2 {
+        return None;
+    }
+    let last = Bins::linear(0.0, bin_width, bins.len()).below(SMALL_PRESSURE);
     let points: Vec<(f64, f64)> = bins
         .iter()
         .take(last)

@@ -1,0 +1,227 @@
+//! Running the check: each scan's load curve solved by the headline solver, then by the
+//! other one ([`super::options::CheckOptions`]) at the cross-checked loads
+//! ([`CROSS_CHECKED_LOADS`] of them, or all), and the re-entry share at the middle load
+//! the headline reached ([`super::reentry`]); the scans' measurements then go to
+//! [`super::findings`].
+//!
+//! A solve that fails is a finding, not the end of the check: the curve goes on with the
+//! next load, and a cross-check solve gets a time budget of [`CROSS_CHECK_TIME`] times the
+//! headline's time at its load (at least [`CROSS_CHECK_MIN_S`]), beyond which it is
+//! stopped and recorded as failed.
+
+use std::time::Duration;
+
+use super::body::{solve_curve, Body, Curve, Outcome};
+use super::findings::{conclude, Measured, SurfaceCheck};
+use super::options::{other, validate, CheckOptions};
+use super::psd::ScanSpectrum;
+use super::reentry::reentry_share;
+use super::scan::Scan;
+use super::theory::{loads, Theory};
+use crate::engine::solver::{Progress, SolverKind};
+use crate::error::Result;
+
+/// The cross-check's time budget at a load, in multiples of the headline solve's time
+/// there: a cross-check that would take longer is stopped and recorded as failed.
+pub const CROSS_CHECK_TIME: f64 = 20.0;
+
+/// The least time budget of a cross-check solve, seconds (a headline solve of a few
+/// milliseconds says little about what the other solver needs).
+pub const CROSS_CHECK_MIN_S: f64 = 2.0;
+
+/// The loads cross-checked unless every load is asked for: the lowest, the middle and
+/// the highest (GFMD, the cross-check of the default, takes some three times CG's time
+/// per load on measured scans: the README's speed section).
+pub const CROSS_CHECKED_LOADS: usize = 3;
+
+/// What the check reports while it runs.
+#[derive(Debug, Clone, Copy)]
+pub enum Event<'a> {
+    /// An iteration of a solve.
+    Iteration {
+        /// The scan (index).
+        scan: usize,
+        /// The solver.
+        solver: SolverKind,
+        /// The load (index).
+        load: usize,
+        /// The solve's progress.
+        progress: Progress,
+    },
+    /// A load's solve ended.
+    Load {
+        /// The scan (index).
+        scan: usize,
+        /// The solver.
+        solver: SolverKind,
+        /// Whether it is the headline solver.
+        headline: bool,
+        /// The load (index) and the number of loads.
+        load: usize,
+        loads: usize,
+        /// How it ended.
+        outcome: &'a Outcome,
+    },
+}
+
+/// Checks the surface of `scans` (one surface, several scans of it; every point
+/// measured or filled, see [`super::fill`]). `events` sees every iteration and every
+/// load's end.
+pub fn check(
+    scans: &[Scan],
+    opts: &CheckOptions,
+    events: &mut dyn FnMut(Event),
+) -> Result<SurfaceCheck> {
+    let timer = std::time::Instant::now();
+    let pixel = validate(scans, opts)?;
+    let shape = scans[0].shape;
+    let spectra: Vec<ScanSpectrum> = scans
+        .iter()
+        .map(|s| ScanSpectrum::new(&s.heights, shape, pixel, opts.boundary))
+        .collect::<Result<_>>()?;
+    // The loads come from the first scan's spectrum: common to every scan.
+    let loads = loads(&Theory::new(&spectra[0].shells)?, opts.loads.as_deref())?;
+    let mut measured = Vec::with_capacity(scans.len());
+    // One body for every scan: its half-space depends on the shape alone.
+    let mut body: Option<Body> = None;
+    for (k, spectrum) in spectra.into_iter().enumerate() {
+        let theory = Theory::new(&spectrum.shells)?;
+        let predicted = loads.iter().map(|&p| theory.at(p)).collect::<Result<_>>()?;
+        let body = match body.as_mut() {
+            Some(b) => {
+                b.set_heights(&spectrum)?;
+                b
+            }
+            None => body.insert(Body::new(&spectrum)?),
+        };
+        let every: Vec<usize> = (0..loads.len()).collect();
+        let head = run_curve(
+            body,
+            &loads,
+            (&every, loads.len()),
+            opts.solver,
+            opts,
+            &[],
+            k,
+            events,
+        )?;
+        let mut curves = vec![head];
+        if opts.cross_check {
+            let index = if opts.cross_check_all {
+                every
+            } else {
+                sample(loads.len(), CROSS_CHECKED_LOADS)
+            };
+            let budget = cross_check_budget(&curves[0], &index);
+            let at: Vec<f64> = index.iter().map(|&i| loads[i]).collect();
+            let other = other(opts.solver);
+            let of = (&index[..], loads.len());
+            let mut cross = run_curve(body, &at, of, other, opts, &budget, k, events)?;
+            cross.index = index;
+            curves.push(cross);
+        }
+        let reentry = if opts.reentry {
+            middle_solved(&curves[0])
+                .map(|i| reentry_share(&spectrum, loads[i], SolverKind::Cg, opts.tol))
+                .transpose()?
+        } else {
+            None
+        };
+        measured.push(Measured {
+            spectrum,
+            predicted,
+            curves,
+            reentry,
+        });
+    }
+    Ok(conclude(
+        scans,
+        opts,
+        pixel,
+        &loads,
+        &measured,
+        timer.elapsed().as_secs_f64(),
+    ))
+}
+
+/// `count` of `n` load indices, evenly spread from the first to the last.
+fn sample(n: usize, count: usize) -> Vec<usize> {
+    let mut index: Vec<usize> = (0..count.min(n))
+        .map(|k| {
+            if count > 1 {
+                (k * (n - 1) + (count - 1) / 2) / (count - 1)
+            } else {
+                n / 2
+            }
+        })
+        .collect();
+    index.dedup();
+    index
+}
+
+/// One scan's curve by one solver at `loads`, the check's loads `index` of `of`, with its
+/// events (the headline solver's when `budget` is empty).
+#[allow(clippy::too_many_arguments)]
+fn run_curve(
+    body: &Body,
+    loads: &[f64],
+    (index, of): (&[usize], usize),
+    solver: SolverKind,
+    opts: &CheckOptions,
+    budget: &[Option<Duration>],
+    scan: usize,
+    events: &mut dyn FnMut(Event),
+) -> Result<Curve> {
+    let headline = budget.is_empty();
+    let events = std::cell::RefCell::new(events);
+    solve_curve(
+        body,
+        loads,
+        solver,
+        opts.tol,
+        budget,
+        &mut |load, outcome| {
+            (events.borrow_mut())(Event::Load {
+                scan,
+                solver,
+                headline,
+                load: index[load],
+                loads: of,
+                outcome,
+            })
+        },
+        &mut |load, progress| {
+            (events.borrow_mut())(Event::Iteration {
+                scan,
+                solver,
+                load: index[load],
+                progress,
+            })
+        },
+    )
+}
+
+/// The cross-check's time at each of the loads `index`: [`CROSS_CHECK_TIME`] times the
+/// headline's time there, at least [`CROSS_CHECK_MIN_S`].
+fn cross_check_budget(head: &Curve, index: &[usize]) -> Vec<Option<Duration>> {
+    index
+        .iter()
+        .map(|&i| {
+            let spent = match &head.points[i] {
+                Ok(s) => s.wall_s,
+                Err(f) => f.wall_s,
+            };
+            Some(Duration::from_secs_f64(
+                (CROSS_CHECK_TIME * spent).max(CROSS_CHECK_MIN_S),
+            ))
+        })
+        .collect()
+}
+
+/// The middle one of the loads a curve solved.
+fn middle_solved(curve: &Curve) -> Option<usize> {
+    let solved: Vec<usize> = (0..curve.points.len())
+        .filter(|&i| curve.solved(i).is_some())
+        .collect();
+    solved.get(solved.len() / 2).copied()
+}

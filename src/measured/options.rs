@@ -1,0 +1,126 @@
+//! How a surface is checked ([`CheckOptions`]), and the check of the options and the
+//! scans before any work ([`validate`]): square pixels, a tolerance the solvers accept,
+//! loads, unit and modulus in range, periodic scans square, every scan of one shape and
+//! every point measured or filled.
+
+use serde::{Deserialize, Serialize};
+
+use super::fill::Fill;
+use super::psd::Boundary;
+use super::scan::Scan;
+use super::units::{check_unit, square_pixel};
+use crate::engine::solver::SolverKind;
+use crate::error::{check_positive, Error, Result};
+
+/// How a surface is checked.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CheckOptions {
+    /// Pixel sides in the heights' length unit: along axis 0 (between rows) and axis 1
+    /// (between columns); equal within [`super::units::SQUARE_PIXEL_TOLERANCE`].
+    pub pixel_size: [f64; 2],
+    /// The heights' length unit (`None`: unnamed).
+    pub unit: Option<String>,
+    /// Periodic scans, or measured windows with a free boundary.
+    pub boundary: Boundary,
+    /// Loads `p0 / E*` (none: the defaults of [`super::theory::default_areas`]).
+    pub loads: Option<Vec<f64>>,
+    /// The headline solver.
+    pub solver: SolverKind,
+    /// Also solve with the other solver.
+    pub cross_check: bool,
+    /// Cross-check every load (else [`super::curves::CROSS_CHECKED_LOADS`] of them).
+    pub cross_check_all: bool,
+    /// Residual tolerance of every solve.
+    pub tol: f64,
+    /// Whether the points a scan lacks are filled ([`super::fill`]).
+    pub fill: Fill,
+    /// The contact modulus `E*` in pascals, for pressures in pascals beside `p0 / E*`.
+    pub modulus: Option<f64>,
+    /// Whether the re-entry share over magnification is measured
+    /// ([`super::reentry`]).
+    pub reentry: bool,
+}
+
+impl Default for CheckOptions {
+    fn default() -> Self {
+        Self {
+            pixel_size: [1.0, 1.0],
+            unit: None,
+            boundary: Boundary::Free,
+            loads: None,
+            solver: SolverKind::Cg,
+            cross_check: true,
+            cross_check_all: false,
+            tol: 1e-6,
+            fill: Fill::None,
+            modulus: None,
+            reentry: true,
+        }
+    }
+}
+
+/// The other solver: CG for GFMD, GFMD for any other.
+pub(super) fn other(solver: SolverKind) -> SolverKind {
+    if solver == SolverKind::Gfmd {
+        SolverKind::Cg
+    } else {
+        SolverKind::Gfmd
+    }
+}
+
+/// Checks the options and the scans (before any work); returns the pixel size.
+pub fn validate(scans: &[Scan], opts: &CheckOptions) -> Result<f64> {
+    let pixel = square_pixel(opts.pixel_size)?;
+    crate::engine::solver::SolveOptions::with_tol(opts.tol).validate()?;
+    if let Some(given) = &opts.loads {
+        super::theory::check_loads(given)?;
+    }
+    if let Some(unit) = &opts.unit {
+        check_unit(unit)?;
+    }
+    if let Some(modulus) = opts.modulus {
+        check_positive("modulus", modulus)?;
+    }
+    let Some(first) = scans.first() else {
+        return Err(Error::invalid(
+            "heights",
+            "no scan",
+            "at least one height map",
+        ));
+    };
+    if opts.boundary == Boundary::Periodic && !first.shape.is_square() {
+        return Err(Error::invalid(
+            "periodic",
+            format!("a {} scan (rows x columns)", first.shape),
+            "square scans (the periodic solvers' grid is square): solve a rectangular \
+             scan with a free boundary (without periodic), or crop it to a square",
+        ));
+    }
+    for s in scans {
+        if s.shape != first.shape {
+            return Err(Error::bad_file(
+                &s.source,
+                format!(
+                    "{} points (rows x columns), the first scan ({}) has {}: scans of one \
+                     surface share their shape",
+                    s.shape,
+                    first.source.display(),
+                    first.shape
+                ),
+            ));
+        }
+        let missing = s.missing();
+        if let Some((row, col)) = missing.first {
+            return Err(Error::bad_file(
+                &s.source,
+                format!(
+                    "{} of {} heights are undefined, the first at row {row}, column {col}: \
+                     fill them first (see measured::fill)",
+                    missing.count,
+                    s.heights.len()
+                ),
+            ));
+        }
+    }
+    Ok(pixel)
+}
