@@ -169,3 +169,84 @@ mod tests {
         assert_eq!(grid_cell(&json!([1, 2])), "—");
     }
 }
+
+#[cfg(test)]
+mod lenient_against_serde {
+    use super::*;
+
+    /// Every outcome under results/ (and in `SERDE_HIST`, if set) reads to the same value
+    /// through serde's attributes as through the lenient reader.
+    #[test]
+    fn every_outcome_reads_the_same_both_ways() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let mut dirs = vec![root.join("results/full"), root.join("results/reduced")];
+        if let Ok(extra) = std::env::var("SERDE_HIST") {
+            dirs.push(PathBuf::from(extra));
+        }
+        let mut n = 0;
+        for dir in dirs {
+            for entry in std::fs::read_dir(&dir).unwrap() {
+                let path = entry.unwrap().path();
+                if path.extension().is_none_or(|x| x != "json") {
+                    continue;
+                }
+                let value: Value = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+                if !looks_like_outcome(&value) {
+                    continue;
+                }
+                for absent in [false, true] {
+                    let mut v = value.clone();
+                    blank_numbers(&mut v, absent);
+                    let a = lenient::from_value::<Outcome>(&v).map_err(|e| e.to_string());
+                    let b = serde_json::from_value::<Outcome>(v).map_err(|e| e.to_string());
+                    assert_eq!(
+                        format!("{a:?}"),
+                        format!("{b:?}"),
+                        "{} blanked",
+                        path.display()
+                    );
+                    println!(
+                        "blanked {absent}: {}",
+                        if a.is_ok() { "read" } else { "error" }
+                    );
+                }
+                let a = lenient::from_value::<Outcome>(&value).map_err(|e| e.to_string());
+                let b = serde_json::from_value::<Outcome>(value).map_err(|e| e.to_string());
+                assert_eq!(format!("{a:?}"), format!("{b:?}"), "{}", path.display());
+                if let (Ok(a), Ok(b)) = (&a, &b) {
+                    assert_eq!(
+                        serde_json::to_string(a).unwrap(),
+                        serde_json::to_string(b).unwrap()
+                    );
+                }
+                println!(
+                    "{}: {}",
+                    path.display(),
+                    if a.is_ok() { "read" } else { "error" }
+                );
+                n += 1;
+            }
+        }
+        println!("{n} outcomes");
+        assert!(n >= 20);
+    }
+
+    /// Every number in `v` made `null` (or, in an object, left out when `absent`).
+    fn blank_numbers(v: &mut Value, absent: bool) {
+        match v {
+            Value::Object(o) => {
+                // Not floats that can be NaN: the verdict rule, counts, the scene.
+                let kept = ["rule", "paper_range", "threads", "jobs", "scene", "grid"];
+                if absent {
+                    o.retain(|k, x| kept.contains(&k.as_str()) || !x.is_number());
+                }
+                o.iter_mut()
+                    .filter(|(k, _)| !kept.contains(&k.as_str()))
+                    .for_each(|(_, x)| blank_numbers(x, absent));
+            }
+            Value::Array(items) => items.iter_mut().for_each(|x| blank_numbers(x, absent)),
+            Value::Number(_) => *v = Value::Null,
+            _ => {}
+        }
+    }
+}
