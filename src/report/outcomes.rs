@@ -1,11 +1,10 @@
 //! Reading `<name>.json` outcomes back, and the scene facts the scorecard shows.
 //!
-//! JSON has no NaN: serde_json writes a NaN as `null`, which does not read back into an
-//! `f64`, and a writer may leave out a number it does not have. An outcome's numbers can
-//! legitimately be missing (the error bar of one realization, a detail or a cross-check
-//! without one), so the reader reads every float that is `null` or absent as NaN
-//! ([`super::lenient`]), which the scorecard prints as "n/a" or "no error bar"; anything else
-//! missing is an error as usual.
+//! JSON has no NaN: serde_json writes a NaN as `null`, and a writer may leave out a number
+//! it does not have. An outcome's numbers can legitimately be missing (the error bar of one
+//! realization, a detail or a cross-check without one): the outcome's types read each
+//! such float that is `null` or absent as NaN ([`crate::validation::Outcome`]), which the
+//! scorecard prints as "n/a" or "no error bar"; anything else missing is an error as usual.
 
 use std::path::{Path, PathBuf};
 use std::time::SystemTime;
@@ -13,7 +12,6 @@ use std::time::SystemTime;
 use serde_json::Value;
 
 use super::format::ranges;
-use super::lenient;
 use crate::error::{Error, Result};
 use crate::validation::Outcome;
 
@@ -51,7 +49,8 @@ pub fn read_outcomes(dir: &Path) -> Result<Vec<Loaded>> {
         if !looks_like_outcome(&value) {
             continue;
         }
-        let outcome = outcome_from_value(&value).map_err(|e| Error::bad_file(&path, e))?;
+        let outcome: Outcome =
+            serde_json::from_value(value).map_err(|e| Error::bad_file(&path, e.to_string()))?;
         let modified = std::fs::metadata(&path).and_then(|m| m.modified()).ok();
         out.push(Loaded {
             outcome,
@@ -68,18 +67,13 @@ pub fn read_outcome(path: &Path) -> Result<Outcome> {
     let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
     let value: Value =
         serde_json::from_slice(&bytes).map_err(|e| Error::bad_file(path, e.to_string()))?;
-    outcome_from_value(&value).map_err(|e| Error::bad_file(path, e))
+    serde_json::from_value(value).map_err(|e| Error::bad_file(path, e.to_string()))
 }
 
 fn looks_like_outcome(v: &Value) -> bool {
     ["name", "statistic", "verdict"]
         .iter()
         .all(|k| v.get(k).is_some())
-}
-
-/// The typed outcome, a float that is `null` or absent read as NaN.
-fn outcome_from_value(v: &Value) -> std::result::Result<Outcome, String> {
-    lenient::from_value(v).map_err(|e| e.to_string())
 }
 
 /// A key's value in the scene: at the top level, or in a table one level down (scenes
@@ -167,86 +161,5 @@ mod tests {
         assert_eq!(grid_cell(&none), "—");
         assert_eq!(seeds_cell(&none), "—");
         assert_eq!(grid_cell(&json!([1, 2])), "—");
-    }
-}
-
-#[cfg(test)]
-mod lenient_against_serde {
-    use super::*;
-
-    /// Every outcome under results/ (and in `SERDE_HIST`, if set) reads to the same value
-    /// through serde's attributes as through the lenient reader.
-    #[test]
-    fn every_outcome_reads_the_same_both_ways() {
-        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-        let mut dirs = vec![root.join("results/full"), root.join("results/reduced")];
-        if let Ok(extra) = std::env::var("SERDE_HIST") {
-            dirs.push(PathBuf::from(extra));
-        }
-        let mut n = 0;
-        for dir in dirs {
-            for entry in std::fs::read_dir(&dir).unwrap() {
-                let path = entry.unwrap().path();
-                if path.extension().is_none_or(|x| x != "json") {
-                    continue;
-                }
-                let value: Value = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
-                if !looks_like_outcome(&value) {
-                    continue;
-                }
-                for absent in [false, true] {
-                    let mut v = value.clone();
-                    blank_numbers(&mut v, absent);
-                    let a = lenient::from_value::<Outcome>(&v).map_err(|e| e.to_string());
-                    let b = serde_json::from_value::<Outcome>(v).map_err(|e| e.to_string());
-                    assert_eq!(
-                        format!("{a:?}"),
-                        format!("{b:?}"),
-                        "{} blanked",
-                        path.display()
-                    );
-                    println!(
-                        "blanked {absent}: {}",
-                        if a.is_ok() { "read" } else { "error" }
-                    );
-                }
-                let a = lenient::from_value::<Outcome>(&value).map_err(|e| e.to_string());
-                let b = serde_json::from_value::<Outcome>(value).map_err(|e| e.to_string());
-                assert_eq!(format!("{a:?}"), format!("{b:?}"), "{}", path.display());
-                if let (Ok(a), Ok(b)) = (&a, &b) {
-                    assert_eq!(
-                        serde_json::to_string(a).unwrap(),
-                        serde_json::to_string(b).unwrap()
-                    );
-                }
-                println!(
-                    "{}: {}",
-                    path.display(),
-                    if a.is_ok() { "read" } else { "error" }
-                );
-                n += 1;
-            }
-        }
-        println!("{n} outcomes");
-        assert!(n >= 20);
-    }
-
-    /// Every number in `v` made `null` (or, in an object, left out when `absent`).
-    fn blank_numbers(v: &mut Value, absent: bool) {
-        match v {
-            Value::Object(o) => {
-                // Not floats that can be NaN: the verdict rule, counts, the scene.
-                let kept = ["rule", "paper_range", "threads", "jobs", "scene", "grid"];
-                if absent {
-                    o.retain(|k, x| kept.contains(&k.as_str()) || !x.is_number());
-                }
-                o.iter_mut()
-                    .filter(|(k, _)| !kept.contains(&k.as_str()))
-                    .for_each(|(_, x)| blank_numbers(x, absent));
-            }
-            Value::Array(items) => items.iter_mut().for_each(|x| blank_numbers(x, absent)),
-            Value::Number(_) => *v = Value::Null,
-            _ => {}
-        }
     }
 }
