@@ -43,10 +43,11 @@ pub struct Work {
 }
 
 impl Work {
-    /// A search for the load on an `n x n` grid followed by `solves` warm-started solves
-    /// and `shells` single-shell steps (a magnification climb, or a transition with one
-    /// step).
-    pub fn climb(n: usize, solves: usize, shells: usize) -> Self {
+    /// One search for the load on an `n x n` grid, then `solves` solves warm-started from
+    /// its solution and `shells` single-shell steps: the cost of any job that finds its
+    /// load once and goes on from there (a magnification climb, a transition of one step,
+    /// a search alone with `0, 0`).
+    pub fn search_then(n: usize, solves: usize, shells: usize) -> Self {
         Self {
             points: n * n,
             searches: 1.0,
