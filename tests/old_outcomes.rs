@@ -12,6 +12,8 @@ use persson_check::report::{read_outcome, write, ReportOptions, SpeedChoice};
 use persson_check::validation::Outcome;
 use serde_json::Value;
 
+use crate::common::assert_no_nan;
+
 /// The fixture: an outcome of 2026-11-25 with one cross-check and no claims.
 fn fixture() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -43,13 +45,6 @@ fn read_and_render(dir: &Path, json: &Value) -> (Outcome, String) {
     let summary = write(&opts, &mut |_| {}).unwrap();
     assert_eq!(summary.validations, ["b_drift"]);
     (outcome, std::fs::read_to_string(card).unwrap())
-}
-
-fn assert_no_nan(text: &str) {
-    let nan = text
-        .split(|c: char| !c.is_ascii_alphanumeric())
-        .any(|word| word.eq_ignore_ascii_case("nan"));
-    assert!(!nan, "the scorecard prints NaN:\n{text}");
 }
 
 #[test]
@@ -97,7 +92,7 @@ fn an_outcome_with_one_cross_check_and_no_claims_reads_as_written() {
 fn an_outcome_with_one_cross_check_and_no_claims_renders() {
     let dir = tempfile::tempdir().unwrap();
     let (o, card) = read_and_render(dir.path(), &fixture_json());
-    assert_no_nan(&card);
+    assert_no_nan("the scorecard", &card);
     // The headline, to four digits as the summary table prints it.
     assert!(card.contains("b\\_drift"), "{card}");
     assert!(card.contains("-0.0160"), "{card}");
@@ -129,7 +124,7 @@ fn numbers_left_out_of_an_old_outcome_read_as_nan_and_print_as_words() {
             "{d:?}"
         );
     }
-    assert_no_nan(&card);
+    assert_no_nan("the scorecard", &card);
     assert!(card.contains("n/a"), "{card}");
     assert!(card.contains("no error bar"), "{card}");
 }
