@@ -12,6 +12,7 @@ mod determinism;
 mod fire_bits;
 mod gfmd_bits;
 mod hard_scenes;
+mod old_outcomes;
 mod one_realization;
 mod persson;
 mod readers_fuzz;

@@ -10,7 +10,7 @@ use persson_check::report::{write, ReportOptions, SpeedChoice};
 use persson_check::validation::source::sources_in;
 use persson_check::validation::{run, Outcome, RunOptions, Scale, Source, Verdict};
 
-use crate::common::validations_dir;
+use crate::common::{assert_no_nan, validations_dir};
 
 /// The re-entry scene on a 32^2 grid (lambda_l = 16, lambda_s = 4: zeta up to 4), one
 /// seed, one load.
@@ -208,13 +208,6 @@ fn scorecard(dir: &std::path::Path) -> std::path::PathBuf {
     )
     .unwrap();
     card
-}
-
-fn assert_no_nan(what: &str, text: &str) {
-    let nan = text
-        .split(|c: char| !c.is_ascii_alphanumeric())
-        .any(|word| word.eq_ignore_ascii_case("nan"));
-    assert!(!nan, "{what} prints NaN:\n{text}");
 }
 
 #[test]

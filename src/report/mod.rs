@@ -17,7 +17,6 @@ mod attention;
 pub mod claims;
 mod format;
 mod golden;
-mod lenient;
 mod outcomes;
 mod provenance_section;
 mod resolution;

@@ -1,11 +1,10 @@
 //! Reading `<name>.json` outcomes back, and the scene facts the scorecard shows.
 //!
-//! JSON has no NaN: serde_json writes a NaN as `null`, which does not read back into an
-//! `f64`, and a writer may leave out a number it does not have. An outcome's numbers can
-//! legitimately be missing (the error bar of one realization, a detail or a cross-check
-//! without one), so the reader reads every float that is `null` or absent as NaN
-//! ([`super::lenient`]), which the scorecard prints as "n/a" or "no error bar"; anything else
-//! missing is an error as usual.
+//! JSON has no NaN: serde_json writes a NaN as `null`, and a writer may leave out a number
+//! it does not have. An outcome's numbers can legitimately be missing (the error bar of one
+//! realization, a detail or a cross-check without one): the outcome's types read each
+//! such float that is `null` or absent as NaN ([`crate::validation::Outcome`]), which the
+//! scorecard prints as "n/a" or "no error bar"; anything else missing is an error as usual.
 
 use std::path::{Path, PathBuf};
 use std::time::SystemTime;
@@ -13,7 +12,6 @@ use std::time::SystemTime;
 use serde_json::Value;
 
 use super::format::ranges;
-use super::lenient;
 use crate::error::{Error, Result};
 use crate::validation::Outcome;
 
@@ -51,7 +49,8 @@ pub fn read_outcomes(dir: &Path) -> Result<Vec<Loaded>> {
         if !looks_like_outcome(&value) {
             continue;
         }
-        let outcome = outcome_from_value(&value).map_err(|e| Error::bad_file(&path, e))?;
+        let outcome: Outcome =
+            serde_json::from_value(value).map_err(|e| Error::bad_file(&path, e.to_string()))?;
         let modified = std::fs::metadata(&path).and_then(|m| m.modified()).ok();
         out.push(Loaded {
             outcome,
@@ -68,18 +67,13 @@ pub fn read_outcome(path: &Path) -> Result<Outcome> {
     let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
     let value: Value =
         serde_json::from_slice(&bytes).map_err(|e| Error::bad_file(path, e.to_string()))?;
-    outcome_from_value(&value).map_err(|e| Error::bad_file(path, e))
+    serde_json::from_value(value).map_err(|e| Error::bad_file(path, e.to_string()))
 }
 
 fn looks_like_outcome(v: &Value) -> bool {
     ["name", "statistic", "verdict"]
         .iter()
         .all(|k| v.get(k).is_some())
-}
-
-/// The typed outcome, a float that is `null` or absent read as NaN.
-fn outcome_from_value(v: &Value) -> std::result::Result<Outcome, String> {
-    lenient::from_value(v).map_err(|e| e.to_string())
 }
 
 /// A key's value in the scene: at the top level, or in a table one level down (scenes

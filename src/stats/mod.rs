@@ -22,8 +22,9 @@ pub const NO_ERROR_BAR: &str = "no error bar with one realization";
 /// A value with its standard error.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Estimate {
-    /// The value (NaN, written `null`, when there was nothing to estimate from).
-    #[serde(deserialize_with = "null_as_nan")]
+    /// The value (NaN, written `null`, when there was nothing to estimate from; NaN also
+    /// when left out).
+    #[serde(deserialize_with = "null_as_nan", default = "nan")]
     pub value: f64,
     /// Its standard error: NaN (written `null`, or left out) when there is no error bar,
     /// e.g. from one realization.
@@ -31,7 +32,8 @@ pub struct Estimate {
     pub std_error: f64,
 }
 
-fn nan() -> f64 {
+/// NaN: the value of a float an output leaves out (`#[serde(default = "nan")]`).
+pub fn nan() -> f64 {
     f64::NAN
 }
 

@@ -2,8 +2,11 @@
 //!
 //! A number that is not known is NaN in memory and `null` in the file (serde_json writes
 //! NaN as `null`): the standard error of one realization, a detail without an error bar.
-//! Every float field that can be NaN reads `null` back as NaN, so an outcome written from
-//! one realization (or by an earlier version) reads back as it was written.
+//! Every float field that can be NaN reads `null` back as NaN, and reads as NaN when the
+//! file leaves it out ([`crate::stats::null_as_nan`], [`crate::stats::nan`]), so an outcome
+//! written from one realization (or by an earlier version) reads back as it was written.
+//! Fields added since the first outcomes read as empty when absent (`claims`, `studies`,
+//! `merge`); the one cross-check of early outcomes (`cross_check`) reads as a list of one.
 
 use std::collections::BTreeMap;
 
@@ -16,7 +19,7 @@ use super::definition::{Scale, Verdict, VerdictRule};
 use super::store::JobRun;
 use crate::experiments::study::Study;
 use crate::experiments::{Check, Detail};
-use crate::stats::{null_as_nan, null_as_nan_values};
+use crate::stats::{nan, null_as_nan, null_as_nan_values};
 
 /// The record of one validation run: `<name>.json` ([`crate::conventions`], section 7).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -30,13 +33,13 @@ pub struct Outcome {
     /// The headline statistic in words.
     pub statistic: String,
     /// The measured headline statistic.
-    #[serde(deserialize_with = "null_as_nan")]
+    #[serde(deserialize_with = "null_as_nan", default = "nan")]
     pub value: f64,
     /// Its standard error.
-    #[serde(deserialize_with = "null_as_nan")]
+    #[serde(deserialize_with = "null_as_nan", default = "nan")]
     pub std_error: f64,
     /// Persson's prediction of the statistic.
-    #[serde(deserialize_with = "null_as_nan")]
+    #[serde(deserialize_with = "null_as_nan", default = "nan")]
     pub persson: f64,
     /// Persson's prediction in words.
     pub persson_text: String,
@@ -62,10 +65,10 @@ pub struct Outcome {
     /// Hash of the definition file (SHA-256, hex).
     pub definition_sha256: String,
     /// Wall time of the whole validation, seconds.
-    #[serde(deserialize_with = "null_as_nan")]
+    #[serde(deserialize_with = "null_as_nan", default = "nan")]
     pub wall_s: f64,
     /// Largest solver residual over all solves.
-    #[serde(deserialize_with = "null_as_nan")]
+    #[serde(deserialize_with = "null_as_nan", default = "nan")]
     pub max_residual: f64,
     /// Secondary statistics.
     pub details: Vec<Detail>,
@@ -169,10 +172,10 @@ pub struct CrossCheck {
     /// The solver.
     pub solver: String,
     /// Its value of the statistic.
-    #[serde(deserialize_with = "null_as_nan")]
+    #[serde(deserialize_with = "null_as_nan", default = "nan")]
     pub value: f64,
     /// Its standard error.
-    #[serde(deserialize_with = "null_as_nan")]
+    #[serde(deserialize_with = "null_as_nan", default = "nan")]
     pub std_error: f64,
     /// Whether the two solvers agree within their combined error (see
     /// [`super::VerdictRule::agree`]).

@@ -266,15 +266,15 @@ mod tests {
     fn cost_grows_like_p_log_p_times_solves() {
         let warm = |n: usize| Work {
             searches: 0.0,
-            ..Work::climb(n, 10, 0)
+            ..Work::search_then(n, 10, 0)
         };
         let cg = |w: Work| estimate_seconds(w, SolverKind::Cg);
         let ratio = cg(warm(256)) / cg(warm(128));
         assert!((ratio - 4.0 * 16.0 / 14.0).abs() < 1e-12, "{ratio}");
         // A search from cold grows faster than P log P.
-        let search = |n: usize| cg(Work::climb(n, 0, 0));
+        let search = |n: usize| cg(Work::search_then(n, 0, 0));
         assert!(search(256) / search(128) > ratio);
-        assert!(cg(Work::climb(128, 10, 10)) > cg(Work::climb(128, 10, 0)));
+        assert!(cg(Work::search_then(128, 10, 10)) > cg(Work::search_then(128, 10, 0)));
         assert!(estimate_seconds(warm(128), SolverKind::Gfmd) > cg(warm(128)));
     }
 

@@ -98,3 +98,11 @@ pub fn kill_when(mut cmd: Command, what: &str, ready: impl Fn() -> bool) {
         std::thread::sleep(Duration::from_millis(2));
     }
 }
+
+/// Asserts that `text` (what `what` prints) has no NaN in it, in any case.
+pub fn assert_no_nan(what: &str, text: &str) {
+    let nan = text
+        .split(|c: char| !c.is_ascii_alphanumeric())
+        .any(|word| word.eq_ignore_ascii_case("nan"));
+    assert!(!nan, "{what} prints NaN:\n{text}");
+}

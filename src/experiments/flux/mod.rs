@@ -178,11 +178,11 @@ impl Jobs for FluxScene {
 
     fn work(&self, job: &FluxJob) -> Work {
         match job {
-            FluxJob::Step(_) => Work::climb(self.n, 1, 0),
-            FluxJob::Study(j) => Work::climb(j.config.n, 1, 0),
+            FluxJob::Step(_) => Work::search_then(self.n, 1, 0),
+            FluxJob::Study(j) => Work::search_then(j.config.n, 1, 0),
             FluxJob::Waterfall => {
                 let panels = self.waterfall.as_ref().map_or(0, |w| w.zetas.len());
-                Work::climb(self.n, panels, 0)
+                Work::search_then(self.n, panels, 0)
             }
         }
     }

@@ -199,7 +199,7 @@ impl Jobs for ModeScene {
     }
 
     fn work(&self, _job: &SeedLoad) -> Work {
-        Work::climb(self.n, self.steps().len(), 0)
+        Work::search_then(self.n, self.steps().len(), 0)
     }
 
     fn run_job(&self, job: &SeedLoad, ctx: &JobContext) -> Result<ModeResult> {

@@ -215,7 +215,7 @@ impl Jobs for ReentryScene {
     fn work(&self, _job: &SeedLoad) -> Work {
         // The load at full resolution, then every shell from the first.
         let base = self.base();
-        Work::climb(self.n, 0, base.shells(0.0, base.zeta_max()))
+        Work::search_then(self.n, 0, base.shells(0.0, base.zeta_max()))
     }
 
     fn run_job(&self, job: &SeedLoad, ctx: &JobContext) -> Result<ReentryResult> {

@@ -281,7 +281,7 @@ impl Jobs for SourceScene {
 
     fn work(&self, _job: &SourceJob) -> Work {
         // The load at zeta, then one step of dzeta.
-        Work::climb(self.n, 1, 0)
+        Work::search_then(self.n, 1, 0)
     }
 
     fn run_job(&self, job: &SourceJob, ctx: &JobContext) -> Result<SourceResult> {

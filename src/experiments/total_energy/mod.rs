@@ -283,7 +283,7 @@ impl Jobs for EnergyScene {
         let zeta_max = self.base().zeta_max();
         let ladder = (zeta_max / self.zeta_start).log2() * self.steps_per_octave as f64;
         let windows = self.increments_at.len() * (self.increments + 1);
-        Work::climb(self.n, ladder.ceil() as usize + 1, windows)
+        Work::search_then(self.n, ladder.ceil() as usize + 1, windows)
     }
 
     fn run_job(&self, job: &SeedLoad, ctx: &JobContext) -> Result<EnergyResult> {

@@ -157,7 +157,7 @@ impl Jobs for TransitionScene {
 
     fn work(&self, _seed: &u64) -> Work {
         // The load at zeta, then one step of dzeta.
-        Work::climb(self.n, 1, 0)
+        Work::search_then(self.n, 1, 0)
     }
 
     fn run_job(&self, seed: &u64, ctx: &JobContext) -> Result<TransitionResult> {

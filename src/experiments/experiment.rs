@@ -1,0 +1,225 @@
+//! The two traits every experiment implements: [`Jobs`] (how a scene splits into
+//! independent jobs, what one costs ([`Work`]) and how one runs) and [`Experiment`] (how
+//! the jobs' results reduce to a [`Conclusion`], in three steps: statistics, findings as
+//! data, a thin builder of what a reader sees).
+
+use std::collections::BTreeMap;
+use std::fmt;
+use std::path::PathBuf;
+
+use serde::de::DeserializeOwned;
+use serde::Serialize;
+
+use super::findings::{Check, Conclusion, Criteria, Detail, Table};
+use super::study::Study;
+use crate::error::Result;
+use crate::plot::{Figure, Raster, Waterfall};
+use crate::stats::Estimate;
+
+/// How a job runs: its solver, and where it keeps state that must survive interruption.
+#[derive(Debug, Clone)]
+pub struct JobContext {
+    /// The solver of every solve of the job.
+    pub solver: crate::engine::solver::SolverKind,
+    /// Directory for the job's checkpoints. The runner empties it before a fresh run and
+    /// removes it once the job's result is stored; a job only reads and writes it.
+    pub state_dir: PathBuf,
+}
+
+/// What a job costs: the solves it makes on its grid. The runner turns it into an
+/// estimated time per solver ([`crate::validation::plan`]).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Work {
+    /// Grid points of each solve.
+    pub points: usize,
+    /// Searches for the load that gives a contact area (several solves each, the first
+    /// from cold).
+    pub searches: f64,
+    /// Solves at a given load, each started from the previous solution.
+    pub solves: f64,
+    /// Solves that add a single shell of modes to the previous solution's surface (the
+    /// cheapest warm starts).
+    pub shells: f64,
+}
+
+impl Work {
+    /// One search for the load on an `n x n` grid, then `solves` solves warm-started from
+    /// its solution and `shells` single-shell steps: the cost of any job that finds its
+    /// load once and goes on from there (a magnification climb, a transition of one step,
+    /// a search alone with `0, 0`).
+    pub fn search_then(n: usize, solves: usize, shells: usize) -> Self {
+        Self {
+            points: n * n,
+            searches: 1.0,
+            solves: solves as f64,
+            shells: shells as f64,
+        }
+    }
+}
+
+/// A scene and its jobs: how a scene splits into independent jobs, what one costs, and how
+/// one runs. Validations that draw different statistics from the same runs share their
+/// scene type, and so their jobs and, through [`Jobs::FAMILY`], their stored results.
+pub trait Jobs: Serialize + DeserializeOwned + Sync + fmt::Debug {
+    /// Name of the job family (the folder of the stored results).
+    const FAMILY: &'static str;
+    /// One independent unit of work (usually one realization).
+    type Job: Serialize + DeserializeOwned + Clone + Send + Sync + fmt::Debug;
+    /// A job's result (kept on disk for resuming).
+    type JobResult: Serialize + DeserializeOwned + Send;
+
+    /// Checks the scene's ranges; errors name the field.
+    fn validate(&self) -> Result<()>;
+
+    /// The jobs of the scene.
+    fn jobs(&self) -> Vec<Self::Job>;
+
+    /// Whether a job runs with the headline solver only (a study whose solver is part of
+    /// the job, or a figure): the runner does not repeat it for the cross-check.
+    fn headline_only(_job: &Self::Job) -> bool {
+        false
+    }
+
+    /// The solver the scene fixes for every job, if it fixes one (a study of one solver's
+    /// solutions): the runner then runs each job once, with it, whatever solvers the run
+    /// asks for, and the outcome names it.
+    fn solver(&self) -> Option<crate::engine::solver::SolverKind> {
+        None
+    }
+
+    /// What one job costs (its grid and its solves), for splitting a run into shares
+    /// before anything runs.
+    fn work(&self, job: &Self::Job) -> Work;
+
+    /// Runs one job.
+    fn run_job(&self, job: &Self::Job, ctx: &JobContext) -> Result<Self::JobResult>;
+
+    /// The largest solver residual of a job's solves (0 for a job that keeps none).
+    fn residual(result: &Self::JobResult) -> f64;
+}
+
+/// A job of experiment `E`.
+pub type JobOf<E> = <<E as Experiment>::Scene as Jobs>::Job;
+/// A job's result of experiment `E`.
+pub type ResultOf<E> = <<E as Experiment>::Scene as Jobs>::JobResult;
+
+/// The results of one solver's run of an experiment on a scene, with what they are judged
+/// by: what every step of a conclusion reads.
+pub struct Run<'a, E: Experiment + ?Sized> {
+    /// The validation's name, significance, resolution and the paper's value.
+    pub criteria: &'a Criteria,
+    /// The scene run.
+    pub scene: &'a E::Scene,
+    /// Every job with its result, in job order.
+    pub results: &'a [(JobOf<E>, ResultOf<E>)],
+}
+
+/// The code behind a validation: the scene it runs (and so its jobs) and what it concludes
+/// from the jobs' results, in three steps that every experiment follows:
+///
+/// 1. **statistics** ([`Experiment::stats`]): the numbers, from pure functions of the
+///    results, unit-tested on their own;
+/// 2. **findings as data**: the headline with Persson's value ([`Experiment::headline`]),
+///    secondary statistics ([`Experiment::details`]), checks of the paper's finding, each
+///    decided by the one rule of [`crate::stats::decide`] ([`Experiment::checks`]), and
+///    golden values ([`Experiment::golden`]);
+/// 3. **a thin builder** of what a reader sees: the account, tables and figures.
+///
+/// [`Experiment::conclude`] runs the three steps; an experiment implements the steps only.
+pub trait Experiment {
+    /// The scene (the `reduced` and `full` tables of a definition), which knows its jobs.
+    type Scene: Jobs;
+    /// The statistics an experiment draws from a run's results.
+    type Stats;
+
+    /// Checks the scene's ranges for this experiment: the scene's own checks
+    /// ([`Jobs::validate`]), and any this experiment adds.
+    fn validate(scene: &Self::Scene) -> Result<()> {
+        scene.validate()
+    }
+
+    /// The statistics of a run (errors: results that do not fit together).
+    fn stats(run: &Run<Self>) -> Result<Self::Stats>;
+
+    /// The headline statistic and Persson's prediction of it.
+    fn headline(stats: &Self::Stats) -> (Estimate, f64);
+
+    /// Secondary statistics, with stable keys.
+    fn details(_run: &Run<Self>, _stats: &Self::Stats) -> Vec<Detail> {
+        Vec::new()
+    }
+
+    /// Checks of the paper's finding beyond the headline's verdict.
+    fn checks(_run: &Run<Self>, _stats: &Self::Stats) -> Vec<Check> {
+        Vec::new()
+    }
+
+    /// Values kept as golden snapshots, rounded.
+    fn golden(_run: &Run<Self>, _stats: &Self::Stats) -> BTreeMap<String, f64> {
+        BTreeMap::new()
+    }
+
+    /// Studies: tables of rows beside the headline (a sensitivity study, the readings of
+    /// a statement the paper leaves open), each with its notes.
+    fn studies(_run: &Run<Self>, _stats: &Self::Stats) -> Vec<Study> {
+        Vec::new()
+    }
+
+    /// The account, from the numbers (nothing that depends on the machine).
+    fn account(run: &Run<Self>, stats: &Self::Stats) -> String;
+
+    /// Tables; the first is written as `<name>.csv`.
+    fn tables(_run: &Run<Self>, _stats: &Self::Stats) -> Vec<Table> {
+        Vec::new()
+    }
+
+    /// Figures.
+    fn figures(_run: &Run<Self>, _stats: &Self::Stats) -> Vec<Figure> {
+        Vec::new()
+    }
+
+    /// Raster images (contact maps).
+    fn rasters(_run: &Run<Self>, _stats: &Self::Stats) -> Vec<Raster> {
+        Vec::new()
+    }
+
+    /// Waterfalls of cross sections.
+    fn waterfalls(_run: &Run<Self>, _stats: &Self::Stats) -> Vec<Waterfall> {
+        Vec::new()
+    }
+
+    /// Reduces all jobs' results (in job order) to a conclusion: the three steps above,
+    /// and the largest residual of the jobs ([`Jobs::residual`]).
+    fn conclude(
+        criteria: &Criteria,
+        scene: &Self::Scene,
+        results: &[(JobOf<Self>, ResultOf<Self>)],
+    ) -> Result<Conclusion>
+    where
+        Self: Sized,
+    {
+        let run = Run {
+            criteria,
+            scene,
+            results,
+        };
+        let stats = Self::stats(&run)?;
+        let (measured, persson) = Self::headline(&stats);
+        let max_residual = results
+            .iter()
+            .map(|(_, r)| Self::Scene::residual(r))
+            .fold(0.0, f64::max);
+        Ok(Conclusion {
+            details: Self::details(&run, &stats),
+            checks: Self::checks(&run, &stats),
+            golden: Self::golden(&run, &stats),
+            studies: Self::studies(&run, &stats),
+            account: Self::account(&run, &stats),
+            tables: Self::tables(&run, &stats),
+            figures: Self::figures(&run, &stats),
+            rasters: Self::rasters(&run, &stats),
+            waterfalls: Self::waterfalls(&run, &stats),
+            ..Conclusion::new(measured, persson, max_residual)
+        })
+    }
+}
