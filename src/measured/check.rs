@@ -3,7 +3,7 @@
 //! and a verdict for each comparison. In three parts: the options and the check of the
 //! scans before any work ([`super::options`]), the curves run with their time budgets
 //! ([`super::curves`]), and the findings that `surface.json` and the page show
-//! ([`super::findings`]); gathered here under one name.
+//! ([`super::findings`], drawn by `conclude`); gathered here under one name.
 
 pub use super::curves::{check, Event, CROSS_CHECKED_LOADS, CROSS_CHECK_MIN_S, CROSS_CHECK_TIME};
 pub use super::findings::{

@@ -12,7 +12,8 @@
 use std::time::Duration;
 
 use super::body::{solve_curve, Body, Curve, Outcome};
-use super::findings::{conclude, Measured, SurfaceCheck};
+use super::conclude::{conclude, Measured};
+use super::findings::SurfaceCheck;
 use super::options::{other, validate, CheckOptions};
 use super::psd::ScanSpectrum;
 use super::reentry::reentry_share;

@@ -3,11 +3,13 @@
 //! ([`units`]), statistics and spectrum ([`psd`]), the contact problem along a load curve
 //! ([`body`]), Persson's predictions ([`theory`]), the re-entry share over magnification
 //! ([`reentry`]), the words where the theory does not apply ([`warnings`]), the check
-//! ([`check`]: its [`options`], its [`curves`] and its [`findings`]) and its page
+//! ([`check`]: its [`options`], its [`curves`], its [`findings`] and how they are drawn from
+//! the measurements, `conclude`) and its page
 //! ([`page`]).
 
 pub mod body;
 pub mod check;
+mod conclude;
 pub mod curves;
 pub mod fill;
 pub mod findings;
