@@ -87,6 +87,13 @@ pub trait Jobs: Serialize + DeserializeOwned + Sync + fmt::Debug {
         None
     }
 
+    /// The scene as a job's key sees it ([`crate::validation::store::job_key`]): the whole
+    /// scene, unless an experiment leaves out a part its jobs' results do not depend on (a
+    /// study plan added after the headline's results were stored).
+    fn key_scene(&self) -> serde_json::Value {
+        serde_json::to_value(self).expect("scenes serialise")
+    }
+
     /// What one job costs (its grid and its solves), for splitting a run into shares
     /// before anything runs.
     fn work(&self, job: &Self::Job) -> Work;

@@ -156,6 +156,7 @@ pub(crate) fn prepare<E: Experiment>(source: &Source, opts: &RunOptions) -> Resu
     let def = source.parse::<E::Scene>()?;
     let (scene, jobs) = checked_scene::<E>(source, &def, opts.scale)?;
     let scene_json = serde_json::to_value(scene).expect("scenes serialise");
+    let key_json = scene.key_scene();
     let state = jobs_dir(&opts.out, <E::Scene as Jobs>::FAMILY, opts.scale);
     let solvers = scene
         .solver()
@@ -167,7 +168,7 @@ pub(crate) fn prepare<E: Experiment>(source: &Source, opts: &RunOptions) -> Resu
                 continue;
             }
             let job_json = serde_json::to_string(job).expect("jobs serialise");
-            let key = job_key(opts.scale, &scene_json, solver, &job_json);
+            let key = job_key(opts.scale, &key_json, solver, &job_json);
             units.push(Unit {
                 solver,
                 job: job.clone(),

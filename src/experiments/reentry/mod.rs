@@ -31,11 +31,14 @@
 //!   implementation;
 //! * `history.rs`: the contact history of every point of a climb, what a job measures;
 //! * `stats.rs`: the re-entry shares and the flux, means over realizations;
-//! * `figures.rs`: the table and the contact maps.
+//! * `figures.rs`: the table and the contact maps;
+//! * `tolerance.rs`: the speed-against-error study of a history (the same climbs at
+//!   several solver tolerances), run where the scene states a plan.
 
 mod figures;
 pub mod history;
 pub mod stats;
+pub mod tolerance;
 
 use std::collections::BTreeMap;
 
@@ -45,9 +48,11 @@ pub use self::figures::step_palette;
 use self::figures::{maps, table};
 use self::history::{pack_categories, History};
 use self::stats::{ReentryStats, Share};
+use self::tolerance::{RowSamples, Sample, ToleranceJob, TolerancePlan, ToleranceResult};
 use super::climb::{climb, Checkpointing};
 use super::ensemble::{by_load, check_contact_areas, seed_load_jobs, SeedLoad};
 use super::scene::scene;
+use super::study::Study;
 use super::{Check, Detail, Experiment, JobContext, Jobs, Table, Work};
 use crate::engine::scene::check_zeta;
 use crate::engine::sweep::shell_steps;
@@ -66,7 +71,31 @@ scene! {
         pub flux_dzeta: f64,
         /// Seconds between checkpoints of a sweep.
         pub checkpoint_seconds: f64,
+        /// The speed-against-error study (none: not run).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        pub tolerance: Option<TolerancePlan>,
     }
+}
+
+/// A job: one history of the headline (stored as the bare seed and load, as before the
+/// study existed), or one history of the tolerance study.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum ReentryJob {
+    /// A history of the tolerance study.
+    Tolerance(ToleranceJob),
+    /// A history of the headline.
+    #[serde(untagged)]
+    History(SeedLoad),
+}
+
+/// What a job measured.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum ReentryOutput {
+    /// A history of the tolerance study.
+    Tolerance(ToleranceResult),
+    /// A history of the headline.
+    #[serde(untagged)]
+    History(ReentryResult),
 }
 
 /// What one history sweep measured.
@@ -189,8 +218,8 @@ fn run_history(
 
 impl Jobs for ReentryScene {
     const FAMILY: &'static str = "reentry";
-    type Job = SeedLoad;
-    type JobResult = ReentryResult;
+    type Job = ReentryJob;
+    type JobResult = ReentryOutput;
 
     fn validate(&self) -> Result<()> {
         self.base().validate()?;
@@ -205,48 +234,232 @@ impl Jobs for ReentryScene {
                 format!("with flux_zeta + flux_dzeta <= zeta_max = {zeta_max}"),
             ));
         }
-        check_positive("checkpoint_seconds", self.checkpoint_seconds)
+        check_positive("checkpoint_seconds", self.checkpoint_seconds)?;
+        if let Some(plan) = &self.tolerance {
+            plan.validate(self.hurst)?;
+        }
+        Ok(())
     }
 
-    fn jobs(&self) -> Vec<SeedLoad> {
-        seed_load_jobs(&self.contact_areas, &self.seeds)
+    /// The headline's histories, then the study's that the headline does not hold.
+    fn jobs(&self) -> Vec<ReentryJob> {
+        let mut jobs: Vec<ReentryJob> = seed_load_jobs(&self.contact_areas, &self.seeds)
+            .into_iter()
+            .map(ReentryJob::History)
+            .collect();
+        if let Some(plan) = &self.tolerance {
+            jobs.extend(
+                plan.jobs()
+                    .into_iter()
+                    .filter(|j| self.headline_job(j).is_none())
+                    .map(ReentryJob::Tolerance),
+            );
+        }
+        jobs
     }
 
-    fn work(&self, _job: &SeedLoad) -> Work {
-        // The load at full resolution, then every shell from the first.
-        let base = self.base();
-        Work::search_then(self.n, 0, base.shells(0.0, base.zeta_max()))
+    fn headline_only(job: &ReentryJob) -> bool {
+        matches!(job, ReentryJob::Tolerance(_))
     }
 
-    fn run_job(&self, job: &SeedLoad, ctx: &JobContext) -> Result<ReentryResult> {
-        let keep_maps = job.seed == self.seeds[0];
-        run_history(self, job, ctx, keep_maps)
+    /// The headline's histories depend on the scene without the study: their keys are
+    /// those of the scenes that had none.
+    fn key_scene(&self) -> serde_json::Value {
+        let mut scene = self.clone();
+        scene.tolerance = None;
+        serde_json::to_value(scene).expect("scenes serialise")
     }
 
-    fn residual(result: &ReentryResult) -> f64 {
-        result.max_residual
+    fn work(&self, job: &ReentryJob) -> Work {
+        match job {
+            // The load at full resolution, then every shell from the first.
+            ReentryJob::History(_) => {
+                let base = self.base();
+                Work::search_then(self.n, 0, base.shells(0.0, base.zeta_max()))
+            }
+            ReentryJob::Tolerance(j) => tolerance::work(j, self.hurst),
+        }
+    }
+
+    fn run_job(&self, job: &ReentryJob, ctx: &JobContext) -> Result<ReentryOutput> {
+        match job {
+            ReentryJob::History(j) => {
+                let keep_maps = j.seed == self.seeds[0];
+                run_history(self, j, ctx, keep_maps).map(ReentryOutput::History)
+            }
+            ReentryJob::Tolerance(j) => tolerance::run(j, self.hurst, ctx, self.checkpoint_seconds)
+                .map(ReentryOutput::Tolerance),
+        }
+    }
+
+    fn residual(result: &ReentryOutput) -> f64 {
+        match result {
+            ReentryOutput::History(r) => r.max_residual,
+            ReentryOutput::Tolerance(r) => r.max_residual,
+        }
+    }
+}
+
+impl ReentryScene {
+    /// The headline's history that a study job repeats, if any: the same grid, tolerance,
+    /// seed and load.
+    fn headline_job(&self, j: &ToleranceJob) -> Option<SeedLoad> {
+        let same = (j.n, j.lambda_l, j.lambda_s, j.tol)
+            == (self.n, self.lambda_l, self.lambda_s, self.tol)
+            && self.seeds.contains(&j.seed)
+            && self.contact_areas.contains(&j.contact_area);
+        same.then_some(SeedLoad {
+            seed: j.seed,
+            contact_area: j.contact_area,
+        })
+    }
+
+    /// The headline's histories among the results.
+    fn histories(results: &[(ReentryJob, ReentryOutput)]) -> Vec<(SeedLoad, ReentryResult)> {
+        results
+            .iter()
+            .filter_map(|(j, r)| match (j, r) {
+                (ReentryJob::History(j), ReentryOutput::History(r)) => Some((j.clone(), r.clone())),
+                _ => None,
+            })
+            .collect()
     }
 }
 
 type Run<'a> = super::Run<'a, Reentry>;
 
+/// The statistics of a run, with the headline's histories they came from and the
+/// tolerance study (where the scene plans one).
+pub struct RunStats {
+    /// The shares and the flux.
+    pub stats: ReentryStats,
+    /// The headline's histories, in job order.
+    pub histories: Vec<(SeedLoad, ReentryResult)>,
+    /// The tolerance study.
+    pub tolerance: Option<Study>,
+}
+
+impl std::ops::Deref for RunStats {
+    type Target = ReentryStats;
+    fn deref(&self) -> &ReentryStats {
+        &self.stats
+    }
+}
+
+/// The tolerance study's table: its own histories and, where a row repeats the headline's
+/// grid, tolerance and loads, the headline's.
+fn tolerance_study(
+    scene: &ReentryScene,
+    plan: &TolerancePlan,
+    results: &[(ReentryJob, ReentryOutput)],
+    histories: &[(SeedLoad, ReentryResult)],
+    stats: &ReentryStats,
+) -> Study {
+    let own: Vec<(ToleranceJob, Sample)> = results
+        .iter()
+        .filter_map(|(j, r)| match (j, r) {
+            (ReentryJob::Tolerance(j), ReentryOutput::Tolerance(r)) => Some((
+                j.clone(),
+                Sample {
+                    share: r.share(),
+                    contact: tolerance::unpack_bits(&r.contact, j.n * j.n),
+                    iterations: r.iterations,
+                    wall_s: r.wall_s,
+                    shells: r.shells,
+                },
+            )),
+            _ => None,
+        })
+        .collect();
+    let n2 = scene.n * scene.n;
+    let headline: Vec<(SeedLoad, Sample)> = histories
+        .iter()
+        .filter_map(|(j, r)| {
+            let map = r.map.as_deref()?;
+            let contact = history::unpack_categories(map, n2)
+                .into_iter()
+                .map(|c| u8::from(c == history::IN_THROUGHOUT || c == history::REENTERED))
+                .collect();
+            Some((
+                j.clone(),
+                Sample {
+                    share: r.share(),
+                    contact,
+                    iterations: r.iterations,
+                    wall_s: r.wall_s,
+                    shells: r.shells,
+                },
+            ))
+        })
+        .collect();
+    let mut rows = Vec::new();
+    for grid in &plan.grids {
+        for &a in &grid.contact_areas {
+            for &t in &plan.tols {
+                let samples = grid
+                    .seeds
+                    .iter()
+                    .map(|&seed| {
+                        let job = grid.job(seed, a, t);
+                        match scene.headline_job(&job) {
+                            Some(h) => headline.iter().find(|(j, _)| *j == h).map(|(_, s)| s),
+                            None => own.iter().find(|(j, _)| *j == job).map(|(_, s)| s),
+                        }
+                    })
+                    .collect();
+                rows.push(RowSamples {
+                    grid,
+                    contact_area: a,
+                    tol: t,
+                    samples,
+                });
+            }
+        }
+    }
+    tolerance::study(&plan.tols, &rows, |grid, a| {
+        let on_scene =
+            (grid.n, grid.lambda_l, grid.lambda_s) == (scene.n, scene.lambda_l, scene.lambda_s);
+        on_scene
+            .then(|| {
+                stats
+                    .shares
+                    .iter()
+                    .find(|s| s.load == a)
+                    .map(|s| s.share.std_error)
+            })
+            .flatten()
+    })
+}
+
 impl Experiment for Reentry {
     type Scene = ReentryScene;
-    type Stats = ReentryStats;
+    type Stats = RunStats;
 
-    fn stats(run: &Run) -> Result<ReentryStats> {
-        Ok(ReentryStats::of(&by_load(
-            &run.scene.contact_areas,
-            run.results,
-        )))
+    fn stats(run: &Run) -> Result<RunStats> {
+        let histories = ReentryScene::histories(run.results);
+        let stats = ReentryStats::of(&by_load(&run.scene.contact_areas, &histories));
+        let tolerance = run
+            .scene
+            .tolerance
+            .as_ref()
+            .map(|plan| tolerance_study(run.scene, plan, run.results, &histories, &stats));
+        Ok(RunStats {
+            stats,
+            histories,
+            tolerance,
+        })
     }
 
-    fn headline(s: &ReentryStats) -> (Estimate, f64) {
+    fn studies(_run: &Run, s: &RunStats) -> Vec<Study> {
+        s.tolerance.iter().cloned().collect()
+    }
+
+    fn headline(s: &RunStats) -> (Estimate, f64) {
         (s.shares[0].share, 0.0)
     }
 
     /// The shares at every load, and the flux of the interval at the headline load.
-    fn details(run: &Run, s: &ReentryStats) -> Vec<Detail> {
+    fn details(run: &Run, s: &RunStats) -> Vec<Detail> {
         let scene = run.scene;
         let mut details = Vec::new();
         for share in &s.shares {
@@ -304,7 +517,7 @@ impl Experiment for Reentry {
     }
 
     /// The paper's findings: points enter contact, and the share falls as the load grows.
-    fn checks(run: &Run, s: &ReentryStats) -> Vec<Check> {
+    fn checks(run: &Run, s: &RunStats) -> Vec<Check> {
         let criteria = run.criteria;
         let z = criteria.significance;
         let mut order: Vec<&Share> = s.shares.iter().collect();
@@ -335,7 +548,7 @@ impl Experiment for Reentry {
     }
 
     /// The golden values: every share and the flux of the interval.
-    fn golden(_run: &Run, s: &ReentryStats) -> BTreeMap<String, f64> {
+    fn golden(_run: &Run, s: &RunStats) -> BTreeMap<String, f64> {
         let mut golden = BTreeMap::new();
         for share in &s.shares {
             let target = share.load;
@@ -351,8 +564,8 @@ impl Experiment for Reentry {
     }
 
     /// The account of the conclusion, from its numbers.
-    fn account(run: &Run, s: &ReentryStats) -> String {
-        let (scene, results) = (run.scene, run.results);
+    fn account(run: &Run, s: &RunStats) -> String {
+        let (scene, results) = (run.scene, &s.histories);
         let shells = results.first().map_or(0, |r| r.1.shells);
         let head = scene.contact_areas[0];
         format!(
@@ -377,14 +590,14 @@ impl Experiment for Reentry {
         )
     }
 
-    fn tables(run: &Run, _s: &ReentryStats) -> Vec<Table> {
-        vec![table(&run.criteria.name, run.scene, run.results)]
+    fn tables(run: &Run, s: &RunStats) -> Vec<Table> {
+        vec![table(&run.criteria.name, run.scene, &s.histories)]
     }
 
-    fn rasters(run: &Run, _s: &ReentryStats) -> Vec<Raster> {
+    fn rasters(run: &Run, s: &RunStats) -> Vec<Raster> {
         maps(
             run.scene,
-            &by_load(&run.scene.contact_areas, run.results)[0],
+            &by_load(&run.scene.contact_areas, &s.histories)[0],
         )
     }
 }
