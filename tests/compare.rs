@@ -164,7 +164,7 @@ fn a_moved_study_cell_a_moved_claim_and_a_flipped_claim_are_named() {
         .iter_mut()
         .find(|c| c.result == ClaimResult::Reproduced)
         .expect("a reproduced claim");
-    flipped.result = ClaimResult::NotReproduced;
+    flipped.result = ClaimResult::Contradicted;
     let flipped = flipped.key.clone();
     write(&path, &o);
 

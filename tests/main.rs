@@ -6,6 +6,7 @@ mod audit;
 mod bad_input;
 mod cg_bits;
 mod check_surface;
+mod claims;
 mod common;
 mod compare;
 mod determinism;

@@ -120,7 +120,7 @@ def main():
             (o,) = persson_check.validate(args.validation, out=out)
             print(f"validation {o['name']} (reduced): {o['statistic'].split(' (')[0]} = "
                   f"{o['value']:.4f} +- {o['std_error']:.4f}, verdict {o['verdict']}, "
-                  f"paper {'reproduced' if o['reproduced'] else 'NOT reproduced'} "
+                  f"paper {'reproduced' if o['reproduced'] else ('contradicted' if o['reproduced'] is False else 'not established')} "
                   f"[{time.perf_counter() - start:.1f} s]")
     return 0
 

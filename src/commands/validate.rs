@@ -156,8 +156,8 @@ fn summary_line(o: &Outcome) -> String {
         o.verdict,
         match o.reproduced {
             Some(true) => "reproduced",
-            Some(false) => "NOT reproduced",
-            None => "undecided",
+            Some(false) => "contradicted",
+            None => "not established",
         },
         o.wall_s
     )

@@ -1,10 +1,11 @@
-//! The summary's "needs attention" list: inconclusive verdicts, findings not reproduced,
+//! The summary's "needs attention" list: inconclusive verdicts, findings contradicted,
 //! solvers that disagree, golden values that differ.
 
 use super::format::{no_nan, num, pm, sig};
 use super::golden::GoldenMatch;
 use super::outcomes::Loaded;
 use crate::stats::{decide, Claim, Estimate};
+use crate::validation::claims::ClaimKind;
 use crate::validation::{ClaimResult, Verdict};
 
 /// Plain statements of what needs a reviewer's eye.
@@ -34,7 +35,7 @@ pub(super) fn attention(loaded: &[Loaded], golden: &[GoldenMatch]) -> Vec<String
             let claims: Vec<String> = o
                 .claims
                 .iter()
-                .filter(|c| c.result == ClaimResult::NotReproduced)
+                .filter(|c| c.kind == ClaimKind::Evidence && c.result == ClaimResult::Contradicted)
                 .map(|c| format!("`{}` ({})", c.key, no_nan(&c.paper)))
                 .collect();
             let in_range = o.paper_range.is_none_or(|(lo, hi)| {
@@ -62,14 +63,14 @@ pub(super) fn attention(loaded: &[Loaded], golden: &[GoldenMatch]) -> Vec<String
                 reasons.push(format!("failed checks: {}", failed.join("; ")));
             }
             if !claims.is_empty() {
-                reasons.push(format!("claims not reproduced: {}", claims.join(", ")));
+                reasons.push(format!("claims contradicted: {}", claims.join(", ")));
             }
             if reasons.is_empty() {
                 reasons.push("the outcome names no reason (written by an older version?)".into());
             }
             let why = reasons.join("; ");
             lines.push(format!(
-                "{}: the paper's finding is NOT reproduced: {why}.",
+                "{}: the paper's finding is CONTRADICTED: {why}.",
                 o.name
             ));
         }

@@ -13,14 +13,15 @@ use std::path::Path;
 
 use super::format::{md, pm, prose, push_table};
 use crate::error::{Error, Result};
+use crate::validation::claims::{ClaimKind, ReadingOutcome};
 use crate::validation::{ClaimOutcome, ClaimResult, Outcome};
 
 /// The marker lines of the README's table.
 pub const MARKERS: (&str, &str) = ("<!-- paper-claims -->", "<!-- /paper-claims -->");
 
-/// A measured value as the tables print it: in % where the paper prints a percentage.
-fn measured(c: &ClaimOutcome) -> String {
-    let Some(e) = c.measured else {
+/// A value as the tables print it: in % where the paper prints a percentage.
+fn value(c: &ClaimOutcome, e: Option<crate::stats::Estimate>) -> String {
+    let Some(e) = e else {
         return "—".into();
     };
     if c.paper.contains('%') {
@@ -30,16 +31,43 @@ fn measured(c: &ClaimOutcome) -> String {
     }
 }
 
-/// The result, marked where it needs attention; "not measured" with its reason.
-fn result(c: &ClaimOutcome) -> String {
-    match c.result {
-        ClaimResult::NotReproduced => "**no**".into(),
-        ClaimResult::NotMeasured => match &c.why {
-            Some(why) => format!("not measured: {}", prose(why)),
-            None => "not measured".into(),
-        },
+/// The measured value, with each other reading's value beside it.
+fn measured(c: &ClaimOutcome) -> String {
+    let mut s = value(c, c.measured);
+    for r in &c.readings {
+        let _ = write!(s, "; {}: {}", prose(&r.reading), value(c, r.measured));
+    }
+    s
+}
+
+/// A result in words, marked where it needs attention.
+fn result_text(r: ClaimResult) -> String {
+    match r {
+        ClaimResult::Contradicted => "**contradicted**".into(),
+        ClaimResult::NotEstablished => "*not established*".into(),
         r => r.text().into(),
     }
+}
+
+/// The result with its reason where it has one, and each other reading's result.
+fn result(c: &ClaimOutcome) -> String {
+    let mut s = match c.kind {
+        ClaimKind::Evidence => result_text(c.result),
+        ClaimKind::Consistency => format!("consistency check: {}", c.result.text()),
+        ClaimKind::Inconsistent => format!("paper inconsistent; this reading: {}", c.result.text()),
+    };
+    if let Some(why) = &c.why {
+        if c.result != ClaimResult::Reproduced || c.kind != ClaimKind::Evidence {
+            let _ = write!(s, " ({})", prose(why));
+        }
+    }
+    for ReadingOutcome {
+        reading, result, ..
+    } in &c.readings
+    {
+        let _ = write!(s, "; {}: {}", prose(reading), result.text());
+    }
+    s
 }
 
 /// The statement with the paper's scene and the reading, where given.
@@ -59,18 +87,27 @@ fn every_claim(outcomes: &[Outcome]) -> Vec<&ClaimOutcome> {
     outcomes.iter().flat_map(|o| &o.claims).collect()
 }
 
-/// Counts of the results of `claims`.
-fn counts(claims: &[&ClaimOutcome]) -> String {
-    let n = |r: ClaimResult| claims.iter().filter(|c| c.result == r).count();
+/// Counts of the results of `claims`: evidence by result, then consistency checks and
+/// statements the paper makes two ways apart.
+pub fn counts(claims: &[&ClaimOutcome]) -> String {
+    let evidence: Vec<&&ClaimOutcome> = claims
+        .iter()
+        .filter(|c| c.kind == ClaimKind::Evidence)
+        .collect();
+    let n = |r: ClaimResult| evidence.iter().filter(|c| c.result == r).count();
+    let apart = |k: ClaimKind| claims.iter().filter(|c| c.kind == k).count();
     format!(
-        "{} claims: {} reproduced, {} not reproduced, {} undecided, {} not measured, {} not \
-         judged at this scale",
+        "{} claims: {} reproduced, {} contradicted, {} not established, {} not measured, {} \
+         not judged at this scale; apart: {} consistency checks, {} statements the paper \
+         makes two ways",
         claims.len(),
         n(ClaimResult::Reproduced),
-        n(ClaimResult::NotReproduced),
-        n(ClaimResult::Undecided),
+        n(ClaimResult::Contradicted),
+        n(ClaimResult::NotEstablished),
         n(ClaimResult::NotMeasured),
-        n(ClaimResult::NotJudgedAtThisScale)
+        n(ClaimResult::NotJudgedAtThisScale),
+        apart(ClaimKind::Consistency),
+        apart(ClaimKind::Inconsistent),
     )
 }
 
@@ -108,7 +145,7 @@ pub fn section(s: &mut String, outcomes: &[&Outcome]) {
             "where",
             "paper",
             "measured",
-            "reproduced",
+            "result",
         ],
         &rows,
     );
@@ -172,9 +209,9 @@ pub fn table(full: &[Outcome], reduced: &[Outcome]) -> String {
             "where",
             "paper",
             "full scale",
-            "reproduces",
+            "result",
             "reduced",
-            "reproduces",
+            "result",
         ],
         &rows,
     );

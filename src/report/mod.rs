@@ -203,11 +203,24 @@ fn verdict_cell(v: Verdict) -> String {
     }
 }
 
-fn reproduced_cell(r: Option<bool>) -> String {
-    match r {
-        Some(true) => "yes".into(),
-        Some(false) => "**NO**".into(),
-        None => "**undecided** (verdict inconclusive)".into(),
+fn reproduced_cell(o: &Outcome) -> String {
+    match o.reproduced {
+        Some(true) => "reproduced".into(),
+        Some(false) => "**contradicted**".into(),
+        None if o.verdict == Verdict::Inconclusive => {
+            "not established (verdict inconclusive)".into()
+        }
+        None => {
+            let keys: Vec<String> = crate::validation::claims::deciding(&o.claims)
+                .iter()
+                .map(|c| format!("`{}`", c.key))
+                .collect();
+            if keys.is_empty() {
+                "not established".into()
+            } else {
+                format!("not established ({})", keys.join(", "))
+            }
+        }
     }
 }
 
@@ -271,8 +284,8 @@ impl Scorecard<'_> {
         let _ = writeln!(
             s,
             "**Summary.** {n} validation{}: {} hold{}, {} violated, {} inconclusive. \
-             The paper's finding is reproduced in {} ({}), NOT reproduced in {} ({}), \
-             undecided in {} ({}).\n",
+             The paper's finding is reproduced in {} ({}), contradicted in {} ({}), \
+             not established in {} ({}).\n",
             if n == 1 { "" } else { "s" },
             count(Verdict::Holds),
             if count(Verdict::Holds) == 1 { "s" } else { "" },

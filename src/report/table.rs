@@ -42,8 +42,10 @@ impl Scorecard<'_> {
             "\nVerdict rule (per validation: significance z, resolution r): **violated** when \
              |measured − Persson| > z · error; **holds** when the whole interval measured ± \
              z · error lies within Persson ± r; **inconclusive** otherwise. \"Reproduced\" \
-             requires the paper's verdict, the paper's range and every check of the paper's \
-             finding; it is undecided when the verdict is inconclusive. \"Grid\" lists points \
+             requires the paper's verdict, the paper's range, every check of the paper's \
+             finding and every claim that is evidence; \"contradicted\" when any of them \
+             fails; \"not established\" otherwise (the verdict inconclusive, or the claims \
+             named not established). \"Grid\" lists points \
              per side (all refinements); \"solver residual\" is the largest residual of all \
              solves.\n"
         );
@@ -66,7 +68,7 @@ fn table_row(o: &Outcome, g: &GoldenMatch) -> Vec<String> {
         cross_check_cell(o),
         format!("{} ({})", or_dash(o.paper_value, num), o.paper_verdict),
         verdict_cell(o.verdict),
-        reproduced_cell(o.reproduced),
+        reproduced_cell(o),
         md(&g.cell()),
         grid_cell(&o.scene),
         seeds_cell(&o.scene),

@@ -218,16 +218,16 @@ fn table_rows_state_verdicts(text: &str) {
     assert_eq!(d[9], "n/a (full scene)", "full scenes are not compared");
 }
 
-/// The summary says plainly what is inconclusive or not reproduced.
+/// The summary says plainly what is inconclusive or contradicted.
 fn summary_names_what_needs_attention(text: &str, summary: &ReportSummary) {
     assert!(
         text.contains("1 holds, 2 violated, 1 inconclusive"),
         "{}",
         &text[..600]
     );
-    assert!(text.contains("NOT reproduced in 1 (`b_violated`)"));
+    assert!(text.contains("contradicted in 1 (`b_violated`)"));
     assert!(text.contains("c\\_inconclusive: the verdict is INCONCLUSIVE"));
-    assert!(text.contains("b\\_violated: the paper's finding is NOT reproduced: failed checks: check of b\\_violated (numbers behind it)"));
+    assert!(text.contains("b\\_violated: the paper's finding is CONTRADICTED: failed checks: check of b\\_violated (numbers behind it)"));
     assert_eq!(summary.attention.len(), 3, "{:?}", summary.attention);
     assert!(text.contains("| check of b\\_violated | **FAILED** | numbers behind it |"));
 }

@@ -120,10 +120,7 @@ fn facts(o: &Outcome, g: &GoldenMatch) -> Vec<Vec<String>> {
                 sig(o.rule.resolution, 3)
             ),
         ),
-        fact(
-            "The paper's finding reproduced",
-            reproduced_cell(o.reproduced),
-        ),
+        fact("The paper's finding reproduced", reproduced_cell(o)),
         fact("Golden values", md(&golden_text(g))),
         fact(
             "Run",

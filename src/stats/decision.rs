@@ -135,11 +135,195 @@ pub fn decide(estimate: Estimate, claim: Claim, significance: f64) -> Decision {
     })
 }
 
+/// The values a statement asserts: an interval, each end open or closed, possibly
+/// infinite, or every value but one ([`Region::Except`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Region {
+    /// `lo < x < hi`, with the ends included where closed.
+    Interval {
+        /// Lower end (may be `-inf`).
+        lo: f64,
+        /// Whether `lo` belongs to the region.
+        lo_closed: bool,
+        /// Upper end (may be `inf`).
+        hi: f64,
+        /// Whether `hi` belongs to the region.
+        hi_closed: bool,
+    },
+    /// Every value but this one (a law stated as violated, without a direction).
+    Except(f64),
+}
+
+impl Region {
+    /// `[lo, hi]`.
+    pub fn closed(lo: f64, hi: f64) -> Self {
+        Region::Interval {
+            lo,
+            lo_closed: true,
+            hi,
+            hi_closed: true,
+        }
+    }
+
+    /// `(t, inf)`.
+    pub fn above(t: f64) -> Self {
+        Region::Interval {
+            lo: t,
+            lo_closed: false,
+            hi: f64::INFINITY,
+            hi_closed: false,
+        }
+    }
+
+    /// `(-inf, t)`.
+    pub fn below(t: f64) -> Self {
+        Region::Interval {
+            lo: f64::NEG_INFINITY,
+            lo_closed: false,
+            hi: t,
+            hi_closed: false,
+        }
+    }
+
+    /// `[t, inf)`.
+    pub fn at_least(t: f64) -> Self {
+        Region::Interval {
+            lo: t,
+            lo_closed: true,
+            hi: f64::INFINITY,
+            hi_closed: false,
+        }
+    }
+
+    /// `(-inf, t]`.
+    pub fn at_most(t: f64) -> Self {
+        Region::Interval {
+            lo: f64::NEG_INFINITY,
+            lo_closed: false,
+            hi: t,
+            hi_closed: true,
+        }
+    }
+
+    /// Whether the value `x` lies in the region.
+    pub fn contains(&self, x: f64) -> bool {
+        match *self {
+            Region::Interval {
+                lo,
+                lo_closed,
+                hi,
+                hi_closed,
+            } => {
+                let above_lo = if lo_closed { x >= lo } else { x > lo };
+                let below_hi = if hi_closed { x <= hi } else { x < hi };
+                above_lo && below_hi
+            }
+            Region::Except(t) => x != t,
+        }
+    }
+
+    /// The distance from `x` to the region's edge: how far the value may move before it
+    /// leaves the region (inside) or enters it (outside); infinite where no edge is near.
+    pub fn margin(&self, x: f64) -> f64 {
+        match *self {
+            Region::Interval { lo, hi, .. } => {
+                if self.contains(x) {
+                    (x - lo).min(hi - x)
+                } else if x < lo {
+                    lo - x
+                } else {
+                    x - hi
+                }
+            }
+            Region::Except(t) => (x - t).abs(),
+        }
+    }
+}
+
+/// Whether the data establish that an estimate lies in `region`, in three values: passed
+/// (established) when the whole interval `value +- z std_error` lies in the region, failed
+/// (contradicted) when none of it does, undecided (not established) otherwise, and when
+/// the estimate has no error bar or no finite value. A region of every value but one is
+/// never contradicted: no interval of finite width excludes all other values.
+pub fn establish(estimate: Estimate, region: Region, significance: f64) -> Decision {
+    if !(estimate.value.is_finite() && estimate.has_error()) {
+        return Decision::Undecided;
+    }
+    let half = significance * estimate.std_error;
+    let (a, b) = (estimate.value - half, estimate.value + half);
+    match region {
+        Region::Interval {
+            lo,
+            lo_closed,
+            hi,
+            hi_closed,
+        } => {
+            if region.contains(a) && region.contains(b) {
+                Decision::Passed
+            } else {
+                let left_of = if lo_closed { b < lo } else { b <= lo };
+                let right_of = if hi_closed { a > hi } else { a >= hi };
+                if left_of || right_of {
+                    Decision::Failed
+                } else {
+                    Decision::Undecided
+                }
+            }
+        }
+        Region::Except(t) => {
+            if t < a || t > b {
+                Decision::Passed
+            } else {
+                Decision::Undecided
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     const Z: f64 = 3.0;
+
+    #[test]
+    fn a_region_is_established_contradicted_or_neither() {
+        let e = |v, s| Estimate::new(v, s);
+        let r = Region::closed(0.9, 1.1);
+        assert_eq!(establish(e(1.0, 0.01), r, 3.0), Decision::Passed);
+        assert_eq!(establish(e(1.0, 0.05), r, 3.0), Decision::Undecided);
+        assert_eq!(establish(e(1.5, 0.05), r, 3.0), Decision::Failed);
+        // A sign: established above 2.1 standard errors, never contradicted by one below.
+        assert_eq!(
+            establish(e(-0.186, 0.089), Region::below(0.0), 3.0),
+            Decision::Undecided
+        );
+        assert_eq!(
+            establish(e(-0.186, 0.05), Region::below(0.0), 3.0),
+            Decision::Passed
+        );
+        assert_eq!(
+            establish(e(0.186, 0.05), Region::below(0.0), 3.0),
+            Decision::Failed
+        );
+        // An open end: an interval ending on it does not reach into the region.
+        assert_eq!(
+            establish(e(-1.0, 1.0 / 3.0), Region::above(0.0), 3.0),
+            Decision::Failed
+        );
+        assert_eq!(establish(e(1.0, f64::NAN), r, 3.0), Decision::Undecided);
+        assert_eq!(
+            establish(e(1.0, 0.1), Region::Except(0.5), 3.0),
+            Decision::Passed
+        );
+        assert_eq!(
+            establish(e(1.0, 0.1), Region::Except(1.1), 3.0),
+            Decision::Undecided
+        );
+        assert!(Region::closed(0.9, 1.1).contains(1.0));
+        assert!((Region::closed(0.9, 1.1).margin(1.0) - 0.1).abs() < 1e-12);
+        assert!((Region::above(0.0).margin(-0.5) - 0.5).abs() < 1e-12);
+    }
 
     #[test]
     fn claims_read_the_interval_at_the_significance() {

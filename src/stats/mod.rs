@@ -11,7 +11,7 @@
 pub mod decision;
 pub mod histogram;
 
-pub use decision::{decide, Claim, Decision};
+pub use decision::{decide, establish, Claim, Decision, Region};
 pub use histogram::{Bins, Histogram};
 
 use serde::{Deserialize, Deserializer, Serialize};

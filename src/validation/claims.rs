@@ -1,25 +1,36 @@
-//! The paper's claims as data: every quantitative statement of the paper that a validation
-//! tests, with its place in the paper, the paper's value as printed, the measure it is set
-//! against and the rule that decides it (`[[claims]]` in `validations/<name>.toml`).
+//! The paper's claims as data: every checkable statement of the paper that a validation
+//! tests, with its place (or places) in the paper, the paper's value as printed, the
+//! phrase the paper states it in, the measure it is set against and the rule that decides
+//! it (`[[claims]]` in `validations/<name>.toml`).
 //!
-//! One function decides every claim, [`ClaimSpec::judge`], through the decision rule of
-//! every verdict and check ([`crate::stats::decide`]): a claim is a statement about the
-//! interval `value +- z std_error` of its measure, `z` the validation's significance
-//! unless the claim states its own. The result is reproduced, not reproduced, undecided
-//! (no error bar), not measured (the measure is absent, or the claim says why it cannot be
-//! measured here), or not judged at this scale (a magnitude the paper states for its own
-//! scene, shown but not judged on the reduced scene).
+//! One function decides every claim, [`ClaimSpec::judge`], as a referee would: a claim
+//! asserts that its measure lies in a region of values (the rule's), and the interval
+//! `value +- z std_error` of the measure, `z` the validation's significance unless the
+//! claim states its own, either lies wholly inside it (**reproduced**: the data establish
+//! the statement), wholly outside it (**contradicted**: the data exclude it), or neither
+//! (**not established**, with what would decide it) ([`crate::stats::establish`]).
 //!
-//! The rules ([`Rule`]):
+//! The rules ([`Rule`]) and their regions:
 //!
-//! * `near = r`: the paper's value within a relative tolerance `r` or `z` standard errors,
-//!   `|v - P| <= z s + r |P|`;
-//! * `above = t`, `below = t`: the interval lies above (below) `t`, a sign or a strict
-//!   bound: `v - z s > t` (`v + z s < t`);
-//! * `at_most = t`, `at_least = t`: the interval reaches `t` or below (above), a bound the
-//!   measurement must not contradict: `v - z s <= t` (`v + z s >= t`);
-//! * `within = [lo, hi]`: the interval overlaps `[lo, hi]`;
-//! * `exceeds = "MEASURE"`: an ordering, the difference of the two measures above 0.
+//! * `near = r`: `[P - r |P|, P + r |P|]`, `P` the paper's value;
+//! * `above = t`, `below = t`: `(t, inf)`, `(-inf, t)`: a sign, or a strict bound;
+//! * `at_least = t`, `at_most = t`: `[t, inf)`, `(-inf, t]`;
+//! * `within = [lo, hi]`: `[lo, hi]`;
+//! * `exceeds = "MEASURE"`: the difference of the two measures in `(0, inf)`;
+//! * `differs = t`: every value but `t` (a law stated as violated, without a direction);
+//!   never contradicted.
+//!
+//! Each claim states the phrase the paper uses ([`Phrase`]), and each phrase has one rule
+//! ([`Phrase::rule`]): a claim whose rule is not its phrase's is refused at load unless it
+//! says why it departs (`departs`). A claim may name the alternative its test must be
+//! able to exclude (`alternative`: zero for a sign, another scene's value the paper gives,
+//! a floor built into the measure); a rule whose region holds the alternative cannot tell
+//! the statement from it, and the claim reads not established (does not discriminate). A
+//! statement true by construction is a consistency check (`consistency`, with the reason):
+//! shown, counted apart, not evidence. Where the paper contradicts itself, one claim
+//! carries both readings (`inconsistent`), shown and counted apart. Where the reading
+//! decides the verdict, the other readings are judged by the same rule and shown beside it
+//! (`other_readings`).
 //!
 //! A measure names where the number is: `headline`, `detail:KEY` (or `detail:KEY@N` for
 //! the detail measured on the `N x N` grid), `study:STUDY/ROW/COLUMN` (a cell of a
@@ -30,29 +41,197 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Error, Result};
 use crate::experiments::study::{self, Study};
 use crate::experiments::Detail;
-use crate::stats::{decide, Claim, Decision, Estimate};
+use crate::stats::{establish, Decision, Estimate, Region};
 
-/// How a claim is decided from its measure's interval `value +- z std_error`.
+/// How a claim is decided: the region of values it asserts for its measure.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case", deny_unknown_fields)]
 pub enum Rule {
-    /// Within a relative tolerance of the paper's value, or `z` standard errors.
+    /// Within a relative tolerance of the paper's value.
     Near(f64),
     /// Above a threshold (a sign, or a strict bound).
     Above(f64),
     /// Below a threshold.
     Below(f64),
-    /// Not contradicting an upper bound.
+    /// At most a bound.
     AtMost(f64),
-    /// Not contradicting a lower bound.
+    /// At least a bound.
     AtLeast(f64),
-    /// Overlapping a range.
+    /// In a range.
     Within((f64, f64)),
     /// Larger than another measure.
     Exceeds(String),
-    /// Away from a value: the interval excludes it (a statement that a law is violated,
-    /// without a direction).
+    /// Away from a value: a law stated as violated, without a direction.
     Differs(f64),
+}
+
+/// The wordings of the paper, each with one rule ([`Phrase::rule`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Phrase {
+    /// "~x", "about x", "approximately x", or a number printed without a qualifier:
+    /// `near = 0.1`.
+    About,
+    /// "O(x)": the order of magnitude, `within = [x / 3, 3 x]`.
+    Order,
+    /// "within x", "below x", "errors below x": a bound on a magnitude, `at_most = x`, or
+    /// `within = [-x, x]` on a signed difference.
+    Within,
+    /// "negligible", "does not change", "remains the same", "converged": `within = [-r,
+    /// r]`, `r` the paper's number or else the validation's resolution.
+    Negligible,
+    /// "every single", "all": `at_least = 1 - r`, `r` the validation's resolution.
+    All,
+    /// "significantly": an improvement above zero, `above = 0` (or an ordering,
+    /// `exceeds`).
+    Significantly,
+    /// A sign or a direction ("negative", "picks up", "recede", "underestimates"): `above
+    /// = t` or `below = t`, or an ordering of two measures, `exceeds`.
+    Sign,
+    /// "more than x", "larger than x": `above = x`.
+    MoreThan,
+    /// "less than x", "smaller than x": `below = x`.
+    LessThan,
+    /// "in violation of", "deviates from" a law, without a direction: `differs = x`.
+    Violates,
+}
+
+/// Every phrase, in the order of the README's table.
+pub const PHRASES: [Phrase; 10] = [
+    Phrase::About,
+    Phrase::Order,
+    Phrase::Within,
+    Phrase::Negligible,
+    Phrase::All,
+    Phrase::Significantly,
+    Phrase::Sign,
+    Phrase::MoreThan,
+    Phrase::LessThan,
+    Phrase::Violates,
+];
+
+/// The relative tolerance of "about" ([`Phrase::About`]).
+pub const ABOUT: f64 = 0.1;
+/// The factor of "O(x)" ([`Phrase::Order`]): `x / 3` to `3 x`.
+pub const ORDER: f64 = 3.0;
+
+impl Phrase {
+    /// The phrase as the definitions write it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Phrase::About => "about",
+            Phrase::Order => "order",
+            Phrase::Within => "within",
+            Phrase::Negligible => "negligible",
+            Phrase::All => "all",
+            Phrase::Significantly => "significantly",
+            Phrase::Sign => "sign",
+            Phrase::MoreThan => "more_than",
+            Phrase::LessThan => "less_than",
+            Phrase::Violates => "violates",
+        }
+    }
+
+    /// The paper's wordings of the phrase.
+    pub fn wordings(self) -> &'static str {
+        match self {
+            Phrase::About => {
+                "\"~x\", \"about x\", \"approximately x\", a number printed without a qualifier"
+            }
+            Phrase::Order => "\"O(x)\"",
+            Phrase::Within => {
+                "\"within x\", \"below x\", \"errors below x\" (a bound on a magnitude)"
+            }
+            Phrase::Negligible => {
+                "\"negligible\", \"does not change\", \"remains the same\", \"converged\""
+            }
+            Phrase::All => "\"every single\", \"all\"",
+            Phrase::Significantly => "\"significantly\"",
+            Phrase::Sign => {
+                "a sign or a direction: \"negative\", \"picks up\", \"recede\", \"underestimates\""
+            }
+            Phrase::MoreThan => "\"more than x\", \"larger than x\"",
+            Phrase::LessThan => "\"less than x\", \"smaller than x\"",
+            Phrase::Violates => "\"in violation of\", \"deviates from\" (no direction)",
+        }
+    }
+
+    /// The rule in words, as the README's table states it.
+    pub fn rule_text(self) -> &'static str {
+        match self {
+            Phrase::About => "`near = 0.1`: the paper's value +- 10%",
+            Phrase::Order => "`within = [x/3, 3x]`",
+            Phrase::Within => "`at_most = x`, or `within = [-x, x]` on a signed difference",
+            Phrase::Negligible => {
+                "`within = [-r, r]`: r the paper's number, else the validation's resolution"
+            }
+            Phrase::All => "`at_least = 1 - r`: r the validation's resolution",
+            Phrase::Significantly => "`above = 0` on the improvement (or `exceeds`)",
+            Phrase::Sign => {
+                "`above = t` or `below = t` (t the paper's threshold, usually 0), or `exceeds`"
+            }
+            Phrase::MoreThan => "`above = x`",
+            Phrase::LessThan => "`below = x`",
+            Phrase::Violates => "`differs = x`: any value but x (never contradicted)",
+        }
+    }
+
+    /// Whether `rule` is this phrase's rule for the paper's value `value` in a validation
+    /// of resolution `resolution`.
+    pub fn fits(self, rule: &Rule, value: Option<f64>, resolution: f64) -> bool {
+        // Seven digits: definitions write x / 3 as a decimal.
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-6 * a.abs().max(b.abs()).max(1e-300);
+        let v = value;
+        match (self, rule) {
+            (Phrase::About, Rule::Near(r)) => close(*r, ABOUT),
+            (Phrase::Order, Rule::Within((lo, hi))) => {
+                v.is_some_and(|x| close(*lo, x / ORDER) && close(*hi, x * ORDER))
+            }
+            (Phrase::Within, Rule::AtMost(t)) => v.is_none_or(|x| close(*t, x)),
+            (Phrase::Within, Rule::Within((lo, hi))) => {
+                close(*lo, -hi) && v.is_none_or(|x| close(*hi, x))
+            }
+            // The paper's number, where it gives one (a value of 0 is the target, not the
+            // width).
+            (Phrase::Negligible, Rule::Within((lo, hi))) => {
+                close(*lo, -hi) && close(*hi, v.filter(|x| *x > 0.0).unwrap_or(resolution))
+            }
+            (Phrase::All, Rule::AtLeast(t)) => close(*t, 1.0 - resolution),
+            (Phrase::Significantly, Rule::Above(t) | Rule::Below(t)) => *t == 0.0,
+            (Phrase::Significantly | Phrase::Sign, Rule::Exceeds(_)) => true,
+            (Phrase::Sign, Rule::Above(t) | Rule::Below(t)) => v.is_none_or(|x| close(*t, x)),
+            (Phrase::MoreThan, Rule::Above(t)) | (Phrase::LessThan, Rule::Below(t)) => {
+                v.is_none_or(|x| close(*t, x))
+            }
+            (Phrase::Violates, Rule::Differs(t)) => v.is_none_or(|x| close(*t, x)),
+            _ => false,
+        }
+    }
+}
+
+/// A value the claim's test must be able to exclude.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Alternative {
+    /// The value.
+    pub value: f64,
+    /// What it is (another scene's value given by the paper, a floor of the measure).
+    pub what: String,
+}
+
+/// Another reading of the statement, judged on its own measure by the claim's rule, or by
+/// its own where the reading gives the statement another direction (the paper's other
+/// wording of it).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OtherReading {
+    /// The reading, in words.
+    pub reading: String,
+    /// Its measure.
+    pub measure: String,
+    /// Its rule, where not the claim's.
+    #[serde(default)]
+    pub rule: Option<Rule>,
 }
 
 /// One statement of the paper: `[[claims]]` in a definition.
@@ -63,10 +242,13 @@ pub struct ClaimSpec {
     pub key: String,
     /// The statement, as the paper prints it (quoted or closely paraphrased).
     pub statement: String,
-    /// Where: equation, figure, section, and the lines of the paper's source.
+    /// Where: equation, figure, section, and the lines of the paper's source; the places
+    /// of one statement (a caption and the text) joined by "; ".
     pub place: String,
     /// The paper's value as printed ("~62%", "> 0", "within 3%").
     pub paper: String,
+    /// The paper's wording, which fixes the rule.
+    pub phrase: Phrase,
     /// The paper's value as a number, where it states one.
     #[serde(default)]
     pub value: Option<f64>,
@@ -75,6 +257,21 @@ pub struct ClaimSpec {
     pub measure: Option<String>,
     /// The rule.
     pub rule: Rule,
+    /// Why the rule departs from its phrase's, where it does.
+    #[serde(default)]
+    pub departs: Option<String>,
+    /// The value the test must be able to exclude.
+    #[serde(default)]
+    pub alternative: Option<Alternative>,
+    /// Why the statement holds by construction: a consistency check, not evidence.
+    #[serde(default)]
+    pub consistency: Option<String>,
+    /// How the paper contradicts itself on this statement (both readings are shown).
+    #[serde(default)]
+    pub inconsistent: Option<String>,
+    /// Other readings, shown beside the verdict.
+    #[serde(default)]
+    pub other_readings: Vec<OtherReading>,
     /// The paper's scene, where it differs from the validation's.
     #[serde(default)]
     pub scene: Option<String>,
@@ -82,7 +279,8 @@ pub struct ClaimSpec {
     /// implies it (fixed from the text, before the value is seen).
     #[serde(default)]
     pub reading: Option<String>,
-    /// Why the claim is not measured here (with no measure).
+    /// Why the claim is not measured here (with no measure): the run it needs and its
+    /// cost.
     #[serde(default)]
     pub not_measured: Option<String>,
     /// Whether the reduced scene judges it: false for a magnitude the paper states for its
@@ -102,40 +300,78 @@ fn yes() -> bool {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ClaimResult {
-    /// The measurement reproduces the statement.
+    /// The data establish the statement.
     Reproduced,
-    /// It contradicts it.
-    NotReproduced,
-    /// No error bar (one realization), so the rule cannot decide.
-    Undecided,
+    /// The data exclude it.
+    #[serde(alias = "not_reproduced")]
+    Contradicted,
+    /// Neither: the interval reaches both in and out of the statement's region, the test
+    /// cannot tell the statement from its alternative, or there is no error bar.
+    #[serde(alias = "undecided")]
+    NotEstablished,
     /// There is nothing to measure it with here.
     NotMeasured,
     /// A magnitude of the paper's scene, measured on the reduced scene: shown, not judged.
     NotJudgedAtThisScale,
 }
 
+/// What kind of statement a claim is, for counting.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ClaimKind {
+    /// Evidence for or against the paper.
+    #[default]
+    Evidence,
+    /// True by construction: a check of the code, not evidence.
+    Consistency,
+    /// The paper states it two ways: both readings shown, counted apart.
+    Inconsistent,
+}
+
 impl ClaimResult {
     /// The result in words, as the tables print it.
     pub fn text(self) -> &'static str {
         match self {
-            ClaimResult::Reproduced => "yes",
-            ClaimResult::NotReproduced => "no",
-            ClaimResult::Undecided => "undecided",
+            ClaimResult::Reproduced => "reproduced",
+            ClaimResult::Contradicted => "contradicted",
+            ClaimResult::NotEstablished => "not established",
             ClaimResult::NotMeasured => "not measured",
             ClaimResult::NotJudgedAtThisScale => "not judged (reduced scene)",
         }
     }
 
-    /// Its part in the validation's reproduction: passed, failed or undecided; `None`
-    /// where it takes no part (not measured, not judged at this scale).
+    /// Its part in the validation's reproduction: passed, failed or undecided (not
+    /// established); `None` where it takes no part (not measured, not judged at this
+    /// scale).
     pub fn decision(self) -> Option<Decision> {
         match self {
             ClaimResult::Reproduced => Some(Decision::Passed),
-            ClaimResult::NotReproduced => Some(Decision::Failed),
-            ClaimResult::Undecided => Some(Decision::Undecided),
+            ClaimResult::Contradicted => Some(Decision::Failed),
+            ClaimResult::NotEstablished => Some(Decision::Undecided),
             ClaimResult::NotMeasured | ClaimResult::NotJudgedAtThisScale => None,
         }
     }
+
+    fn of(d: Decision) -> Self {
+        match d {
+            Decision::Passed => ClaimResult::Reproduced,
+            Decision::Failed => ClaimResult::Contradicted,
+            Decision::Undecided => ClaimResult::NotEstablished,
+        }
+    }
+}
+
+/// Another reading judged: its measure, value and result.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ReadingOutcome {
+    /// The reading, in words.
+    pub reading: String,
+    /// Its measure.
+    pub measure: String,
+    /// The measurement (absent when not measured).
+    pub measured: Option<Estimate>,
+    /// The result under the claim's rule.
+    pub result: ClaimResult,
 }
 
 /// A claim with its measurement and result: an entry of `claims` in `<name>.json`.
@@ -149,6 +385,9 @@ pub struct ClaimOutcome {
     pub place: String,
     /// The paper's value as printed.
     pub paper: String,
+    /// The paper's wording (absent in outcomes written before phrases existed).
+    #[serde(default)]
+    pub phrase: Option<Phrase>,
     /// The paper's value as a number.
     pub paper_value: Option<f64>,
     /// The measure (empty when not measured).
@@ -164,8 +403,16 @@ pub struct ClaimOutcome {
     pub measured: Option<Estimate>,
     /// The result.
     pub result: ClaimResult,
-    /// Why not measured or not judged, where that is the result.
+    /// Evidence, a consistency check, or a statement the paper makes two ways.
+    #[serde(default)]
+    pub kind: ClaimKind,
+    /// Why not measured, not judged or not established, and what would decide it; the
+    /// reason a consistency check holds by construction; how the paper contradicts
+    /// itself.
     pub why: Option<String>,
+    /// The other readings, judged by the same rule.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub readings: Vec<ReadingOutcome>,
 }
 
 /// Where a claim finds its numbers: a run's headline, details, studies and cross-checks.
@@ -231,9 +478,30 @@ fn check_measure(field: &str, measure: &str) -> Result<()> {
     }
 }
 
+impl Rule {
+    /// The region the rule asserts, for a claim of paper value `value`; `None` for an
+    /// ordering, whose region is that of the difference (`(0, inf)`).
+    fn region(&self, value: Option<f64>) -> Option<Region> {
+        Some(match self {
+            Rule::Near(r) => {
+                let p = value.unwrap_or(f64::NAN);
+                Region::closed(p - r * p.abs(), p + r * p.abs())
+            }
+            Rule::Above(t) => Region::above(*t),
+            Rule::Below(t) => Region::below(*t),
+            Rule::AtMost(t) => Region::at_most(*t),
+            Rule::AtLeast(t) => Region::at_least(*t),
+            Rule::Within((lo, hi)) => Region::closed(*lo, *hi),
+            Rule::Differs(t) => Region::Except(*t),
+            Rule::Exceeds(_) => return None,
+        })
+    }
+}
+
 impl ClaimSpec {
-    /// Checks the claim's fields; errors name the claim and the field.
-    pub fn validate(&self) -> Result<()> {
+    /// Checks the claim's fields in a validation of resolution `resolution`; errors name
+    /// the claim and the field.
+    pub fn validate(&self, resolution: f64) -> Result<()> {
         let field = |f: &str| format!("claims.{}.{f}", self.key);
         if self.key.is_empty() {
             return Err(Error::invalid("claims.key", "\"\"", "a non-empty key"));
@@ -255,6 +523,9 @@ impl ClaimSpec {
                     "a measure, or not_measured with the reason",
                 ))
             }
+        }
+        for (k, r) in self.other_readings.iter().enumerate() {
+            check_measure(&field(&format!("other_readings[{k}].measure")), &r.measure)?;
         }
         match &self.rule {
             Rule::Near(r) if !(r.is_finite() && *r >= 0.0) => {
@@ -282,6 +553,16 @@ impl ClaimSpec {
             Rule::Exceeds(m) => check_measure(&field("rule.exceeds"), m)?,
             _ => {}
         }
+        if !self.phrase.fits(&self.rule, self.value, resolution) && self.departs.is_none() {
+            return Err(Error::invalid(
+                &field("rule"),
+                format!("{:?} for phrase \"{}\"", self.rule, self.phrase.name()),
+                format!(
+                    "the phrase's rule, {}, or `departs` saying why not",
+                    self.phrase.rule_text()
+                ),
+            ));
+        }
         if let Some(z) = self.significance {
             if !(z.is_finite() && z >= 0.0) {
                 return Err(Error::invalid(
@@ -291,7 +572,25 @@ impl ClaimSpec {
                 ));
             }
         }
+        if self.consistency.is_some() && self.inconsistent.is_some() {
+            return Err(Error::invalid(
+                &field("inconsistent"),
+                "beside consistency",
+                "a consistency check or a statement the paper makes two ways, not both",
+            ));
+        }
         Ok(())
+    }
+
+    /// What the claim counts as.
+    pub fn kind(&self) -> ClaimKind {
+        if self.consistency.is_some() {
+            ClaimKind::Consistency
+        } else if self.inconsistent.is_some() {
+            ClaimKind::Inconsistent
+        } else {
+            ClaimKind::Evidence
+        }
     }
 
     /// Judges the claim on a run (of the reduced scene when `reduced_scene`), at the
@@ -310,20 +609,59 @@ impl ClaimSpec {
                 ClaimResult::NotJudgedAtThisScale,
                 Some("a magnitude of the paper's scene: judged on the full scene".into()),
             ),
-            (Some(_), Some(e)) => match self.decide(e, measures, z) {
-                Decision::Passed => (ClaimResult::Reproduced, None),
-                Decision::Failed => (ClaimResult::NotReproduced, None),
-                Decision::Undecided => (
-                    ClaimResult::Undecided,
-                    Some("no error bar (one realization) or no value".into()),
-                ),
-            },
+            (Some(_), Some(e)) => self.verdict(e, measures, z),
         };
+        let why = match self.kind() {
+            ClaimKind::Consistency => Some(join(
+                format!(
+                    "consistency check: {}",
+                    self.consistency.as_deref().unwrap_or("")
+                ),
+                why,
+            )),
+            ClaimKind::Inconsistent => Some(join(
+                format!(
+                    "the paper is inconsistent: {}",
+                    self.inconsistent.as_deref().unwrap_or("")
+                ),
+                why,
+            )),
+            ClaimKind::Evidence => why,
+        };
+        let readings = self
+            .other_readings
+            .iter()
+            .map(|r| {
+                let measured = measures.get(&r.measure);
+                let result = match measured {
+                    None => ClaimResult::NotMeasured,
+                    Some(_) if reduced_scene && !self.reduced => ClaimResult::NotJudgedAtThisScale,
+                    Some(e) => match &r.rule {
+                        Some(rule) => {
+                            ClaimSpec {
+                                rule: rule.clone(),
+                                ..self.clone()
+                            }
+                            .verdict(e, measures, z)
+                            .0
+                        }
+                        None => self.verdict(e, measures, z).0,
+                    },
+                };
+                ReadingOutcome {
+                    reading: r.reading.clone(),
+                    measure: r.measure.clone(),
+                    measured,
+                    result,
+                }
+            })
+            .collect();
         ClaimOutcome {
             key: self.key.clone(),
             statement: self.statement.clone(),
             place: self.place.clone(),
             paper: self.paper.clone(),
+            phrase: Some(self.phrase),
             paper_value: self.value,
             measure: self.measure.clone().unwrap_or_default(),
             scene: self.scene.clone(),
@@ -331,41 +669,78 @@ impl ClaimSpec {
             rule: self.rule.clone(),
             measured,
             result,
+            kind: self.kind(),
             why,
+            readings,
         }
     }
 
-    /// The rule applied to the measured estimate `e`.
-    fn decide(&self, e: Estimate, measures: &Measures, z: f64) -> Decision {
-        let claim = match &self.rule {
-            Rule::Near(r) => {
-                let target = self.value.unwrap_or(f64::NAN);
-                Claim::Near {
-                    target,
-                    tolerance: r * target.abs(),
+    /// The rule applied to the measured estimate `e`: the result and, where it is not
+    /// established, why and what would decide it.
+    fn verdict(&self, e: Estimate, measures: &Measures, z: f64) -> (ClaimResult, Option<String>) {
+        let (e, region) = match (&self.rule, self.rule.region(self.value)) {
+            (Rule::Exceeds(other), _) => match measures.get(other) {
+                Some(o) => (Estimate::difference(e, o), Region::above(0.0)),
+                None => {
+                    return (
+                        ClaimResult::NotEstablished,
+                        Some(format!("this run has no {other} to compare with")),
+                    )
                 }
-            }
-            Rule::Above(t) => Claim::Above(*t),
-            Rule::Below(t) => Claim::Below(*t),
-            Rule::AtMost(t) => return !decide(e, Claim::Above(*t), z),
-            Rule::AtLeast(t) => return !decide(e, Claim::Below(*t), z),
-            Rule::Within((lo, hi)) => Claim::Overlaps(*lo, *hi),
-            Rule::Differs(t) => return !decide(e, Claim::Overlaps(*t, *t), z),
-            Rule::Exceeds(other) => {
-                return match measures.get(other) {
-                    Some(o) => decide(Estimate::difference(e, o), Claim::Above(0.0), z),
-                    None => Decision::Undecided,
-                }
-            }
+            },
+            (_, Some(r)) => (e, r),
+            (_, None) => unreachable!("every rule but an ordering has a region"),
         };
-        decide(e, claim, z)
+        if let Some(alt) = &self.alternative {
+            if region.contains(alt.value) {
+                return (
+                    ClaimResult::NotEstablished,
+                    Some(format!(
+                        "does not discriminate: the rule's region also holds the alternative, \
+                         {} = {}; a reading that excludes it would decide",
+                        alt.what, alt.value
+                    )),
+                );
+            }
+        }
+        let result = ClaimResult::of(establish(e, region, z));
+        let why = (result == ClaimResult::NotEstablished).then(|| decider(e, region, z));
+        (result, why)
     }
 }
 
-/// Checks a definition's claims: each valid, keys unique.
-pub fn validate_claims(claims: &[ClaimSpec]) -> Result<()> {
+/// What would decide a claim the data do not establish: realizations enough to shrink
+/// the interval inside (or outside) the region, if the value held.
+fn decider(e: Estimate, region: Region, z: f64) -> String {
+    if !(e.value.is_finite() && e.has_error()) {
+        return "no error bar (one realization): two or more realizations would decide".into();
+    }
+    let margin = region.margin(e.value);
+    let inside = region.contains(e.value);
+    let goal = if inside { "establish" } else { "contradict" };
+    if !(margin.is_finite() && margin > 0.0) {
+        return "the value lies on the region's edge: no number of realizations decides".into();
+    }
+    let factor = (z * e.std_error / margin).powi(2);
+    format!(
+        "the interval +-{z} standard errors reaches both sides of the rule's edge; about \
+         {:.1} times the realizations would {goal} it if the value held",
+        factor.max(1.0)
+    )
+}
+
+fn join(head: String, tail: Option<String>) -> String {
+    match tail {
+        Some(t) => format!("{head}; {t}"),
+        None => head,
+    }
+}
+
+/// Checks a definition's claims in a validation of resolution `resolution`: each valid,
+/// keys unique.
+pub fn validate_claims(claims: &[ClaimSpec], resolution: f64) -> Result<()> {
     for (k, c) in claims.iter().enumerate() {
-        c.validate()?;
+        c.validate(resolution)?;
         if claims[..k].iter().any(|o| o.key == c.key) {
             return Err(Error::invalid("claims.key", &c.key, "a key used once"));
         }
@@ -374,24 +749,52 @@ pub fn validate_claims(claims: &[ClaimSpec]) -> Result<()> {
 }
 
 /// The claims' part in a validation's reproduction, in three-valued logic: every judged
-/// claim (reproduced, not reproduced or undecided).
+/// claim that is evidence (reproduced, contradicted or not established); consistency
+/// checks and statements the paper makes two ways take no part.
 pub fn decision(claims: &[ClaimOutcome]) -> Decision {
-    Decision::all(claims.iter().filter_map(|c| c.result.decision()))
+    Decision::all(
+        claims
+            .iter()
+            .filter(|c| c.kind == ClaimKind::Evidence)
+            .filter_map(|c| c.result.decision()),
+    )
+}
+
+/// The evidence claims that keep a validation from being reproduced: the contradicted
+/// ones if any, else the not established ones.
+pub fn deciding(claims: &[ClaimOutcome]) -> Vec<&ClaimOutcome> {
+    let evidence = || claims.iter().filter(|c| c.kind == ClaimKind::Evidence);
+    let contradicted: Vec<&ClaimOutcome> = evidence()
+        .filter(|c| c.result == ClaimResult::Contradicted)
+        .collect();
+    if contradicted.is_empty() {
+        evidence()
+            .filter(|c| c.result == ClaimResult::NotEstablished)
+            .collect()
+    } else {
+        contradicted
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    fn spec(rule: Rule, value: Option<f64>) -> ClaimSpec {
+    fn spec(phrase: Phrase, rule: Rule, value: Option<f64>) -> ClaimSpec {
         ClaimSpec {
             key: "k".into(),
             statement: "s".into(),
             place: "p".into(),
             paper: "~62%".into(),
+            phrase,
             value,
             measure: Some("headline".into()),
             rule,
+            departs: None,
+            alternative: None,
+            consistency: None,
+            inconsistent: None,
+            other_readings: Vec::new(),
             scene: None,
             reading: None,
             not_measured: None,
@@ -409,115 +812,201 @@ mod tests {
         }
     }
 
-    fn result(rule: Rule, value: Option<f64>, e: Estimate) -> ClaimResult {
-        spec(rule, value).judge(&measures(e), false, 3.0).result
+    fn result(phrase: Phrase, rule: Rule, value: Option<f64>, e: Estimate) -> ClaimResult {
+        spec(phrase, rule, value)
+            .judge(&measures(e), false, 3.0)
+            .result
     }
 
     #[test]
-    fn a_share_far_from_the_papers_value_is_not_reproduced() {
-        let near = || Rule::Near(0.1);
-        let e = |v| Estimate::new(v, 0.006);
-        assert_eq!(
-            result(near(), Some(0.62), e(0.644)),
-            ClaimResult::Reproduced
+    fn about_is_established_inside_ten_percent_and_contradicted_outside() {
+        let about = |e| result(Phrase::About, Rule::Near(0.1), Some(0.62), e);
+        assert_eq!(about(Estimate::new(0.644, 0.0055)), ClaimResult::Reproduced);
+        assert_eq!(about(Estimate::new(0.20, 0.006)), ClaimResult::Contradicted);
+        // Reaching over the edge: not established, with what would decide it.
+        let o = spec(Phrase::About, Rule::Near(0.1), Some(1.0)).judge(
+            &measures(Estimate::new(0.934, 0.028)),
+            false,
+            3.0,
         );
-        assert_eq!(
-            result(near(), Some(0.62), e(0.20)),
-            ClaimResult::NotReproduced
-        );
-        // Within 10% plus three standard errors, not beyond.
-        assert_eq!(result(near(), Some(1.0), e(0.882)), ClaimResult::Reproduced);
-        assert_eq!(
-            result(near(), Some(1.0), e(0.88)),
-            ClaimResult::NotReproduced
-        );
-        // No error bar: undecided, whatever the value.
+        assert_eq!(o.result, ClaimResult::NotEstablished);
+        assert!(o.why.unwrap().contains("times the realizations"));
         let one = Estimate::new(0.62, f64::NAN);
-        assert_eq!(result(near(), Some(0.62), one), ClaimResult::Undecided);
+        assert_eq!(about(one), ClaimResult::NotEstablished);
     }
 
     #[test]
-    fn signs_bounds_ranges_and_orderings_read_the_interval() {
+    fn signs_bounds_ranges_and_orderings_have_three_values() {
         let e = Estimate::new(1.0, 0.1);
-        assert_eq!(result(Rule::Above(0.6), None, e), ClaimResult::Reproduced);
+        let r = |phrase, rule| result(phrase, rule, None, e);
         assert_eq!(
-            result(Rule::Above(0.8), None, e),
-            ClaimResult::NotReproduced
-        );
-        assert_eq!(result(Rule::Below(1.4), None, e), ClaimResult::Reproduced);
-        // A bound the interval reaches is not contradicted; one it misses is.
-        assert_eq!(result(Rule::AtMost(0.8), None, e), ClaimResult::Reproduced);
-        assert_eq!(
-            result(Rule::AtMost(0.6), None, e),
-            ClaimResult::NotReproduced
-        );
-        assert_eq!(result(Rule::AtLeast(1.2), None, e), ClaimResult::Reproduced);
-        assert_eq!(
-            result(Rule::AtLeast(1.4), None, e),
-            ClaimResult::NotReproduced
-        );
-        assert_eq!(
-            result(Rule::Within((1.2, 2.0)), None, e),
+            r(Phrase::MoreThan, Rule::Above(0.6)),
             ClaimResult::Reproduced
         );
-        // Away from a value only when the interval excludes it.
-        assert_eq!(result(Rule::Differs(0.6), None, e), ClaimResult::Reproduced);
         assert_eq!(
-            result(Rule::Differs(1.2), None, e),
-            ClaimResult::NotReproduced
+            r(Phrase::MoreThan, Rule::Above(0.8)),
+            ClaimResult::NotEstablished
+        );
+        assert_eq!(
+            r(Phrase::MoreThan, Rule::Above(1.4)),
+            ClaimResult::Contradicted
+        );
+        assert_eq!(
+            r(Phrase::LessThan, Rule::Below(1.4)),
+            ClaimResult::Reproduced
+        );
+        // A bound: established when the whole interval keeps it.
+        assert_eq!(
+            r(Phrase::Within, Rule::AtMost(1.4)),
+            ClaimResult::Reproduced
+        );
+        assert_eq!(
+            r(Phrase::Within, Rule::AtMost(1.2)),
+            ClaimResult::NotEstablished
+        );
+        assert_eq!(
+            r(Phrase::Within, Rule::AtMost(0.6)),
+            ClaimResult::Contradicted
+        );
+        assert_eq!(r(Phrase::Sign, Rule::Differs(0.6)), ClaimResult::Reproduced);
+        assert_eq!(
+            r(Phrase::Sign, Rule::Differs(1.2)),
+            ClaimResult::NotEstablished
         );
         let exceeds = |m: &str| Rule::Exceeds(m.into());
         assert_eq!(
-            result(exceeds("cross_check:cg"), None, e),
+            r(Phrase::Sign, exceeds("cross_check:cg")),
             ClaimResult::Reproduced
         );
         assert_eq!(
-            result(exceeds("cross_check:fire"), None, e),
-            ClaimResult::Undecided
+            r(Phrase::Sign, exceeds("cross_check:fire")),
+            ClaimResult::NotEstablished
         );
+        // e_frozen's "long wavelengths lose more": the paper's sign at 2.1 standard errors.
+        let lose = Estimate::new(-0.186, 0.089);
+        assert_eq!(
+            result(Phrase::Sign, Rule::Below(0.0), None, lose),
+            ClaimResult::NotEstablished
+        );
+    }
+
+    #[test]
+    fn a_test_that_also_passes_the_alternative_does_not_discriminate() {
+        let mut s = spec(Phrase::About, Rule::Near(0.1), Some(0.9));
+        s.alternative = Some(Alternative {
+            value: 1.0,
+            what: "a perfect theory".into(),
+        });
+        let o = s.judge(&measures(Estimate::new(0.935, 0.001)), false, 3.0);
+        assert_eq!(o.result, ClaimResult::NotEstablished);
+        assert!(o.why.unwrap().contains("does not discriminate"));
+    }
+
+    #[test]
+    fn consistency_checks_and_inconsistent_statements_are_counted_apart() {
+        let mut s = spec(Phrase::Sign, Rule::Below(0.0), None);
+        s.consistency = Some("an identity".into());
+        let o = s.judge(&measures(Estimate::new(1.0, 0.01)), false, 3.0);
+        assert_eq!(
+            (o.kind, o.result),
+            (ClaimKind::Consistency, ClaimResult::Contradicted)
+        );
+        assert_eq!(decision(std::slice::from_ref(&o)), Decision::Passed);
+        assert!(deciding(&[o]).is_empty());
+        let mut s = spec(Phrase::Sign, Rule::Below(1.0), None);
+        s.inconsistent = Some("caption and text".into());
+        s.other_readings = vec![OtherReading {
+            reading: "the text".into(),
+            measure: "cross_check:cg".into(),
+            rule: None,
+        }];
+        let o = s.judge(&measures(Estimate::new(0.9, 0.01)), false, 3.0);
+        assert_eq!(o.kind, ClaimKind::Inconsistent);
+        assert_eq!(o.readings[0].result, ClaimResult::Reproduced);
+        assert!(o.why.unwrap().starts_with("the paper is inconsistent"));
     }
 
     #[test]
     fn unmeasured_and_reduced_claims_take_no_part() {
-        let mut s = spec(Rule::Near(0.1), Some(0.62));
+        let mut s = spec(Phrase::About, Rule::Near(0.1), Some(0.62));
         s.reduced = false;
         let m = measures(Estimate::new(0.2, 0.01));
         let reduced = s.judge(&m, true, 3.0);
         assert_eq!(reduced.result, ClaimResult::NotJudgedAtThisScale);
         assert_eq!(reduced.measured, Some(Estimate::new(0.2, 0.01)));
-        assert_eq!(s.judge(&m, false, 3.0).result, ClaimResult::NotReproduced);
+        assert_eq!(s.judge(&m, false, 3.0).result, ClaimResult::Contradicted);
         s.measure = Some("detail:absent".into());
         let absent = s.judge(&m, false, 3.0);
         assert_eq!(absent.result, ClaimResult::NotMeasured);
         assert!(absent.why.as_ref().unwrap().contains("detail:absent"));
         assert_eq!(decision(std::slice::from_ref(&absent)), Decision::Passed);
         let failed = ClaimOutcome {
-            result: ClaimResult::NotReproduced,
+            result: ClaimResult::Contradicted,
             ..absent
         };
-        assert_eq!(decision(&[reduced, failed]), Decision::Failed);
+        assert_eq!(decision(&[reduced, failed.clone()]), Decision::Failed);
+        assert_eq!(deciding(&[failed]).len(), 1);
+    }
+
+    #[test]
+    fn each_phrase_has_one_rule() {
+        let fits = |p: Phrase, r: Rule, v: Option<f64>| p.fits(&r, v, 0.02);
+        assert!(fits(Phrase::About, Rule::Near(0.1), Some(0.62)));
+        assert!(!fits(Phrase::About, Rule::Near(0.5), Some(0.62)));
+        assert!(fits(Phrase::Order, Rule::Within((0.05, 0.45)), Some(0.15)));
+        assert!(!fits(Phrase::Order, Rule::Within((0.05, 0.3)), Some(0.15)));
+        assert!(!fits(Phrase::Order, Rule::AtMost(0.1), Some(0.1)));
+        assert!(fits(Phrase::Negligible, Rule::Within((-0.02, 0.02)), None));
+        assert!(fits(Phrase::All, Rule::AtLeast(0.98), None));
+        assert!(!fits(Phrase::All, Rule::Near(0.1), Some(1.0)));
+        assert!(fits(Phrase::Sign, Rule::Below(0.0), None));
+        assert!(fits(Phrase::Within, Rule::AtMost(0.03), Some(0.03)));
+        // A departure is refused without its reason, accepted with it.
+        let mut s = spec(Phrase::About, Rule::Within((0.5, 0.7)), Some(0.62));
+        let e = validate_claims(std::slice::from_ref(&s), 0.02)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("claims.k.rule") && e.contains("departs"), "{e}");
+        s.departs = Some("why".into());
+        assert!(validate_claims(&[s], 0.02).is_ok());
+    }
+
+    #[test]
+    fn old_results_read_into_the_three_values() {
+        let r: ClaimResult = serde_json::from_str("\"not_reproduced\"").unwrap();
+        assert_eq!(r, ClaimResult::Contradicted);
+        let r: ClaimResult = serde_json::from_str("\"undecided\"").unwrap();
+        assert_eq!(r, ClaimResult::NotEstablished);
     }
 
     #[test]
     fn bad_claims_are_refused_naming_the_field() {
         let refused = |s: ClaimSpec, field: &str| {
-            let e = validate_claims(&[s]).unwrap_err().to_string();
+            let e = validate_claims(&[s], 0.02).unwrap_err().to_string();
             assert!(e.contains(field), "{e}");
         };
-        refused(spec(Rule::Near(0.1), None), "claims.k.value");
-        refused(spec(Rule::Near(-0.1), Some(1.0)), "claims.k.rule.near");
-        refused(spec(Rule::Within((2.0, 1.0)), None), "claims.k.rule.within");
-        let mut s = spec(Rule::Above(0.0), None);
+        refused(spec(Phrase::About, Rule::Near(0.1), None), "claims.k.value");
+        refused(
+            spec(Phrase::About, Rule::Near(-0.1), Some(1.0)),
+            "claims.k.rule.near",
+        );
+        refused(
+            spec(Phrase::Order, Rule::Within((2.0, 1.0)), None),
+            "claims.k.rule.within",
+        );
+        let mut s = spec(Phrase::Sign, Rule::Above(0.0), None);
         s.measure = Some("study:a/b".into());
         refused(s.clone(), "claims.k.measure");
         s.measure = None;
         refused(s.clone(), "claims.k.measure");
         s.not_measured = Some("why".into());
-        assert!(validate_claims(&[s.clone()]).is_ok());
+        assert!(validate_claims(&[s.clone()], 0.02).is_ok());
         s.measure = Some("headline".into());
         refused(s, "claims.k.not_measured");
-        let a = spec(Rule::Above(0.0), None);
-        let e = validate_claims(&[a.clone(), a]).unwrap_err().to_string();
+        let a = spec(Phrase::Sign, Rule::Above(0.0), None);
+        let e = validate_claims(&[a.clone(), a], 0.02)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("claims.key"), "{e}");
     }
 }

@@ -55,7 +55,7 @@ impl Source {
         let def: Definition<S> = crate::engine::scene::parse_toml(&self.path, &self.text)?;
         def.verdict
             .validate()
-            .and_then(|()| super::claims::validate_claims(&def.claims))
+            .and_then(|()| super::claims::validate_claims(&def.claims, def.verdict.resolution))
             .map_err(|e| Error::bad_file(&self.path, e.to_string()))?;
         let stem = self
             .path

@@ -194,6 +194,29 @@ pub fn details(
         .iter()
         .flat_map(|load| load_details(scene, load, zetas, windows))
         .collect();
+    // The caption of fig. E_vs_zeta speaks of p~0 = 0.1: the load nearest to it, on any
+    // scene (the key does not depend on the scene's loads).
+    let p_tilde = |load: &Load| load.mean(|r| r.p0).value;
+    if let Some(near) = loads.iter().min_by(|a, b| {
+        (p_tilde(a) - 0.1)
+            .abs()
+            .total_cmp(&(p_tilde(b) - 0.1).abs())
+    }) {
+        details.push(
+            Detail::new(
+                "corrected_start_p0.1",
+                format!(
+                    "E_exa / E_c at the lowest magnification, zeta = {:.3}, at the load whose \
+                     p~0 at full resolution is nearest 0.1 (a_r = {}, p~0 = {:.4})",
+                    zetas[0],
+                    near.contact_area,
+                    p_tilde(near)
+                ),
+                ratio(near, 0, Theory::Corrected),
+            )
+            .persson(1.0),
+        );
+    }
     details.push(
         Detail::new(
             "corrected_headline_drift",

@@ -144,8 +144,8 @@ pub fn readings(outcome: &Outcome) -> Vec<Reading> {
     let mut out: Vec<(String, String)> = vec![("verdict".into(), outcome.verdict.to_string())];
     let reproduced = match outcome.reproduced {
         Some(true) => "reproduced",
-        Some(false) => "not reproduced",
-        None => "undecided",
+        Some(false) => "contradicted",
+        None => "not established",
     };
     out.push(("reproduced".into(), reproduced.into()));
     for check in &outcome.checks {

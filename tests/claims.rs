@@ -1,0 +1,115 @@
+//! Every claim of the shipped definitions, walked: its rule is its phrase's (or it says
+//! why not), and every measure it names (its own, an ordering's, each other reading's) is
+//! one that the committed outcomes hold, at full scale and on the reduced scenes, so a
+//! mistyped key cannot read as "not measured".
+
+use std::path::Path;
+
+use persson_check::stats::Estimate;
+use persson_check::validation::claims::{validate_claims, Measures, Rule};
+use persson_check::validation::source::builtin_sources;
+use persson_check::validation::{ClaimSpec, Outcome};
+use serde::Deserialize;
+
+#[derive(Deserialize)]
+struct Verdict {
+    resolution: f64,
+}
+
+#[derive(Deserialize)]
+struct Claims {
+    name: String,
+    verdict: Verdict,
+    #[serde(default)]
+    claims: Vec<ClaimSpec>,
+}
+
+fn definitions() -> Vec<Claims> {
+    builtin_sources()
+        .iter()
+        .map(|s| toml::from_str(&s.text).unwrap())
+        .collect()
+}
+
+#[test]
+fn every_claim_has_its_phrases_rule_and_a_place() {
+    let defs = definitions();
+    let mut n = 0;
+    for d in &defs {
+        validate_claims(&d.claims, d.verdict.resolution)
+            .unwrap_or_else(|e| panic!("{}: {e}", d.name));
+        for c in &d.claims {
+            assert!(
+                c.place.contains("tex "),
+                "{}/{}: no line of the paper",
+                d.name,
+                c.key
+            );
+            n += 1;
+        }
+    }
+    assert!(n > 0);
+}
+
+/// The measures a claim names.
+fn measures_of(c: &ClaimSpec) -> Vec<String> {
+    let mut m: Vec<String> = c.measure.iter().cloned().collect();
+    if let (Some(_), Rule::Exceeds(other)) = (&c.measure, &c.rule) {
+        m.push(other.clone());
+    }
+    m.extend(c.other_readings.iter().map(|r| r.measure.clone()));
+    m
+}
+
+#[test]
+fn every_measure_a_claim_names_is_in_the_committed_outcomes() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("results");
+    let mut missing = Vec::new();
+    let mut read = 0;
+    for d in definitions() {
+        for scale in ["full", "reduced"] {
+            let path = root.join(scale).join(format!("{}.json", d.name));
+            let text = std::fs::read_to_string(&path)
+                .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            let o: Outcome = serde_json::from_str(&text).unwrap();
+            read += 1;
+            let measures = Measures {
+                headline: Estimate::new(o.value, o.std_error),
+                details: &o.details,
+                studies: &o.studies,
+                cross_checks: o
+                    .cross_checks
+                    .iter()
+                    .map(|c| (c.solver.clone(), Estimate::new(c.value, c.std_error)))
+                    .collect(),
+            };
+            for c in &d.claims {
+                for m in measures_of(c) {
+                    if measures.get(&m).is_none() {
+                        missing.push(format!("{scale}/{}: {} names {m}", d.name, c.key));
+                    }
+                }
+            }
+        }
+    }
+    assert!(read >= 20, "{read} outcomes read");
+    assert!(
+        missing.is_empty(),
+        "measures not in the outcomes:\n{}",
+        missing.join("\n")
+    );
+}
+
+#[test]
+fn the_readme_states_each_phrases_rule() {
+    use persson_check::validation::claims::PHRASES;
+    let readme = include_str!("../README.md");
+    for p in PHRASES {
+        let row = readme
+            .lines()
+            .find(|l| l.starts_with(&format!("| `{}` |", p.name())))
+            .unwrap_or_else(|| panic!("README: no row for phrase `{}`", p.name()));
+        assert!(row.contains(p.wordings()), "{row}");
+        assert!(row.ends_with(&format!("| {} |", p.rule_text())), "{row}");
+    }
+}
