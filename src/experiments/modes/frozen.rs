@@ -109,12 +109,14 @@ impl Experiment for ModeFrozen {
         if let Some((k1, k2)) = s.k() {
             details.push(Detail::new(
                 "k1",
-                "K1 of the asymptote law K1 exp(-K2 x)",
+                "K1 of the asymptote law K1 exp(-K2 x), x over the frozen window (the \
+                 claims read x at the mode's own magnification: study asymptote_law, row mode)",
                 k1,
             ));
             details.push(Detail::new(
                 "k2",
-                "K2 of the asymptote law K1 exp(-K2 x)",
+                "K2 of the asymptote law K1 exp(-K2 x), x over the frozen window (the \
+                 claims read x at the mode's own magnification: study asymptote_law, row mode)",
                 k2,
             ));
         }
@@ -131,7 +133,7 @@ impl Experiment for ModeFrozen {
                 "k2_positive",
                 "the asymptote falls as the contact area shrinks faster (K2 > 0)",
                 decide(k2, Claim::Above(0.0), 0.0),
-                format!("K2 = {}", k2.text(1.0, 3, "")),
+                format!("K2 = {} (x over the frozen window)", k2.text(1.0, 3, "")),
             ));
         }
         let (lowest, highest) = (s.lowest, s.highest);
@@ -267,19 +269,32 @@ impl Experiment for ModeFrozen {
     fn account(run: &Run, s: &FrozenStats) -> String {
         let scene = run.scene;
         let measured = s.headline();
-        let k_text = match s.k() {
-            Some((k1, k2)) => format!(
-                "A fit of the asymptotes to K1 exp(-K2 x) over {} partial-contact points gives \
-                 K1 = {}, K2 = {}{}.",
-                s.k_points.len(),
-                k1.text(1.0, 2, ""),
-                k2.text(1.0, 2, ""),
+        let fit = |k: Option<(Estimate, Estimate)>, points: usize, reading: &str| {
+            k.map(|(k1, k2)| {
+                format!(
+                    "with x {reading}, K1 = {}, K2 = {} ({points} points)",
+                    k1.text(1.0, 2, ""),
+                    k2.text(1.0, 2, "")
+                )
+            })
+        };
+        let k_text = match (
+            fit(s.k(), s.k_points.len(), "over the frozen window"),
+            fit(
+                s.k_mode(),
+                s.k_mode_points.len(),
+                "at the mode's own magnification (the claims' reading)",
+            ),
+        ) {
+            (Some(window), Some(mode)) => format!(
+                "A fit of the asymptotes of the partial-contact points to K1 exp(-K2 x) gives, \
+                 {window}; {mode}{}.",
                 match paper_k(run.criteria) {
                     Some((a, b)) => format!(" (paper, H = {}: K1 = {a}, K2 = {b})", scene.hurst),
                     None => String::new(),
                 }
             ),
-            None => "too few partial-contact points to fit K1 exp(-K2 x)".to_string(),
+            _ => "too few partial-contact points to fit K1 exp(-K2 x)".to_string(),
         };
         format!(
             "{}, after a band of modes around zeta_t = {} is resolved its normalised energy \
