@@ -5,8 +5,9 @@ use std::collections::BTreeMap;
 
 use super::figures::{bin_figure, bin_points, bin_table, common_account, level, transition_table};
 use super::stats::{
-    bin_rows, mean_of, over_realizations, region_mean, small_pressure_exponent, BinRow,
-    SMALL_PRESSURE,
+    bin_broadening_share, bin_fits, bin_rows, bin_spread_over_half_width,
+    lowest_minus_top_unsuited, mean_of, mean_where, over_realizations, region_mean,
+    small_pressure_exponent, unsuited_minus_suited, BinRow, SMALL_PRESSURE,
 };
 use super::{TransitionResult, TransitionScene};
 use crate::error::Result;
@@ -34,6 +35,15 @@ pub struct DiffusionStats {
     pub small_p_exponent: Estimate,
     /// Every analysed bin.
     pub rows: Vec<BinRow>,
+    /// Mean total-variation distance between a bin's transitions and its mirror Gaussian,
+    /// unsuited bins minus suited bins.
+    pub fit_unsuited_minus_suited: Estimate,
+    /// That distance in the lowest unsuited bin minus that in the highest.
+    pub fit_lowest_minus_top_unsuited: Estimate,
+    /// Mean over analysed bins of `dp_n` over the bin's half width.
+    pub bin_spread_over_half_width: Estimate,
+    /// Mean over suited bins of `dp_n^2 / Dp_n^2`.
+    pub bin_broadening_share: Estimate,
 }
 
 impl DiffusionStats {
@@ -57,6 +67,16 @@ impl DiffusionStats {
                     .collect::<Vec<_>>(),
             ),
             rows: bin_rows(scene, results),
+            fit_unsuited_minus_suited: mean_where(results, |r| {
+                unsuited_minus_suited(&bin_fits(scene, r))
+            }),
+            fit_lowest_minus_top_unsuited: mean_where(results, |r| {
+                lowest_minus_top_unsuited(&bin_fits(scene, r))
+            }),
+            bin_spread_over_half_width: mean_where(results, |r| {
+                bin_spread_over_half_width(scene, r)
+            }),
+            bin_broadening_share: mean_where(results, |r| bin_broadening_share(scene, r)),
         }
     }
 
@@ -113,6 +133,38 @@ impl Experiment for Diffusion {
                 s.small_p_exponent,
             )
             .persson(1.0),
+            Detail::new(
+                "fit_tv_unsuited_minus_suited",
+                "mean total-variation distance between a bin's transitions and the mirror \
+                 Gaussian with its moments (eq. transitionFinal), bins with mean below the \
+                 broadening minus bins above",
+                s.fit_unsuited_minus_suited,
+            ),
+            Detail::new(
+                "fit_tv_lowest_minus_top_unsuited",
+                "that total-variation distance in the lowest bin with mean below the \
+                 broadening minus that in the highest",
+                s.fit_lowest_minus_top_unsuited,
+            ),
+            Detail::new(
+                "bin_spread_over_half_width",
+                "spread dp_n of the old pressures in a bin over the bin's half width, mean \
+                 over analysed bins (a flat density: 1/sqrt3)",
+                s.bin_spread_over_half_width,
+            ),
+            Detail::new(
+                "bin_broadening_share",
+                "dp_n^2 / Dp_n^2, the share of the broadening the bin's own width makes up \
+                 (the relative change of D_n its correction makes), mean over suited bins",
+                s.bin_broadening_share,
+            ),
+            Detail::new(
+                "mirror_moment_error",
+                "largest relative error of the quadrature of the first two moments of eq. \
+                 (transitionFinal) against p' and eq. (2ndMoment), Dp_n / p' from 1e-3 to \
+                 1e3 (exact: no error bar)",
+                Estimate::new(moments::mirror_moment_largest_error(ERROR_POINTS), 0.0),
+            ),
         ]
     }
 

@@ -4,7 +4,10 @@
 use std::collections::BTreeMap;
 
 use super::figures::{bin_figure, bin_points, bin_table, common_account, level};
-use super::stats::{bin_rows, mean_of, over_realizations, region_mean, BinRow};
+use super::stats::{
+    bin_rows, lost_over_persson, mean_of, mean_where, over_realizations, region_mean,
+    share_walkers_negative_drift, BinRow, MEAN_CONTACT_PRESSURE,
+};
 use super::{TransitionResult, TransitionScene};
 use crate::error::Result;
 use crate::experiments::{Check, Detail, Experiment, Table};
@@ -27,6 +30,11 @@ pub struct DriftStats {
     pub lowest: Estimate,
     /// Every analysed bin.
     pub rows: Vec<BinRow>,
+    /// Walkers lost over the step over the number Persson's drift-free mirror Gaussian
+    /// loses (dimensionless).
+    pub lost_over_persson: Estimate,
+    /// Share of the walkers below `p0 / a_r` that sit in bins of negative drift.
+    pub share_negative_drift: Estimate,
 }
 
 /// `mu_c` of one realization: the mean change of pressure of the walkers in contact at
@@ -65,6 +73,8 @@ impl DriftStats {
                 bins.iter().flatten().next().map(|b| b.drift)
             }),
             rows: bin_rows(scene, results),
+            lost_over_persson: mean_where(results, |r| lost_over_persson(scene, r)),
+            share_negative_drift: mean_where(results, |r| share_walkers_negative_drift(scene, r)),
         }
     }
 }
@@ -114,6 +124,23 @@ impl Experiment for Drift {
             ),
             relative_area_change(run.results),
         )))
+        .chain([
+            Detail::new(
+                "lost_over_persson",
+                "walkers that left contact over the step over the number Persson's \
+                 drift-free mirror Gaussian with D_P absorbs at p = 0",
+                s.lost_over_persson,
+            )
+            .persson(1.0),
+            Detail::new(
+                "share_walkers_negative_drift",
+                format!(
+                    "share of the walkers below {MEAN_CONTACT_PRESSURE} p0/a_r in bins of \
+                     negative drift"
+                ),
+                s.share_negative_drift,
+            ),
+        ])
         .collect()
     }
 

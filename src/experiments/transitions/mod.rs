@@ -191,31 +191,96 @@ fn run_transition(
         after: new,
     } = base.step(&r, solver, scene.zeta, scene.dzeta, scene.contact_area)?;
     let a_r_old = old.contact_area();
-    let unit = p0 / a_r_old;
-    let axis = scene.pressure_bins(unit);
-    let mut bins = Histogram::<BinSums>::new(axis);
-    let mut zero = BinSums::default();
-    let mut histogram = vec![vec![0u32; scene.bins + 1]; scene.bins + 1];
-    for (&po, &pn) in old.pressure.iter().zip(&new.pressure) {
-        let row = if po > 0.0 {
-            bins.at(po).add(po, pn);
-            axis.index(po) + 1
-        } else {
-            zero.add(po, pn);
-            0
-        };
-        let col = if pn > 0.0 { axis.index(pn) + 1 } else { 0 };
-        histogram[row][col] += 1;
-    }
+    let walkers = Walkers::binned(scene, p0 / a_r_old, &old.pressure, &new.pressure);
     let broadening = Broadening::new(&r.surface.shells(), r.model.halfspace.e_star())?;
     Ok(TransitionResult {
         p0,
         a_r_old,
         a_r_new: new.contact_area(),
         d_persson: broadening.diffusion_coefficient(scene.zeta, scene.dzeta)?,
-        bins: bins.into_cells(),
-        zero,
-        histogram,
+        bins: walkers.bins,
+        zero: walkers.zero,
+        histogram: walkers.histogram,
         max_residual: old.stats.residual.value().max(new.stats.residual.value()),
     })
+}
+
+/// The walkers of one realization, binned: the parts of a [`TransitionResult`] that the
+/// pressures fix.
+struct Walkers {
+    bins: Vec<BinSums>,
+    zero: BinSums,
+    histogram: Vec<Vec<u32>>,
+}
+
+impl Walkers {
+    /// Bins the walkers by old pressure (`old`, in units where the mean contact pressure is
+    /// `unit`) and counts their transitions to the new pressures `new`.
+    fn binned(scene: &TransitionScene, unit: f64, old: &[f64], new: &[f64]) -> Self {
+        let axis = scene.pressure_bins(unit);
+        let mut bins = Histogram::<BinSums>::new(axis);
+        let mut zero = BinSums::default();
+        let mut histogram = vec![vec![0u32; scene.bins + 1]; scene.bins + 1];
+        for (&po, &pn) in old.iter().zip(new) {
+            let row = if po > 0.0 {
+                bins.at(po).add(po, pn);
+                axis.index(po) + 1
+            } else {
+                zero.add(po, pn);
+                0
+            };
+            let col = if pn > 0.0 { axis.index(pn) + 1 } else { 0 };
+            histogram[row][col] += 1;
+        }
+        Self {
+            bins: bins.into_cells(),
+            zero,
+            histogram,
+        }
+    }
+}
+
+/// A realization with the given walkers, for tests of the statistics: `a_r_old = 1`, so
+/// that the pressures are in units of `p0 / a_r = p0`.
+#[cfg(test)]
+fn synthetic(
+    scene: &TransitionScene,
+    p0: f64,
+    d_persson: f64,
+    walkers: &[(f64, f64)],
+) -> TransitionResult {
+    let (old, new): (Vec<f64>, Vec<f64>) = walkers.iter().copied().unzip();
+    let w = Walkers::binned(scene, p0, &old, &new);
+    TransitionResult {
+        p0,
+        a_r_old: 1.0,
+        a_r_new: 1.0,
+        d_persson,
+        bins: w.bins,
+        zero: w.zero,
+        histogram: w.histogram,
+        max_residual: 0.0,
+    }
+}
+
+/// A scene of `bins` bins of width `bin_width`, a step of 0.5 and at least two walkers a
+/// bin, for tests of the statistics.
+#[cfg(test)]
+fn synthetic_scene(bins: usize, bin_width: f64) -> TransitionScene {
+    TransitionScene {
+        n: 8,
+        hurst: 0.8,
+        lambda_l: 4.0,
+        lambda_s: 2.0,
+        seeds: vec![1],
+        tol: 1e-9,
+        contact_area: 0.3,
+        zeta: 1.0,
+        dzeta: 0.5,
+        bins,
+        bin_width,
+        low_pressure: 0.5,
+        high_pressure: 1.0,
+        min_walkers: 2,
+    }
 }
