@@ -93,6 +93,21 @@ impl Estimate {
         Self::new(r, (var / n as f64).sqrt() / mb.abs())
     }
 
+    /// A statistic `stat` of all `n` realizations, with its jackknife standard error:
+    /// `stat` is called with the realization to leave out (`None` for all of them), and
+    /// the error is `sqrt((n - 1) / n sum_i (theta_i - theta_mean)^2)` over the `n`
+    /// leave-one-out values `theta_i` (NaN for fewer than two realizations).
+    pub fn jackknife(n: usize, stat: impl Fn(Option<usize>) -> f64) -> Self {
+        let value = stat(None);
+        if n < 2 {
+            return Self::new(value, f64::NAN);
+        }
+        let theta: Vec<f64> = (0..n).map(|i| stat(Some(i))).collect();
+        let mean = theta.iter().sum::<f64>() / n as f64;
+        let ss = theta.iter().map(|t| (t - mean).powi(2)).sum::<f64>();
+        Self::new(value, ((n - 1) as f64 / n as f64 * ss).sqrt())
+    }
+
     /// The difference `a - b` of two independent estimates, with their combined standard
     /// error.
     pub fn difference(a: Estimate, b: Estimate) -> Self {
@@ -209,6 +224,23 @@ pub fn round_sig(x: f64, digits: i32) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_jackknife_of_a_mean_is_the_standard_error_of_the_mean() {
+        let x = [1.0, 2.5, 4.0, 3.0, 7.5];
+        let mean_without = |leave: Option<usize>| {
+            let kept: Vec<f64> = (0..x.len())
+                .filter(|&i| Some(i) != leave)
+                .map(|i| x[i])
+                .collect();
+            kept.iter().sum::<f64>() / kept.len() as f64
+        };
+        let j = Estimate::jackknife(x.len(), mean_without);
+        let m = Estimate::mean_of(&x);
+        assert!((j.value - m.value).abs() < 1e-15);
+        assert!((j.std_error - m.std_error).abs() < 1e-14, "{j:?} {m:?}");
+        assert!(Estimate::jackknife(1, |_| 2.0).std_error.is_nan());
+    }
 
     #[test]
     fn mean_and_error() {

@@ -10,7 +10,13 @@
 //!   theory predicts `a_r = erf(sqrt2 p~0)`, i.e. `kappa = sqrt(8/pi) = 1.596` (paper:
 //!   `kappa ~ 2`, and `2 c1 = 2.15` in eq. contactArea);
 //! * the largest relative deviation of the measured `a_r` from eq. (contactArea) over the
-//!   loads whose `a_r` lies in `law_range` (paper: within `O(10%)` for H = 0.3, 0.5, 0.8).
+//!   loads whose `a_r` lies in `law_range` (paper: within `O(10%)` for H = 0.3, 0.5, 0.8);
+//! * the law's shape (paper section 3.1, tex 433-500): the largest spread over `H` of
+//!   `a_r / p~0` at one load (`a_r` a function of `p~0` alone), `c1 = kappa / 2`, `c2`
+//!   solving eq. (contactArea) with the paper's `c1` at the highest load, the exponent `m`
+//!   of the leading correction `kappa(0) - kappa(p~0) ~ p~0^m` (third order in `a_r`:
+//!   `m = 2`) and the mean `a_r / p~0` over partial contact (`p~0 ~ a_r / 2`); with the
+//!   fall of `a_r / p~0` at low load on every grid beside them.
 //!
 //! # Discretisation
 //!
@@ -27,9 +33,10 @@
 //!
 //! * `mod.rs`: the scene, its jobs (one realization at one Hurst exponent and grid, the
 //!   load raised step by step) and the [`Experiment`] implementation;
-//! * `stats.rs`: the slope, the extrapolation to the continuum and the deviation from the
-//!   law, as pure functions of the curves;
-//! * `study.rs`: the readings of the law's deviation and the order of the grid error;
+//! * `stats.rs`: the slope, the extrapolation to the continuum, the deviation from the
+//!   law and its shape, as pure functions of the curves;
+//! * `study.rs`: the readings of the law's deviation, the order of the grid error and the
+//!   fall of `a_r / p~0` at low load per grid;
 //! * `figures.rs`: the table and the figures.
 
 mod figures;
@@ -378,6 +385,7 @@ impl Experiment for ContactArea {
             ),
             s.complement.estimate(),
         ));
+        details.extend(shape_details(scene, s));
         details
     }
 
@@ -463,6 +471,59 @@ impl Experiment for ContactArea {
     fn figures(run: &Run, s: &AreaStats) -> Vec<Figure> {
         area_figures(&run.scene.reduced_pressures, s, grid_label(run.scene))
     }
+}
+
+/// The details of the law's shape: the spread over `H`, `c1` and `c2`, the order of the
+/// leading correction, the mean slope over partial contact.
+fn shape_details(scene: &AreaScene, s: &AreaStats) -> Vec<Detail> {
+    let (shape, label) = (&s.shape, grid_label(scene));
+    let law = crate::persson::ContactAreaLaw::PAPER;
+    let (p, hi, lo) = shape.spread.at;
+    let [p0, p1, p2] = stats::CORRECTION_LOADS;
+    let top = scene.reduced_pressures[scene.reduced_pressures.len() - 1];
+    vec![
+        Detail::new(
+            "kappa_spread_h",
+            format!(
+                "largest spread over H of a_r / p~0 at one load, every a_r in [{}, {}] \
+                 (p~0 = {p}: H = {hi} against H = {lo}; {label})",
+                scene.law_range.0, scene.law_range.1
+            ),
+            shape.spread.spread,
+        )
+        .persson(0.0),
+        Detail::new(
+            "c2_fit",
+            format!(
+                "c2 of eq. (contactArea) with c1 = {} for a_r pooled over H at p~0 = {top} \
+                 ({label})",
+                law.c1
+            ),
+            shape.c2,
+        )
+        .persson(1.0)
+        .paper(Some(law.c2)),
+        Detail::new("c1_fit", format!("c1 = kappa / 2 ({label})"), shape.c1).paper(Some(law.c1)),
+        Detail::new(
+            "correction_exponent",
+            format!(
+                "exponent m of kappa(0) - kappa(p~0) ~ p~0^m from p~0 = {p0}, {p1}, {p2}, \
+                 kappa pooled over H (jackknife over realizations; {label})"
+            ),
+            shape.correction,
+        )
+        .paper(Some(2.0)),
+        Detail::new(
+            "kappa_partial_mean",
+            format!(
+                "mean a_r / p~0 over H and the loads with a_r in [{}, {}] ({label})",
+                stats::PARTIAL_RANGE.0,
+                stats::PARTIAL_RANGE.1
+            ),
+            shape.partial_kappa,
+        )
+        .paper(Some(2.0)),
+    ]
 }
 
 /// How the headline statistics treat the grid.

@@ -1,6 +1,7 @@
 //! The statistics of the contact-area law, as pure functions of the realizations' curves
-//! `a_r(p~0)`: the low-load slope, the Richardson extrapolation to the continuum, and the
-//! largest deviation from eq. (contactArea).
+//! `a_r(p~0)`: the low-load slope, the Richardson extrapolation to the continuum, the
+//! largest deviation from eq. (contactArea), and the law's shape (spread over `H`, `c1`,
+//! `c2`, the order of the leading correction).
 
 use super::{AreaJob, AreaResult, AreaScene};
 use crate::persson::ContactAreaLaw;
@@ -256,6 +257,256 @@ impl GridOrder {
     }
 }
 
+/// The loads of the exponent of the leading correction to `a_r ~ kappa p~0` (geometric:
+/// each twice the last): where the correction is large enough to measure and `a_r < 0.25`.
+pub const CORRECTION_LOADS: [f64; 3] = [0.03, 0.06, 0.12];
+
+/// The range of `a_r` of the mean low-to-partial-load slope: the loads of the paper's own
+/// figures (`a_r` up to 0.32).
+pub const PARTIAL_RANGE: (f64, f64) = (0.01, 0.35);
+
+/// The largest spread over Hurst exponents of `kappa_H(p) = a_r / p~0` at one load.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HurstSpread {
+    /// `max_H kappa_H - min_H kappa_H` at the worst load, with the two Hurst exponents'
+    /// standard errors combined.
+    pub spread: Estimate,
+    /// The reduced pressure of the worst load and the Hurst exponents of the largest and
+    /// the smallest `kappa` there (NaN when no load qualifies).
+    pub at: (f64, f64, f64),
+}
+
+impl HurstSpread {
+    /// The worst load over `pressures` among those where every Hurst exponent's `a_r` lies
+    /// in `range`.
+    pub fn over(pressures: &[f64], hursts: &[HurstStats], range: (f64, f64)) -> Self {
+        let mut worst = HurstSpread {
+            spread: Estimate::new(f64::NAN, f64::NAN),
+            at: (f64::NAN, f64::NAN, f64::NAN),
+        };
+        for (k, &p) in pressures.iter().enumerate() {
+            let inside = |h: &HurstStats| (range.0..=range.1).contains(&h.areas[k].value);
+            if hursts.is_empty() || !hursts.iter().all(inside) {
+                continue;
+            }
+            let kappa = |h: &HurstStats| h.areas[k].value / p;
+            let by = |a: &&HurstStats, b: &&HurstStats| kappa(a).total_cmp(&kappa(b));
+            let hi = hursts.iter().max_by(by).expect("non-empty");
+            let lo = hursts.iter().min_by(by).expect("non-empty");
+            let spread = Estimate::new(
+                kappa(hi) - kappa(lo),
+                hi.areas[k].std_error.hypot(lo.areas[k].std_error) / p,
+            );
+            if worst.spread.value.is_nan() || spread.value > worst.spread.value {
+                worst = HurstSpread {
+                    spread,
+                    at: (p, hi.hurst, lo.hurst),
+                };
+            }
+        }
+        worst
+    }
+}
+
+/// `c2` of eq. (contactArea) with `c1` fixed such that the law gives `a_r` at `p~0`
+/// (bisection on `c2` in `[0.8, 2]`, where the law's `a_r` grows with `c2` for
+/// `p~0 >= 0.5`); NaN when `a_r` is outside what that interval gives.
+pub fn c2_for(c1: f64, p_reduced: f64, a_r: f64) -> f64 {
+    let excess = |c2: f64| ContactAreaLaw { c1, c2 }.contact_area(p_reduced) - a_r;
+    let (mut lo, mut hi) = (0.8, 2.0);
+    if excess(lo) * excess(hi) > 0.0 {
+        return f64::NAN;
+    }
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if excess(mid) * excess(lo) > 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+        if hi - lo < 1e-14 {
+            break;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+/// The exponent `m` of a leading correction `kappa(0) - kappa(p) ~ p^m` from `kappa` at
+/// three loads each `ratio` times the last: `m = ln[(k1 - k2) / (k0 - k1)] / ln ratio`
+/// (`m = 2` for a correction third order in `p~0` to `a_r`, `m = 1` for second order).
+pub fn correction_exponent(kappa: [f64; 3], ratio: f64) -> f64 {
+    ((kappa[1] - kappa[2]) / (kappa[0] - kappa[1])).ln() / ratio.ln()
+}
+
+/// The statistics of the law's shape: how far `a_r` depends on `H` at equal `p~0`, the
+/// coefficients `c1` and `c2`, the order of the leading correction and the mean slope
+/// over partial contact, all from the extrapolated curves.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LawShape {
+    /// The largest spread of `kappa` over Hurst exponents at one load with every `a_r` in
+    /// the scene's `law_range`.
+    pub spread: HurstSpread,
+    /// `c2` of eq. (contactArea) with the paper's `c1` for `a_r` pooled over Hurst
+    /// exponents and realizations at the highest load; standard error from `c2` per
+    /// realization.
+    pub c2: Estimate,
+    /// `c1 = kappa / 2`.
+    pub c1: Estimate,
+    /// The exponent of the leading correction at [`CORRECTION_LOADS`], `kappa` pooled over
+    /// Hurst exponents; jackknife over realizations (NaN when a load is not the scene's).
+    pub correction: Estimate,
+    /// `a_r / p~0` averaged over Hurst exponents and the loads whose mean `a_r` lies in
+    /// [`PARTIAL_RANGE`]; standard error over realizations.
+    pub partial_kappa: Estimate,
+}
+
+impl LawShape {
+    /// The shape of `curves[seed][hurst][load]` (the extrapolated curves) at `pressures`,
+    /// with `hursts` their means and `kappa` the headline slope.
+    pub fn of(
+        pressures: &[f64],
+        curves: &[Vec<Vec<f64>>],
+        hursts: &[HurstStats],
+        kappa: Estimate,
+        law_range: (f64, f64),
+    ) -> Self {
+        let last = pressures.len() - 1;
+        let top = pressures[last];
+        let c1 = ContactAreaLaw::PAPER.c1;
+        // a_r at the highest load, averaged over Hurst exponents, per realization.
+        let top_area: Vec<f64> = curves
+            .iter()
+            .map(|by_h| by_h.iter().map(|a| a[last]).sum::<f64>() / by_h.len() as f64)
+            .collect();
+        let pooled = top_area.iter().sum::<f64>() / top_area.len() as f64;
+        let per_seed: Vec<f64> = top_area.iter().map(|&a| c2_for(c1, top, a)).collect();
+        let c2 = Estimate::new(
+            c2_for(c1, top, pooled),
+            Estimate::mean_of(&per_seed).std_error,
+        );
+        let at: Vec<Option<usize>> = CORRECTION_LOADS
+            .iter()
+            .map(|&p| pressures.iter().position(|&q| q == p))
+            .collect();
+        let correction = match at[..] {
+            [Some(i0), Some(i1), Some(i2)] => Estimate::jackknife(curves.len(), |leave| {
+                let kappa_at = |i: usize| {
+                    let kept: Vec<f64> = curves
+                        .iter()
+                        .enumerate()
+                        .filter(|&(s, _)| Some(s) != leave)
+                        .flat_map(|(_, by_h)| by_h.iter().map(move |a| a[i] / pressures[i]))
+                        .collect();
+                    kept.iter().sum::<f64>() / kept.len() as f64
+                };
+                correction_exponent(
+                    [kappa_at(i0), kappa_at(i1), kappa_at(i2)],
+                    CORRECTION_LOADS[1] / CORRECTION_LOADS[0],
+                )
+            }),
+            _ => Estimate::new(f64::NAN, f64::NAN),
+        };
+        let partial: Vec<(usize, usize)> = hursts
+            .iter()
+            .enumerate()
+            .flat_map(|(h, stats)| {
+                stats
+                    .areas
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, a)| (PARTIAL_RANGE.0..=PARTIAL_RANGE.1).contains(&a.value))
+                    .map(move |(k, _)| (h, k))
+            })
+            .collect();
+        let partial_kappa = Estimate::mean_of(
+            &curves
+                .iter()
+                .map(|by_h| {
+                    partial
+                        .iter()
+                        .map(|&(h, k)| by_h[h][k] / pressures[k])
+                        .sum::<f64>()
+                        / partial.len() as f64
+                })
+                .collect::<Vec<_>>(),
+        );
+        Self {
+            spread: HurstSpread::over(pressures, hursts, law_range),
+            c2,
+            c1: Estimate::new(kappa.value / 2.0, kappa.std_error / 2.0),
+            correction,
+            partial_kappa,
+        }
+    }
+}
+
+/// The fall of `a_r / p~0` from the lowest load to the first of [`CORRECTION_LOADS`] on
+/// one grid (or extrapolated) for one Hurst exponent: whether the grid or the size of the
+/// contact spots could explain it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct KappaFall {
+    /// Hurst exponent.
+    pub hurst: f64,
+    /// Points per side of the grid (none: extrapolated to `eps_c -> 0`).
+    pub grid: Option<usize>,
+    /// `a_r / p~0` at the lowest load, over realizations.
+    pub kappa_lowest: Estimate,
+    /// `a_r / p~0` at the first of [`CORRECTION_LOADS`].
+    pub kappa_at: Estimate,
+    /// `1 - kappa_at / kappa_lowest` per realization, over realizations.
+    pub fall: Estimate,
+    /// Points in contact at the lowest load (none when extrapolated).
+    pub contact_points: Option<Estimate>,
+}
+
+impl KappaFall {
+    /// The rows of every Hurst exponent on every grid and extrapolated (none when the
+    /// scene's lowest load is not below the first of [`CORRECTION_LOADS`], or that load
+    /// is not the scene's).
+    pub fn of(scene: &AreaScene, curves: &Curves) -> Vec<Self> {
+        let p = &scene.reduced_pressures;
+        let Some(j) = p.iter().position(|&q| q == CORRECTION_LOADS[0]) else {
+            return Vec::new();
+        };
+        if j == 0 {
+            return Vec::new();
+        }
+        let mut rows = Vec::new();
+        for &hurst in &scene.hursts {
+            let grids = scene
+                .refinements
+                .iter()
+                .map(|&r| Some(r))
+                .chain(std::iter::once(None));
+            for refine in grids {
+                let per_seed: Vec<Vec<f64>> = scene
+                    .seeds
+                    .iter()
+                    .map(|&s| match refine {
+                        Some(r) => curves.curve(hurst, s, r).to_vec(),
+                        None => curves.extrapolated(hurst, s),
+                    })
+                    .collect();
+                let over = |f: &dyn Fn(&[f64]) -> f64| {
+                    Estimate::mean_of(&per_seed.iter().map(|a| f(a)).collect::<Vec<_>>())
+                };
+                rows.push(KappaFall {
+                    hurst,
+                    grid: refine.map(|r| scene.n * r),
+                    kappa_lowest: over(&|a| a[0] / p[0]),
+                    kappa_at: over(&|a| a[j] / p[j]),
+                    fall: over(&|a| 1.0 - (a[j] / p[j]) / (a[0] / p[0])),
+                    contact_points: refine.map(|r| {
+                        let points = (scene.n * r * scene.n * r) as f64;
+                        over(&|a| a[0] * points)
+                    }),
+                });
+            }
+        }
+        rows
+    }
+}
+
 /// Every statistic of the contact-area law.
 #[derive(Debug, Clone, PartialEq)]
 pub struct AreaStats {
@@ -275,6 +526,10 @@ pub struct AreaStats {
     pub readings: Vec<(String, String, LawDeviation)>,
     /// The finer grid's loads on three grids.
     pub grid_order: Vec<GridOrder>,
+    /// The law's shape: `H` spread, `c1`, `c2`, the order of the correction.
+    pub shape: LawShape,
+    /// The fall of `a_r / p~0` at low load on every grid.
+    pub fall: Vec<KappaFall>,
 }
 
 /// Loads at and above this `a_r` are near full contact, where the law's complementary
@@ -339,6 +594,19 @@ impl AreaStats {
             ));
         }
         let grid_order = GridOrder::of(scene, &curves);
+        let extrapolated: Vec<Vec<Vec<f64>>> = scene
+            .seeds
+            .iter()
+            .map(|&s| {
+                scene
+                    .hursts
+                    .iter()
+                    .map(|&h| curves.extrapolated(h, s))
+                    .collect()
+            })
+            .collect();
+        let shape = LawShape::of(p, &extrapolated, &hursts, kappa, scene.law_range);
+        let fall = KappaFall::of(scene, &curves);
         for (pair, label) in [(0, "coarser"), (1, "finer")] {
             let worst = grid_order
                 .iter()
@@ -378,6 +646,8 @@ impl AreaStats {
             readings,
             grid_order,
             hursts,
+            shape,
+            fall,
         }
     }
 }
@@ -435,6 +705,106 @@ mod tests {
         let p = [0.01, 0.02, 0.5];
         let a = [0.02, 0.05, 0.4];
         assert!((low_load_slope(&p, &a, &[0, 1]) - 2.25).abs() < 1e-15);
+    }
+
+    /// `curves[seed][hurst][load]` for the shipped reduced scene's pressures: `a_r =
+    /// kappa_H p~0 (1 - b p~0^2)` (a third-order correction), realization `s` shifted by
+    /// `shift[s]` in `kappa`.
+    fn synthetic(p: &[f64], kappa: &[f64], shift: &[f64]) -> Vec<Vec<Vec<f64>>> {
+        shift
+            .iter()
+            .map(|d| {
+                kappa
+                    .iter()
+                    .map(|k| {
+                        p.iter()
+                            .map(|&p| (k + d) * p * (1.0 - 0.5 * p * p))
+                            .collect()
+                    })
+                    .collect()
+            })
+            .collect()
+    }
+
+    fn means(p: &[f64], hursts: &[f64], curves: &[Vec<Vec<f64>>]) -> Vec<HurstStats> {
+        hursts
+            .iter()
+            .enumerate()
+            .map(|(h, &hurst)| HurstStats {
+                hurst,
+                kappa: Estimate::new(f64::NAN, f64::NAN),
+                areas: (0..p.len())
+                    .map(|k| Estimate::mean_of(&curves.iter().map(|c| c[h][k]).collect::<Vec<_>>()))
+                    .collect(),
+            })
+            .collect()
+    }
+
+    #[test]
+    fn the_correction_exponent_is_two_for_a_third_order_correction() {
+        let p = [0.001, 0.03, 0.06, 0.12, 0.25];
+        let curves = synthetic(&p, &[2.0, 2.1], &[-0.01, 0.0, 0.02]);
+        let hursts = means(&p, &[0.3, 0.8], &curves);
+        let shape = LawShape::of(&p, &curves, &hursts, Estimate::new(2.2, 0.02), (0.0, 1.0));
+        // kappa(0) - kappa(p) = kappa b p^2 whatever the shift: m = 2 in every subset.
+        assert!((shape.correction.value - 2.0).abs() < 1e-9, "{shape:?}");
+        assert!(shape.correction.std_error < 1e-9);
+        assert!(
+            (correction_exponent([2.0 - 0.03, 2.0 - 0.06, 2.0 - 0.12], 2.0) - 1.0).abs() < 1e-12
+        );
+        assert_eq!(shape.c1, Estimate::new(1.1, 0.01));
+    }
+
+    #[test]
+    fn the_hurst_spread_is_the_widest_gap_in_kappa_at_one_load_in_range() {
+        let p = [0.01, 0.1];
+        let h = |hurst, a: [f64; 2], e: [f64; 2]| HurstStats {
+            hurst,
+            kappa: Estimate::new(f64::NAN, f64::NAN),
+            areas: vec![Estimate::new(a[0], e[0]), Estimate::new(a[1], e[1])],
+        };
+        let hursts = [
+            h(0.3, [0.005, 0.23], [0.0001, 0.003]),
+            h(0.5, [0.021, 0.21], [0.0001, 0.002]),
+            h(0.8, [0.020, 0.20], [0.0001, 0.004]),
+        ];
+        // The first load is out of range for H = 0.3 (a_r < 0.01).
+        let spread = HurstSpread::over(&p, &hursts, (0.01, 0.9));
+        assert!((spread.spread.value - 0.3).abs() < 1e-12, "{spread:?}");
+        assert!((spread.spread.std_error - 0.05).abs() < 1e-12);
+        assert_eq!(spread.at, (0.1, 0.3, 0.8));
+        let none = HurstSpread::over(&p, &hursts, (0.5, 0.9));
+        assert!(none.spread.value.is_nan() && none.at.0.is_nan());
+    }
+
+    #[test]
+    fn c2_for_inverts_the_law_and_the_partial_slope_keeps_the_loads_in_range() {
+        let law = ContactAreaLaw {
+            c1: 1.075,
+            c2: 1.04,
+        };
+        for p in [0.5, 0.8, 1.2] {
+            let c2 = c2_for(1.075, p, law.contact_area(p));
+            assert!((c2 - 1.04).abs() < 1e-9, "p~0 = {p}: {c2}");
+        }
+        assert!(c2_for(1.075, 1.2, 0.5).is_nan());
+        // Two realizations, one Hurst exponent, a_r = kappa p~0 with kappa 2 and 2.2: of
+        // the loads, 0.001 (a_r < 0.01) and 0.25 (a_r > 0.35) are left out.
+        let p = [0.001, 0.03, 0.06, 1.2];
+        let curves: Vec<Vec<Vec<f64>>> = [2.0, 2.2]
+            .iter()
+            .map(|k| {
+                let mut a: Vec<f64> = p.iter().map(|p| k * p).collect();
+                a[3] = law.contact_area(1.2);
+                vec![a]
+            })
+            .collect();
+        let hursts = means(&p, &[0.8], &curves);
+        let shape = LawShape::of(&p, &curves, &hursts, Estimate::new(2.1, 0.1), (0.01, 0.9));
+        assert!((shape.partial_kappa.value - 2.1).abs() < 1e-12, "{shape:?}");
+        assert!((shape.partial_kappa.std_error - 0.1).abs() < 1e-12);
+        assert!((shape.c2.value - 1.04).abs() < 1e-9);
+        assert!(shape.c2.std_error.abs() < 1e-9);
     }
 
     #[test]

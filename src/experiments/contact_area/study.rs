@@ -1,7 +1,8 @@
 //! The studies of the contact-area law: every reading of the law's largest deviation
-//! (denominator, grid), and the order of the grid error on three grids.
+//! (denominator, grid), the order of the grid error on three grids, and the fall of
+//! `a_r / p~0` at low load on every grid.
 
-use super::stats::AreaStats;
+use super::stats::{AreaStats, CORRECTION_LOADS};
 use super::{grid_label, Run};
 use crate::experiments::study::{Cell, Study};
 
@@ -84,5 +85,66 @@ pub(super) fn studies(run: &Run, s: &AreaStats) -> Vec<Study> {
         }
         studies.push(order);
     }
+    if let Some(fall) = kappa_fall(run, s) {
+        studies.push(fall);
+    }
     studies
+}
+
+/// The fall of `a_r / p~0` between the lowest load and the first load of the correction's
+/// exponent, per Hurst exponent on every grid and extrapolated: a discretisation cause
+/// would shrink it on the finer grid, a finite-size one would grow as the contact spots get
+/// fewer (the contact points at the lowest load).
+fn kappa_fall(run: &Run, s: &AreaStats) -> Option<Study> {
+    let scene = run.scene;
+    if s.fall.is_empty() {
+        return None;
+    }
+    let (lowest, at) = (scene.reduced_pressures[0], CORRECTION_LOADS[0]);
+    let mut study = Study::new(
+        "kappa_fall",
+        format!(
+            "The fall of a_r / p~0 from p~0 = {lowest} to {at}, per grid: a finite-size cause?"
+        ),
+        &[
+            ("kappa_lowest", "a_r / p~0 at the lowest load"),
+            ("kappa_at", "a_r / p~0 at the correction's first load"),
+            ("fall", "fall, %"),
+            ("contact_points", "contact points at the lowest load"),
+            ("l_over_lambda_l", "L / lambda_l"),
+        ],
+    )
+    .percent(&["fall"])
+    .about(format!(
+        "Eq. (contactArea) makes a_r / p~0 flat to third order at low load; a fall that \
+         shrinks from grid to grid would be the grid's; one that persists from grid to grid, \
+         with few contact points at the lowest load, could be the finite number of contact \
+         spots. Every job has L / lambda_l = {}: a system-size cause (tex 161-163) cannot be \
+         read from them",
+        scene.n as f64 / scene.lambda_l
+    ));
+    for f in &s.fall {
+        let (key, label) = match f.grid {
+            Some(n) => (
+                format!("H{}_grid{n}", f.hurst),
+                format!("H = {}, {n}^2", f.hurst),
+            ),
+            None => (
+                format!("H{}_extrapolated", f.hurst),
+                format!("H = {}, {}", f.hurst, grid_label(scene)),
+            ),
+        };
+        study.push(
+            key,
+            label,
+            vec![
+                f.kappa_lowest.into(),
+                f.kappa_at.into(),
+                f.fall.into(),
+                f.contact_points.into(),
+                Cell::from(scene.n as f64 / scene.lambda_l),
+            ],
+        );
+    }
+    Some(study)
 }

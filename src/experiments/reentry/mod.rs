@@ -11,7 +11,11 @@
 //!   share that was out of contact at some earlier step, the first shell (`zeta = 1`)
 //!   included. Also reported: the share that left contact *after* the first shell and came
 //!   back, so both readings are visible. Persson: 0. The paper's shares (H = 0.8, 1024^2,
-//!   lambda_l = 512) are claims of the definition (`validations/c_reentry.toml`).
+//!   lambda_l = 512) are claims of the definition (`validations/c_reentry.toml`). Their
+//!   difference, the share out of contact at the first shell only, bounds from below the
+//!   final contact's share out of contact at `zeta = 1` (paper: none, tex 748-749).
+//! * **Shells**: the distinct `|q|^2` a history adds one at a time (paper: "~4,400 wave
+//!   numbers", tex 764-769).
 //! * **Flux** between `flux_zeta` and `flux_zeta + flux_dzeta`: the fractions of the nominal
 //!   area that enter and leave contact, the net flux over the mean one-way flux, and the
 //!   transition probability out of the `p = 0` bin, the share of non-contact that enters
@@ -143,6 +147,15 @@ impl ReentryResult {
     /// The share that left contact after the first shell and came back.
     pub fn share_after_first(&self) -> f64 {
         self.reentered_after_first as f64 / self.contact_points.max(1) as f64
+    }
+
+    /// The share of the final contact that was out of contact at the first shell
+    /// (`zeta = 1`) and in contact at every later one: `(reentered -
+    /// reentered_after_first) / contact_points`, a lower bound on the final contact's share
+    /// out of contact at `zeta = 1`.
+    pub fn share_out_at_first(&self) -> f64 {
+        self.reentered.saturating_sub(self.reentered_after_first) as f64
+            / self.contact_points.max(1) as f64
     }
 
     /// The net flux over the mean one-way flux, `|out - in| / ((out + in) / 2)`.
@@ -328,6 +341,11 @@ impl ReentryScene {
 
 type Run<'a> = super::Run<'a, Reentry>;
 
+/// The key of the share out of contact at the first shell only, at load `a_r`.
+pub fn out_at_first_key(contact_area: f64) -> String {
+    format!("out_at_first_ar{contact_area}")
+}
+
 /// The statistics of a run, with the headline's histories they came from and the
 /// tolerance study (where the scene plans one).
 pub struct RunStats {
@@ -480,7 +498,23 @@ impl Experiment for Reentry {
                 )
                 .persson(0.0),
             );
+            details.push(
+                Detail::new(
+                    out_at_first_key(target),
+                    format!(
+                        "share of the contact at a_r = {target} out of contact at zeta = 1 \
+                         only (in contact at every later shell)"
+                    ),
+                    share.out_at_first,
+                )
+                .persson(0.0),
+            );
         }
+        details.push(Detail::new(
+            "shells",
+            "shells |q|^2 added one at a time from q_l to q_s (wave numbers of a history)",
+            s.shells,
+        ));
         let flux = [
             (
                 "flux_in",
@@ -610,6 +644,29 @@ mod tests {
     fn net_over_gross_is_the_net_flux_over_the_mean_one_way_flux() {
         assert!((net_over_gross(0.00675, 0.00597) - 0.12264).abs() < 1e-5);
         assert_eq!(net_over_gross(0.0, 0.0), 0.0);
+    }
+
+    #[test]
+    fn out_at_first_is_the_reentered_that_never_left_after_the_first_shell() {
+        let r = ReentryResult {
+            p0: 0.1,
+            a_r: 0.14,
+            contact_points: 1000,
+            reentered: 640,
+            reentered_after_first: 615,
+            flux_in: 0.0,
+            flux_out: 0.0,
+            flux_in_of_noncontact: 0.0,
+            shells: 4355,
+            iterations: 0,
+            wall_s: 0.0,
+            max_residual: 0.0,
+            map: None,
+            flux_map: None,
+        };
+        assert!((r.share_out_at_first() - 0.025).abs() < 1e-15);
+        assert!((r.share() - r.share_after_first() - r.share_out_at_first()).abs() < 1e-15);
+        assert_eq!(out_at_first_key(0.14), "out_at_first_ar0.14");
     }
 
     #[test]

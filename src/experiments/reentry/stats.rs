@@ -15,6 +15,9 @@ pub struct Share {
     pub share: Estimate,
     /// Of those, the points that left after the first shell and came back.
     pub after_first: Estimate,
+    /// Of those, the points out of contact at the first shell only (`zeta = 1`, the
+    /// surfaces having no modes below `q_l`).
+    pub out_at_first: Estimate,
 }
 
 /// Every statistic of the re-entry experiment.
@@ -30,6 +33,9 @@ pub struct ReentryStats {
     pub net_over_gross: Estimate,
     /// The share of non-contact that enters contact over the interval.
     pub flux_in_of_noncontact: Estimate,
+    /// The shells a history adds one at a time: exact (error 0) when every history has
+    /// the same count, else their mean over histories.
+    pub shells: Estimate,
 }
 
 impl ReentryStats {
@@ -43,12 +49,38 @@ impl ReentryStats {
                     load: load.contact_area,
                     share: load.mean(ReentryResult::share),
                     after_first: load.mean(ReentryResult::share_after_first),
+                    out_at_first: load.mean(ReentryResult::share_out_at_first),
                 })
                 .collect(),
             flux_in: head.mean(|r| r.flux_in),
             flux_out: head.mean(|r| r.flux_out),
             net_over_gross: head.mean(ReentryResult::net_over_gross),
             flux_in_of_noncontact: head.mean(|r| r.flux_in_of_noncontact),
+            shells: shells(loads.iter().flat_map(|l| l.runs.iter().map(|r| r.shells))),
         }
+    }
+}
+
+/// The count of shells of the histories: exact (error 0) when they agree, else their mean
+/// over histories (NaN with none).
+pub fn shells(counts: impl IntoIterator<Item = usize>) -> Estimate {
+    let counts: Vec<f64> = counts.into_iter().map(|c| c as f64).collect();
+    match counts.first() {
+        Some(&c) if counts.iter().all(|&x| x == c) => Estimate::new(c, 0.0),
+        _ => Estimate::mean_of(&counts),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn equal_shell_counts_are_exact_and_unequal_ones_averaged() {
+        assert_eq!(shells([4355, 4355, 4355]), Estimate::new(4355.0, 0.0));
+        let mixed = shells([4354, 4356]);
+        assert_eq!(mixed.value, 4355.0);
+        assert!((mixed.std_error - 1.0).abs() < 1e-12);
+        assert!(shells([]).value.is_nan());
     }
 }
