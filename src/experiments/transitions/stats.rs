@@ -319,7 +319,7 @@ pub fn unsuited_minus_suited(fits: &[BinFit]) -> Option<f64> {
 pub fn lowest_minus_top_unsuited(fits: &[BinFit]) -> Option<f64> {
     let mut unsuited = fits.iter().filter(|f| !f.suited);
     let lowest = unsuited.next()?;
-    let top = unsuited.last()?;
+    let top = unsuited.next_back()?;
     Some(lowest.distance - top.distance)
 }
 
