@@ -2,7 +2,8 @@
 //! "reentry_visualization"; the numbers are the definition's claims, [`PaperFlux`]):
 //! which rows, in which measure (fraction of the nominal or of the true contact area),
 //! give the paper's numbers; how the flux scales with the step; the relative step the
-//! paper's magnitude would need.
+//! paper's magnitude would need; whether the net flow of the rows is the fall of the
+//! contact area over the step, as it is at fixed load.
 
 use super::sensitivity::SensitivityRow;
 use crate::experiments::reentry::net_over_gross;
@@ -237,7 +238,8 @@ fn range(rows: &[&SensitivityRow], f: fn(&SensitivityRow) -> f64) -> String {
 }
 
 /// The notes of the scorecard: what reproduces the paper's numbers or what was ruled out,
-/// the step scaling, and the caption's direction against the text's.
+/// the step scaling, the misprint rows, the net-flow identity, and the caption's direction
+/// against the text's.
 pub fn notes(
     rows: &[SensitivityRow],
     p: &PaperFlux,
@@ -311,6 +313,7 @@ pub fn notes(
     });
     notes.extend(step_notes(rows, p));
     notes.extend(hypothesis_notes(rows, p));
+    notes.extend(identity_note(rows));
     notes.extend(summary_note(rows, p, &hits));
     notes.push(format!(
         "Direction: the caption's red (entered, {paper_in}) exceeds its blue (left, \
@@ -479,6 +482,66 @@ fn hypothesis_notes(rows: &[SensitivityRow], p: &PaperFlux) -> Vec<String> {
     notes
 }
 
+/// The net-flow identity over the rows at fixed load: out - in is the fall of `a_r` over
+/// the step where every residual (its mean and its error bar) lies below half a point of
+/// the row's grid, the identity counting points; the rows at fixed area are not
+/// applicable. None without a row at fixed load.
+fn identity_note(rows: &[SensitivityRow]) -> Option<String> {
+    let checked: Vec<(&SensitivityRow, Estimate)> = rows
+        .iter()
+        .filter_map(|r| Some((r, r.net_flow_residual?)))
+        .collect();
+    if checked.is_empty() {
+        return None;
+    }
+    let holds = |r: &SensitivityRow, e: Estimate| {
+        let half_point = 0.5 / (r.config.n as f64).powi(2);
+        // A missing error bar (one realization) leaves the mean alone to decide.
+        e.value.abs() < half_point && (!e.has_error() || e.std_error < half_point)
+    };
+    let failing: Vec<String> = checked
+        .iter()
+        .filter(|(r, e)| !holds(r, *e))
+        .map(|(r, e)| format!("{} = {} ({:.1e} of A0)", r.parameter, r.label, e.value))
+        .collect();
+    let largest = checked
+        .iter()
+        .map(|(_, e)| e.value.abs())
+        .fold(0.0, f64::max);
+    let fixed_area = rows.len() - checked.len();
+    let count = |k: usize| format!("{k} row{}", if k == 1 { "" } else { "s" });
+    let identity = "the net flow to non-contact, out - in, is the fall of a_r over the step: \
+                    the points in contact after it are those before, plus those that \
+                    entered, less those that left";
+    let mut text = if failing.is_empty() {
+        format!(
+            "Net-flow identity ({identity}): holds at fixed load ({}; the largest |residual| \
+             {} of A0, below half a point of each grid).",
+            count(checked.len()),
+            if largest == 0.0 {
+                "0".to_string()
+            } else {
+                format!("{largest:.1e}")
+            }
+        )
+    } else {
+        format!(
+            "Net-flow identity ({identity}): does not hold in {} of {} at fixed load, where \
+             the contact area and the fluxes count different points: {}.",
+            failing.len(),
+            count(checked.len()),
+            failing.join("; ")
+        )
+    };
+    if fixed_area > 0 {
+        text.push_str(&format!(
+            " Not applicable at fixed area ({}), where the control holds a_r.",
+            count(fixed_area)
+        ));
+    }
+    Some(text)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -546,6 +609,8 @@ mod tests {
             net_over_gross: Some(e(crate::experiments::reentry::net_over_gross(
                 flux_in, flux_out,
             ))),
+            net_flow: Some(e(flux_out - flux_in)),
+            net_flow_residual: Some(e(0.0)),
             flux_in_of_noncontact: Some(e(flux_in / 0.86)),
             variance_added: Some(e(variance)),
             modes_added: Some(8.0),
@@ -581,6 +646,51 @@ mod tests {
         // Net/gross there: 0.0002 k / 0.00636.
         let ng = 0.0002 * k / p.mean();
         assert!((s.net_over_gross.unwrap() / ng - 1.0).abs() < 1e-9);
+    }
+
+    /// A misprint row (`parameter` at `value`) with the given fluxes, the rest as the
+    /// stated step's row.
+    fn misprint_row(parameter: &str, value: f64, flux_in: f64, flux_out: f64) -> SensitivityRow {
+        let mut r = step_row(1.0, 1e-3, flux_in, flux_out);
+        r.parameter = parameter.into();
+        r.value = value;
+        r.label = match parameter {
+            "hurst" => format!("H = {value}"),
+            _ => format!("a_r = {value}"),
+        };
+        match parameter {
+            "hurst" => r.config.hurst = Some(value),
+            _ => r.config.contact_area = value,
+        }
+        r
+    }
+
+    #[test]
+    fn the_identity_note_names_a_row_that_breaks_it() {
+        let mut rows = vec![
+            step_row(1.0, 1e-3, 0.0023, 0.0026),
+            misprint_row("hurst", 0.3, 0.00625, 0.00728),
+        ];
+        let identity = |rows: &[SensitivityRow]| identity_note(rows).expect("fixed-load rows");
+        let holds = identity(&rows);
+        assert!(holds.contains("holds at fixed load (2 rows;"), "{holds}");
+        assert!(holds.contains("largest |residual| 0 of A0"), "{holds}");
+        // One point of a 64^2 grid is 2.4e-4 of A0: a residual of one point breaks it.
+        rows[1].net_flow_residual = Some(Estimate::new(1.0 / 4096.0, 0.0));
+        let breaks = identity(&rows);
+        assert!(breaks.contains("does not hold in 1 of 2 rows"), "{breaks}");
+        assert!(
+            breaks.contains("hurst = H = 0.3 (2.4e-4 of A0)"),
+            "{breaks}"
+        );
+        // Fixed area: not applicable.
+        rows[1].net_flow_residual = None;
+        let fixed = identity(&rows);
+        assert!(fixed.contains("holds at fixed load (1 row;"), "{fixed}");
+        assert!(
+            fixed.contains("Not applicable at fixed area (1 row)"),
+            "{fixed}"
+        );
     }
 
     #[test]

@@ -25,6 +25,13 @@
 //! and the height variance they carry, relative to the variance at `zeta` (on a coarse
 //! grid two nominal steps can add the same shells). Configurations shared by several rows
 //! (the base is in every list) run once.
+//!
+//! Each row at fixed load also checks the net-flow identity: the points in contact after
+//! the step are those before, plus those that entered, less those that left, so the net
+//! flow to non-contact, `out - in`, is the fall of the contact area over the step,
+//! `-(a_r(zeta + dzeta) - a_r(zeta))` ([`crate::experiments::flux::net_flow_residual`]).
+//! At fixed area the control holds `a_r`, and the identity says nothing about its fall
+//! at fixed load: those rows leave the residual empty (not applicable).
 
 use serde::{Deserialize, Serialize};
 
@@ -32,6 +39,7 @@ use crate::engine::solver::SolverKind;
 use crate::engine::spectrum::ShellSpectrum;
 use crate::error::{check_open, check_positive, Error, Result};
 use crate::experiments::contact_change::categories;
+use crate::experiments::flux::net_flow_residual;
 use crate::experiments::reentry::net_over_gross;
 use crate::experiments::scene::Base;
 use crate::experiments::study::{Cell, Study};
@@ -189,6 +197,13 @@ pub struct SensitivityRow {
     /// Net over mean one-way flux, `|out - in| / ((out + in) / 2)`, per realization.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub net_over_gross: Option<Estimate>,
+    /// Net flow to non-contact, `out - in`, fraction of the nominal area.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub net_flow: Option<Estimate>,
+    /// The net-flow identity's residual, `(out - in) + (a_r(zeta + dzeta) - a_r(zeta))`,
+    /// per realization (none at fixed area, where the identity is not applicable).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub net_flow_residual: Option<Estimate>,
     /// Share of the non-contact at `zeta` in contact after the step, `in / (1 - a_r)`.
     // Serialised as "zero_bin": the stored name is kept for the committed results.
     #[serde(rename = "zero_bin", default, skip_serializing_if = "Option::is_none")]
@@ -412,6 +427,10 @@ impl SensitivityPlan {
                 let of_noncontact =
                     |r: &StudyResult| r.flux_in / (1.0 - r.a_r_old).max(f64::MIN_POSITIVE);
                 let variances: Option<Vec<f64>> = runs.iter().map(|r| r.variance_added).collect();
+                // Not applicable at fixed area, where the control holds a_r.
+                let residual = (!config.fixed_area).then(|| {
+                    mean(&|r| net_flow_residual(r.a_r_old, r.a_r_new, r.flux_in, r.flux_out))
+                });
                 let modes: Option<Vec<u64>> = runs.iter().map(|r| r.modes_added).collect();
                 Some(SensitivityRow {
                     parameter: parameter.to_string(),
@@ -425,6 +444,8 @@ impl SensitivityPlan {
                     flux_out_of_contact: mean(&|r| of_contact(r.flux_out, r)),
                     contact_area: mean(&|r| r.a_r_old),
                     net_over_gross: Some(mean(&|r| net_over_gross(r.flux_in, r.flux_out))),
+                    net_flow: Some(mean(&|r| r.flux_out - r.flux_in)),
+                    net_flow_residual: residual,
                     flux_in_of_noncontact: Some(mean(&of_noncontact)),
                     variance_added: variances.map(|v| Estimate::mean_of(&v)),
                     modes_added: modes
@@ -455,6 +476,11 @@ pub fn study(rows: &[SensitivityRow]) -> Study {
                 "out of contact, % of the contact area",
             ),
             ("net_over_gross", "net / mean one-way flux"),
+            ("net_flow", "net flow to non-contact, out - in, % of A0"),
+            (
+                "net_flow_residual",
+                "net flow + change of a_r in the step, % of A0 (fixed load; empty: n/a)",
+            ),
             // The column of `flux_in_of_noncontact`: the stored name is kept for the
             // committed results.
             ("zero_bin", "non-contact entering contact, %"),
@@ -466,6 +492,8 @@ pub fn study(rows: &[SensitivityRow]) -> Study {
     .percent(&[
         "flux_in",
         "flux_out",
+        "net_flow",
+        "net_flow_residual",
         "flux_in_of_contact",
         "flux_out_of_contact",
         "zero_bin",
@@ -474,7 +502,10 @@ pub fn study(rows: &[SensitivityRow]) -> Study {
     .about(
         "Each row moves one setting away from the base configuration (the first row of each \
          setting shares it) and repeats the step over the realizations: mean and standard \
-         error over realizations.",
+         error over realizations. At fixed load the net flow to non-contact is the fall of \
+         a_r over the step (the points in contact after it are those before, plus those \
+         that entered, less those that left): the residual of that identity is its own \
+         column, empty at fixed area, where the control holds a_r.",
     );
     for r in rows {
         let key = if r.parameter == "transition" {
@@ -496,6 +527,8 @@ pub fn study(rows: &[SensitivityRow]) -> Study {
                 r.flux_in_of_contact.into(),
                 r.flux_out_of_contact.into(),
                 r.net_over_gross.into(),
+                r.net_flow.into(),
+                r.net_flow_residual.into(),
                 r.flux_in_of_noncontact.into(),
                 r.contact_area.into(),
                 r.variance_added.into(),
@@ -635,6 +668,54 @@ mod tests {
         p.transition.as_mut().unwrap().zeta = 63.0;
         let e = p.validate(0.8, STEP).unwrap_err().to_string();
         assert!(e.contains("sensitivity.transition"), "{e}");
+    }
+
+    #[test]
+    fn the_net_flow_identity_is_read_at_fixed_load_only() {
+        // Steps whose contact areas count the points the fluxes count: a_r after = a_r
+        // before + in - out (seed 1: in 0.001, out 0.003; seed 2: in 0.002, out 0.003).
+        let p = plan();
+        let jobs = p.jobs(STEP);
+        let results: Vec<StudyResult> = jobs
+            .iter()
+            .map(|j| {
+                let (a, fin, fout) = (0.14, 0.001 * j.seed as f64, 0.003);
+                StudyResult {
+                    a_r_old: a,
+                    a_r_new: a + fin - fout,
+                    flux_in: fin,
+                    flux_out: fout,
+                    max_residual: 0.0,
+                    variance_added: None,
+                    modes_added: None,
+                }
+            })
+            .collect();
+        let pairs: Vec<(&StudyJob, &StudyResult)> = jobs.iter().zip(&results).collect();
+        let rows = p.conclude(STEP, &pairs);
+        for r in &rows {
+            let net = r.net_flow.unwrap();
+            assert!((net.value - 0.0015).abs() < 1e-15, "{}: {net:?}", r.label);
+            match (r.config.fixed_area, r.net_flow_residual) {
+                (false, Some(e)) => assert!(e.value.abs() < 1e-15, "{}: {e:?}", r.label),
+                (true, None) => {}
+                (fixed, e) => panic!("{}: fixed area {fixed}, residual {e:?}", r.label),
+            }
+        }
+        assert_eq!(rows.iter().filter(|r| r.config.fixed_area).count(), 1);
+        // The table shows both, the residual empty at fixed area.
+        let t = study(&rows);
+        assert_eq!(t.cell("control=1", "net_flow_residual"), Some(Cell::Empty));
+        assert!(t
+            .cell("control=0", "net_flow_residual")
+            .unwrap()
+            .estimate()
+            .is_some());
+        assert!(t
+            .cell("hurst=0.3", "net_flow")
+            .unwrap()
+            .estimate()
+            .is_some());
     }
 
     #[test]
