@@ -193,6 +193,17 @@ impl Jobs for FluxScene {
         !matches!(job, FluxJob::Step(_))
     }
 
+    /// The scene without the study's later Hurst exponents (`later_hurst_values`): the
+    /// keys of the jobs stored before they were added stay those of the plan that had
+    /// none. A later row's jobs differ by their configuration, which names the exponent.
+    fn key_scene(&self) -> serde_json::Value {
+        let mut scene = self.clone();
+        if let Some(plan) = &mut scene.sensitivity {
+            plan.later_hurst_values.clear();
+        }
+        serde_json::to_value(scene).expect("scenes serialise")
+    }
+
     fn work(&self, job: &FluxJob) -> Work {
         match job {
             FluxJob::Step(_) => Work::search_then(self.n, 1, 0),
@@ -265,9 +276,10 @@ impl Experiment for Flux {
             return Vec::new();
         }
         let mut study = sensitivity::study(&s.rows);
-        if let Some(p) = PaperFlux::of(run.criteria, run.scene.relative_step()) {
+        let step = run.scene.relative_step();
+        if let (Some(p), Some(plan)) = (PaperFlux::of(run.criteria, step), &run.scene.sensitivity) {
             let (before, after) = (s.steps.a_before.value, s.steps.a_after.value);
-            study.notes = reading::notes(&s.rows, &p, before, after);
+            study.notes = reading::notes(&s.rows, &plan.planned(step), &p, before, after);
         }
         vec![study]
     }
@@ -385,6 +397,41 @@ mod tests {
         // An area that counts one point more than the fluxes do leaves one point.
         let off = net_flow_residual(a0, a1 + 1.0 / n as f64, fin, fout);
         assert!((off - 1e-3).abs() < 1e-14, "{off}");
+    }
+
+    /// A plan's later Hurst exponents leave the keys' scene unchanged: the jobs stored
+    /// before they were added keep their keys, and the new rows' jobs name their exponent.
+    #[test]
+    fn later_hurst_exponents_leave_the_keys_scene_alone() {
+        let (_, full) = crate::experiments::shipped_valid::<Flux>("c_flux");
+        let plan = full.sensitivity.as_ref().unwrap();
+        assert!(!plan.later_hurst_values.is_empty());
+        let mut without = full.clone();
+        without
+            .sensitivity
+            .as_mut()
+            .unwrap()
+            .later_hurst_values
+            .clear();
+        assert_eq!(full.key_scene(), without.key_scene());
+        assert_eq!(without.key_scene(), serde_json::to_value(&without).unwrap());
+        assert_ne!(full.key_scene(), serde_json::to_value(&full).unwrap());
+        // Every job of the plan without them is a job of the plan with them; the new ones
+        // are the later exponents' rows, one per seed.
+        let (old, new) = (without.jobs(), full.jobs());
+        assert!(old.iter().all(|j| new.contains(j)));
+        let added: Vec<&FluxJob> = new.iter().filter(|j| !old.contains(j)).collect();
+        assert_eq!(
+            added.len(),
+            plan.later_hurst_values.len() * plan.seeds.len()
+        );
+        for job in added {
+            let FluxJob::Study(j) = job else {
+                panic!("{job:?}")
+            };
+            let h = j.config.hurst.expect("a later row names its exponent");
+            assert!(plan.later_hurst_values.contains(&h), "{h}");
+        }
     }
 
     #[test]

@@ -13,7 +13,9 @@
 //! * `control`: the step at fixed load (0) or at fixed contact area (1);
 //! * `solver`: GFMD (0) or CG (1);
 //! * `hurst`: the Hurst exponent, and `contact_area`: the contact area at `zeta` (were the
-//!   paper's stated parameters misprinted?);
+//!   paper's stated parameters misprinted?); the Hurst exponents of `later_hurst_values`
+//!   are rows as those of `hurst_values`, added after the full scene's study had run (the
+//!   jobs' keys leave that list out, [`crate::experiments::flux::FluxScene`]'s `key_scene`);
 //! * `transition`: the paper's transition scene (section 3.1, figure "reentry_histogram":
 //!   H = 0.5, a_r = 0.01, zeta 63 -> 63.3), whose share of the non-contact that enters
 //!   contact the paper gives as about 1%.
@@ -80,6 +82,13 @@ pub struct SensitivityPlan {
     /// Hurst exponents (the scene's is the base's).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub hurst_values: Vec<f64>,
+    /// More Hurst exponents, rows as those of `hurst_values`, added after the full scene's
+    /// study had run. The jobs' keys see the plan without this list
+    /// ([`crate::experiments::flux::FluxScene`]'s `key_scene`), so the stored results keep
+    /// their keys; the new rows' jobs are told apart by their configuration, which names
+    /// the exponent.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub later_hurst_values: Vec<f64>,
     /// Contact areas at `zeta` (the base's is `contact_area`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub contact_areas: Vec<f64>,
@@ -170,6 +179,25 @@ pub struct StudyResult {
     pub modes_added: Option<u64>,
 }
 
+/// A row the plan states, whether or not its jobs have results: its setting, value and
+/// label, as the row's own ([`SensitivityRow`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlannedRow {
+    /// The setting varied.
+    pub parameter: &'static str,
+    /// Its value.
+    pub value: f64,
+    /// The value in words.
+    pub label: String,
+}
+
+impl PlannedRow {
+    /// Whether `row` is this planned row's result.
+    pub fn is(&self, row: &SensitivityRow) -> bool {
+        row.parameter == self.parameter && row.value == self.value
+    }
+}
+
 /// One row of the study: one setting at one value, averaged over realizations.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SensitivityRow {
@@ -237,6 +265,16 @@ impl SensitivityPlan {
         }
         for &h in &self.hurst_values {
             check_open("sensitivity.hurst_values", h, 0.0, 1.0)?;
+        }
+        for (k, &h) in self.later_hurst_values.iter().enumerate() {
+            check_open("sensitivity.later_hurst_values", h, 0.0, 1.0)?;
+            if self.hurst_values.contains(&h) || self.later_hurst_values[..k].contains(&h) {
+                return Err(Error::invalid(
+                    "sensitivity.later_hurst_values",
+                    h,
+                    "an exponent not already in hurst_values or earlier in this list",
+                ));
+            }
         }
         for &a in &self.contact_areas {
             check_open("sensitivity.contact_areas", a, 0.0, 1.0)?;
@@ -346,7 +384,7 @@ impl SensitivityPlan {
             };
             rows.push(("solver", v, solver.name().to_string(), c));
         }
-        for &h in &self.hurst_values {
+        for &h in self.hurst_values.iter().chain(&self.later_hurst_values) {
             let c = StudyConfig {
                 hurst: Some(h),
                 ..base.clone()
@@ -382,6 +420,18 @@ impl SensitivityPlan {
             rows.push(("transition", t.contact_area, label, c));
         }
         rows
+    }
+
+    /// Every row the plan states, run or not (the steps in multiples of `step`).
+    pub fn planned(&self, step: f64) -> Vec<PlannedRow> {
+        self.rows(step)
+            .into_iter()
+            .map(|(parameter, value, label, _)| PlannedRow {
+                parameter,
+                value,
+                label,
+            })
+            .collect()
     }
 
     /// The jobs: every distinct configuration once, for every seed.
@@ -615,6 +665,7 @@ mod tests {
             fixed_area: true,
             solvers: vec![SolverKind::Gfmd, SolverKind::Cg],
             hurst_values: vec![0.3],
+            later_hurst_values: vec![0.5],
             contact_areas: vec![0.5],
             transition: Some(TransitionRow {
                 n: 128,
@@ -633,7 +684,7 @@ mod tests {
         let p = plan();
         p.validate(0.8, STEP).unwrap();
         let rows = p.rows(STEP);
-        assert_eq!(rows.len(), 2 + 3 + 2 + 2 + 2 + 2 + 1 + 1 + 1);
+        assert_eq!(rows.len(), 2 + 3 + 2 + 2 + 2 + 2 + 1 + 1 + 1 + 1);
         // The base appears once per list; the jobs run it once.
         let base = p.base(STEP);
         assert_eq!(rows.iter().filter(|r| r.3 == base).count(), 6);
@@ -656,6 +707,18 @@ mod tests {
         // The misprint hypotheses and the transition scene carry their own settings.
         let hurst = &rows.iter().find(|r| r.0 == "hurst").unwrap().3;
         assert_eq!((hurst.hurst, hurst.contact_area), (Some(0.3), 0.14));
+        // A later exponent is a row as the others, after them.
+        let exponents: Vec<Option<f64>> = rows
+            .iter()
+            .filter(|r| r.0 == "hurst")
+            .map(|r| r.3.hurst)
+            .collect();
+        assert_eq!(exponents, [Some(0.3), Some(0.5)]);
+        let planned = p.planned(STEP);
+        assert_eq!(planned.len(), rows.len());
+        assert!(planned
+            .iter()
+            .any(|m| (m.parameter, m.value, m.label.as_str()) == ("hurst", 0.5, "H = 0.5")));
         let area = &rows.iter().find(|r| r.0 == "contact_area").unwrap().3;
         assert_eq!((area.hurst, area.contact_area), (None, 0.5));
         let t = &rows.iter().find(|r| r.0 == "transition").unwrap().3;
@@ -668,6 +731,20 @@ mod tests {
         p.transition.as_mut().unwrap().zeta = 63.0;
         let e = p.validate(0.8, STEP).unwrap_err().to_string();
         assert!(e.contains("sensitivity.transition"), "{e}");
+    }
+
+    #[test]
+    fn a_later_exponent_already_in_the_plan_is_refused_by_name() {
+        for later in [vec![0.3], vec![0.5, 0.5]] {
+            let mut p = plan();
+            p.later_hurst_values = later;
+            let e = p.validate(0.8, STEP).unwrap_err().to_string();
+            assert!(e.contains("sensitivity.later_hurst_values"), "{e}");
+        }
+        let mut p = plan();
+        p.later_hurst_values = vec![1.0];
+        let e = p.validate(0.8, STEP).unwrap_err().to_string();
+        assert!(e.contains("sensitivity.later_hurst_values"), "{e}");
     }
 
     #[test]
@@ -712,7 +789,7 @@ mod tests {
             .estimate()
             .is_some());
         assert!(t
-            .cell("hurst=0.3", "net_flow")
+            .cell("hurst=0.5", "net_flow")
             .unwrap()
             .estimate()
             .is_some());
