@@ -13,7 +13,10 @@
 //! * `flux_out`: in contact at `zeta`, out at `zeta + dzeta`;
 //! * the headline, `flux_in / flux_out`, the points entering contact per point leaving it
 //!   (Persson: 0), and the net flux over the mean one-way flux, `|out - in| / ((out + in)
-//!   / 2)`.
+//!   / 2)`;
+//! * the net flow to non-contact, `flux_out - flux_in`, with the residual of the identity
+//!   that makes it the fall of the contact area over a step at fixed load
+//!   ([`net_flow_residual`]).
 //!
 //! The paper's numbers for each are claims of the definition (`validations/c_flux.toml`).
 //!
@@ -140,6 +143,20 @@ pub fn fluxes(categories: &[u8]) -> (f64, f64) {
     (count(ENTERED), count(LEFT))
 }
 
+/// The residual of the net-flow identity of a step, `(flux_out - flux_in) + (a_r_after -
+/// a_r_before)`, all fractions of the nominal area.
+///
+/// The points in contact after a step are those in contact before, plus those that
+/// entered, less those that left: `a_r_after = a_r_before + flux_in - flux_out`. The net
+/// flow to non-contact, `flux_out - flux_in`, is then the fall of the contact area over the
+/// step: at fixed load, a fall that the contact-area law predicts from the roughness the
+/// step adds. The residual is zero up to rounding where the contact areas count the same
+/// points as the fluxes (both count `p > 0`, [`categories`] and
+/// [`crate::engine::contact::ContactSolution::contact_area`]).
+pub fn net_flow_residual(a_r_before: f64, a_r_after: f64, flux_in: f64, flux_out: f64) -> f64 {
+    (flux_out - flux_in) + (a_r_after - a_r_before)
+}
+
 impl Jobs for FluxScene {
     const FAMILY: &'static str = "flux";
     type Job = FluxJob;
@@ -174,6 +191,17 @@ impl Jobs for FluxScene {
 
     fn headline_only(job: &FluxJob) -> bool {
         !matches!(job, FluxJob::Step(_))
+    }
+
+    /// The scene without the study's later Hurst exponents (`later_hurst_values`): the
+    /// keys of the jobs stored before they were added stay those of the plan that had
+    /// none. A later row's jobs differ by their configuration, which names the exponent.
+    fn key_scene(&self) -> serde_json::Value {
+        let mut scene = self.clone();
+        if let Some(plan) = &mut scene.sensitivity {
+            plan.later_hurst_values.clear();
+        }
+        serde_json::to_value(scene).expect("scenes serialise")
     }
 
     fn work(&self, job: &FluxJob) -> Work {
@@ -248,9 +276,10 @@ impl Experiment for Flux {
             return Vec::new();
         }
         let mut study = sensitivity::study(&s.rows);
-        if let Some(p) = PaperFlux::of(run.criteria, run.scene.relative_step()) {
+        let step = run.scene.relative_step();
+        if let (Some(p), Some(plan)) = (PaperFlux::of(run.criteria, step), &run.scene.sensitivity) {
             let (before, after) = (s.steps.a_before.value, s.steps.a_after.value);
-            study.notes = reading::notes(&s.rows, &p, before, after);
+            study.notes = reading::notes(&s.rows, &plan.planned(step), &p, before, after);
         }
         vec![study]
     }
@@ -334,6 +363,75 @@ mod tests {
         let c = categories(&before, &after);
         assert_eq!(c, vec![BOTH, ENTERED, NEITHER, LEFT, BOTH]);
         assert_eq!(fluxes(&c), (0.2, 0.2));
+    }
+
+    #[test]
+    fn the_net_flow_is_the_fall_of_the_contact_area() {
+        use crate::engine::field::positive_fraction;
+        // Six points: 3 in contact before, 2 after; one entered, two left.
+        let before = [1.0, 0.0, 0.0, 2.0, 0.5, 0.7];
+        let after = [0.5, 0.1, 0.0, 0.0, 0.0, 0.3];
+        let (fin, fout) = fluxes(&categories(&before, &after));
+        let (a0, a1) = (positive_fraction(&before), positive_fraction(&after));
+        assert_eq!((fin, fout), (1.0 / 6.0, 2.0 / 6.0));
+        assert_eq!((a0, a1), (4.0 / 6.0, 3.0 / 6.0));
+        assert!(net_flow_residual(a0, a1, fin, fout).abs() < 1e-15);
+        // A synthetic step on 1000 points (fractions that round), both ways across: the
+        // identity holds to rounding, far below one point (1e-3).
+        let n = 1000;
+        let pressure = |shift: usize, share: usize| -> Vec<f64> {
+            (0..n)
+                .map(|i| ((i * 37 + shift) % 101 < share).then_some(1.0 + i as f64))
+                .map(|p| p.unwrap_or(0.0))
+                .collect()
+        };
+        let (before, after) = (pressure(0, 30), pressure(5, 27));
+        let (fin, fout) = fluxes(&categories(&before, &after));
+        let (a0, a1) = (positive_fraction(&before), positive_fraction(&after));
+        assert!(
+            fin > 0.01 && fout > fin && a1 < a0,
+            "{fin} {fout} {a0} {a1}"
+        );
+        let r = net_flow_residual(a0, a1, fin, fout);
+        assert!(r.abs() < 1e-14, "residual {r}");
+        // An area that counts one point more than the fluxes do leaves one point.
+        let off = net_flow_residual(a0, a1 + 1.0 / n as f64, fin, fout);
+        assert!((off - 1e-3).abs() < 1e-14, "{off}");
+    }
+
+    /// A plan's later Hurst exponents leave the keys' scene unchanged: the jobs stored
+    /// before they were added keep their keys, and the new rows' jobs name their exponent.
+    #[test]
+    fn later_hurst_exponents_leave_the_keys_scene_alone() {
+        let (_, full) = crate::experiments::shipped_valid::<Flux>("c_flux");
+        let plan = full.sensitivity.as_ref().unwrap();
+        assert!(!plan.later_hurst_values.is_empty());
+        let mut without = full.clone();
+        without
+            .sensitivity
+            .as_mut()
+            .unwrap()
+            .later_hurst_values
+            .clear();
+        assert_eq!(full.key_scene(), without.key_scene());
+        assert_eq!(without.key_scene(), serde_json::to_value(&without).unwrap());
+        assert_ne!(full.key_scene(), serde_json::to_value(&full).unwrap());
+        // Every job of the plan without them is a job of the plan with them; the new ones
+        // are the later exponents' rows, one per seed.
+        let (old, new) = (without.jobs(), full.jobs());
+        assert!(old.iter().all(|j| new.contains(j)));
+        let added: Vec<&FluxJob> = new.iter().filter(|j| !old.contains(j)).collect();
+        assert_eq!(
+            added.len(),
+            plan.later_hurst_values.len() * plan.seeds.len()
+        );
+        for job in added {
+            let FluxJob::Study(j) = job else {
+                panic!("{job:?}")
+            };
+            let h = j.config.hurst.expect("a later row names its exponent");
+            assert!(plan.later_hurst_values.contains(&h), "{h}");
+        }
     }
 
     #[test]

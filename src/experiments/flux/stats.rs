@@ -5,7 +5,7 @@
 use std::collections::BTreeMap;
 
 use super::study::sensitivity::{SensitivityRow, StudyJob, StudyResult};
-use super::{FluxJob, FluxOutput, FluxResult, FluxScene};
+use super::{net_flow_residual, FluxJob, FluxOutput, FluxResult, FluxScene};
 use crate::experiments::reentry::net_over_gross;
 use crate::experiments::{Check, Criteria, Detail};
 use crate::stats::{decide, round_sig, Claim, Estimate};
@@ -21,6 +21,10 @@ pub struct StepStats {
     pub ratio: Estimate,
     /// The net flux over the mean one-way flux, per realization.
     pub net: Estimate,
+    /// The net flow to non-contact, `flux_out - flux_in`.
+    pub net_flow: Estimate,
+    /// The net-flow identity's residual ([`net_flow_residual`]), per realization.
+    pub net_flow_residual: Estimate,
     /// The contact area before the step.
     pub a_before: Estimate,
     /// The contact area after it.
@@ -39,6 +43,10 @@ impl StepStats {
             // Per realization, so that the error bar holds the realizations' spread.
             ratio: over(|r| r.flux_in / r.flux_out.max(f64::MIN_POSITIVE)),
             net: over(|r| net_over_gross(r.flux_in, r.flux_out)),
+            net_flow: over(|r| r.flux_out - r.flux_in),
+            net_flow_residual: over(|r| {
+                net_flow_residual(r.a_r_old, r.a_r_new, r.flux_in, r.flux_out)
+            }),
             a_before: over(|r| r.a_r_old),
             a_after: over(|r| r.a_r_new),
         }
@@ -58,7 +66,7 @@ pub fn check(criteria: &Criteria, s: &StepStats) -> Check {
     )
 }
 
-/// The fluxes, the net flux, and the contact area before and after.
+/// The fluxes, the net flux, the net-flow identity, and the contact area before and after.
 pub fn details(s: &StepStats) -> Vec<Detail> {
     vec![
         Detail::new(
@@ -75,6 +83,17 @@ pub fn details(s: &StepStats) -> Vec<Detail> {
             "net_over_gross",
             "net flux over the mean one-way flux, |out - in| / ((out + in) / 2)",
             s.net,
+        ),
+        Detail::new(
+            "net_flow",
+            "net flow to non-contact, flux_out - flux_in, fraction of the nominal area",
+            s.net_flow,
+        ),
+        Detail::new(
+            "net_flow_residual",
+            "net-flow identity at fixed load: (flux_out - flux_in) + (a_r after - a_r before), \
+             zero up to rounding",
+            s.net_flow_residual,
         ),
         Detail::new("contact_area_before", "a_r at zeta", s.a_before),
         Detail::new("contact_area_after", "a_r at zeta + dzeta", s.a_after),

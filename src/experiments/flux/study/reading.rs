@@ -2,9 +2,10 @@
 //! "reentry_visualization"; the numbers are the definition's claims, [`PaperFlux`]):
 //! which rows, in which measure (fraction of the nominal or of the true contact area),
 //! give the paper's numbers; how the flux scales with the step; the relative step the
-//! paper's magnitude would need.
+//! paper's magnitude would need; whether the net flow of the paper's two numbers (at fixed
+//! load, the fall of the contact area over the step) points to a misprinted parameter.
 
-use super::sensitivity::SensitivityRow;
+use super::sensitivity::{PlannedRow, SensitivityRow};
 use crate::experiments::reentry::net_over_gross;
 use crate::experiments::Criteria;
 use crate::plot::significant;
@@ -17,6 +18,9 @@ pub const CLAIM_IN: &str = "flux_in";
 pub const CLAIM_OUT: &str = "flux_out";
 /// See [`CLAIM_IN`].
 pub const CLAIM_TRANSITION: &str = "non_contact_entering_transition_scene";
+
+/// The settings whose rows test a misprint of the paper's stated parameters.
+pub const MISPRINT: [&str; 2] = ["hurst", "contact_area"];
 
 /// The paper's one-step numbers, as the definition's claims state them, and the stated
 /// relative step (the headline step's `dzeta / zeta`).
@@ -51,6 +55,13 @@ impl PaperFlux {
     /// Net over mean one-way flux of the paper's two numbers.
     pub fn net_over_gross(&self) -> f64 {
         net_over_gross(self.flux_in, self.flux_out)
+    }
+
+    /// The net flow of the paper's two numbers, `|in - out|`, fraction of the nominal
+    /// area: at fixed load the fall of the contact area over its step, read to
+    /// non-contact as the text says ([`crate::experiments::flux::net_flow_residual`]).
+    pub fn net_flow(&self) -> f64 {
+        (self.flux_in - self.flux_out).abs()
     }
 
     /// Whether `r` is a row of the stated step.
@@ -237,9 +248,12 @@ fn range(rows: &[&SensitivityRow], f: fn(&SensitivityRow) -> f64) -> String {
 }
 
 /// The notes of the scorecard: what reproduces the paper's numbers or what was ruled out,
-/// the step scaling, and the caption's direction against the text's.
+/// the step scaling, the misprint rows (`planned`: every row the plan states, so that a
+/// row whose jobs have no results yet reads as not run), the net-flow identity and what
+/// the net flow says about a misprint, and the caption's direction against the text's.
 pub fn notes(
     rows: &[SensitivityRow],
+    planned: &[PlannedRow],
     p: &PaperFlux,
     a_r_before: f64,
     a_r_after: f64,
@@ -310,7 +324,9 @@ pub fn notes(
         )
     });
     notes.extend(step_notes(rows, p));
-    notes.extend(hypothesis_notes(rows, p));
+    notes.extend(hypothesis_notes(rows, planned, p));
+    notes.extend(identity_note(rows));
+    notes.extend(net_flow_note(rows, planned, p));
     notes.extend(summary_note(rows, p, &hits));
     notes.push(format!(
         "Direction: the caption's red (entered, {paper_in}) exceeds its blue (left, \
@@ -419,9 +435,10 @@ fn summary_note(rows: &[SensitivityRow], p: &PaperFlux, hits: &[String]) -> Opti
     Some(text)
 }
 
-/// The misprint hypotheses (another Hurst exponent or contact area than stated) and the
-/// paper's transition scene, row by row against the paper.
-fn hypothesis_notes(rows: &[SensitivityRow], p: &PaperFlux) -> Vec<String> {
+/// The misprint hypotheses (another Hurst exponent or contact area than stated; a planned
+/// row without results is not run yet) and the paper's transition scene, row by row
+/// against the paper.
+fn hypothesis_notes(rows: &[SensitivityRow], planned: &[PlannedRow], p: &PaperFlux) -> Vec<String> {
     let mut notes = Vec::new();
     let described = |r: &SensitivityRow| {
         format!(
@@ -439,10 +456,14 @@ fn hypothesis_notes(rows: &[SensitivityRow], p: &PaperFlux) -> Vec<String> {
             .map(|reading| reading.verdict(p, r.flux_in, r.flux_out))
             .join("; ")
     };
-    for r in rows
-        .iter()
-        .filter(|r| r.parameter == "hurst" || r.parameter == "contact_area")
-    {
+    for m in planned.iter().filter(|m| MISPRINT.contains(&m.parameter)) {
+        let Some(r) = rows.iter().find(|r| m.is(r)) else {
+            notes.push(format!(
+                "Misprinted parameter? {}: not run yet (its jobs have no results).",
+                m.label
+            ));
+            continue;
+        };
         notes.push(format!(
             "Misprinted parameter? {} at {}x{} (the rest as the base): {}. Against the \
              paper, read with {}. A match is consistent with a misprint of this parameter, \
@@ -477,6 +498,165 @@ fn hypothesis_notes(rows: &[SensitivityRow], p: &PaperFlux) -> Vec<String> {
         }
     }
     notes
+}
+
+/// The net-flow identity over the rows at fixed load: out - in is the fall of `a_r` over
+/// the step where every residual (its mean and its error bar) lies below half a point of
+/// the row's grid, the identity counting points; the rows at fixed area are not
+/// applicable. None without a row at fixed load.
+fn identity_note(rows: &[SensitivityRow]) -> Option<String> {
+    let checked: Vec<(&SensitivityRow, Estimate)> = rows
+        .iter()
+        .filter_map(|r| Some((r, r.net_flow_residual?)))
+        .collect();
+    if checked.is_empty() {
+        return None;
+    }
+    let holds = |r: &SensitivityRow, e: Estimate| {
+        let half_point = 0.5 / (r.config.n as f64).powi(2);
+        // A missing error bar (one realization) leaves the mean alone to decide.
+        e.value.abs() < half_point && (!e.has_error() || e.std_error < half_point)
+    };
+    let failing: Vec<String> = checked
+        .iter()
+        .filter(|(r, e)| !holds(r, *e))
+        .map(|(r, e)| format!("{} = {} ({:.1e} of A0)", r.parameter, r.label, e.value))
+        .collect();
+    let largest = checked
+        .iter()
+        .map(|(_, e)| e.value.abs())
+        .fold(0.0, f64::max);
+    let fixed_area = rows.len() - checked.len();
+    let count = |k: usize| format!("{k} row{}", if k == 1 { "" } else { "s" });
+    let identity = "the net flow to non-contact, out - in, is the fall of a_r over the step: \
+                    the points in contact after it are those before, plus those that \
+                    entered, less those that left";
+    let mut text = if failing.is_empty() {
+        format!(
+            "Net-flow identity ({identity}): holds at fixed load ({}; the largest |residual| \
+             {} of A0, below half a point of each grid).",
+            count(checked.len()),
+            if largest == 0.0 {
+                "0".to_string()
+            } else {
+                format!("{largest:.1e}")
+            }
+        )
+    } else {
+        format!(
+            "Net-flow identity ({identity}): does not hold in {} of {} at fixed load, where \
+             the contact area and the fluxes count different points: {}.",
+            failing.len(),
+            count(checked.len()),
+            failing.join("; ")
+        )
+    };
+    if fixed_area > 0 {
+        text.push_str(&format!(
+            " Not applicable at fixed area ({}), where the control holds a_r.",
+            count(fixed_area)
+        ));
+    }
+    Some(text)
+}
+
+/// The paper's net flow ([`PaperFlux::net_flow`]) against the stated step's row and every
+/// misprint row the plan states (a row without results is not run yet): which rows give
+/// it, which give the paper's fluxes (either reading), and which give both. None without
+/// a misprint row in the plan.
+fn net_flow_note(rows: &[SensitivityRow], planned: &[PlannedRow], p: &PaperFlux) -> Option<String> {
+    let misprints: Vec<&PlannedRow> = planned
+        .iter()
+        .filter(|m| MISPRINT.contains(&m.parameter))
+        .collect();
+    if misprints.is_empty() {
+        return None;
+    }
+    let paper = p.net_flow();
+    let net_matches = |r: &SensitivityRow| r.net_flow.is_some_and(|e| matches(e, paper));
+    let fluxes_match = |r: &SensitivityRow| {
+        Reading::BOTH
+            .iter()
+            .any(|reading| reading.matches(p, r.flux_in, r.flux_out))
+    };
+    let said = |r: &SensitivityRow| {
+        format!(
+            "{}: {}",
+            r.net_flow
+                .map_or("not measured".into(), |e| e.text(100.0, 3, "%")),
+            if net_matches(r) {
+                "matches"
+            } else {
+                "does not match"
+            }
+        )
+    };
+    let mut parts = Vec::new();
+    let stated = rows.iter().find(|r| p.is_stated_step(r));
+    if let Some(r) = stated {
+        parts.push(format!("at the stated parameters {}", said(r)));
+    }
+    let (mut both, mut net_only, mut fluxes_only, mut not_run) =
+        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for m in misprints {
+        let label = m.label.clone();
+        let Some(r) = rows.iter().find(|r| m.is(r)) else {
+            parts.push(format!("{label}: not run yet"));
+            not_run.push(label);
+            continue;
+        };
+        parts.push(format!("{label}: {}", said(r)));
+        match (net_matches(r), fluxes_match(r)) {
+            (true, true) => both.push(label),
+            (true, false) => net_only.push(label),
+            (false, true) => fluxes_only.push(label),
+            (false, false) => {}
+        }
+    }
+    let mut text = format!(
+        "Net flow and the misprint: the paper's two numbers differ by {} of A0, which at \
+         fixed load is the fall of a_r over its step (to non-contact, as the text says). \
+         Out - in against it (within 10% plus three standard errors): {}.",
+        percent(paper),
+        parts.join("; ")
+    );
+    let none = || "none".to_string();
+    text.push_str(&format!(
+        " Rows run that give both the paper's fluxes (either reading) and its net flow: {}",
+        if both.is_empty() {
+            none()
+        } else {
+            both.join(", ")
+        }
+    ));
+    for (group, what) in [
+        (&net_only, "the net flow but not the fluxes"),
+        (&fluxes_only, "the fluxes but not the net flow"),
+    ] {
+        if !group.is_empty() {
+            text.push_str(&format!("; {what}: {}", group.join(", ")));
+        }
+    }
+    text.push('.');
+    if !both.is_empty() {
+        text.push_str(
+            " A row that gives both is consistent with a misprint of its parameter alone, \
+             not a proof of one.",
+        );
+    }
+    if stated.is_some_and(net_matches) {
+        text.push_str(
+            " The stated parameters give the paper's net flow too: the net flow alone does \
+             not point to a misprint.",
+        );
+    }
+    if !not_run.is_empty() {
+        text.push_str(&format!(
+            " Not run yet: {}; the note reads it once its jobs have results.",
+            not_run.join(", ")
+        ));
+    }
+    Some(text)
 }
 
 #[cfg(test)]
@@ -546,6 +726,8 @@ mod tests {
             net_over_gross: Some(e(crate::experiments::reentry::net_over_gross(
                 flux_in, flux_out,
             ))),
+            net_flow: Some(e(flux_out - flux_in)),
+            net_flow_residual: Some(e(0.0)),
             flux_in_of_noncontact: Some(e(flux_in / 0.86)),
             variance_added: Some(e(variance)),
             modes_added: Some(8.0),
@@ -581,6 +763,118 @@ mod tests {
         // Net/gross there: 0.0002 k / 0.00636.
         let ng = 0.0002 * k / p.mean();
         assert!((s.net_over_gross.unwrap() / ng - 1.0).abs() < 1e-9);
+    }
+
+    /// A misprint row (`parameter` at `value`) with the given fluxes, the rest as the
+    /// stated step's row.
+    fn misprint_row(parameter: &str, value: f64, flux_in: f64, flux_out: f64) -> SensitivityRow {
+        let mut r = step_row(1.0, 1e-3, flux_in, flux_out);
+        r.parameter = parameter.into();
+        r.value = value;
+        r.label = match parameter {
+            "hurst" => format!("H = {value}"),
+            _ => format!("a_r = {value}"),
+        };
+        match parameter {
+            "hurst" => r.config.hurst = Some(value),
+            _ => r.config.contact_area = value,
+        }
+        r
+    }
+
+    fn planned_of(rows: &[SensitivityRow]) -> Vec<PlannedRow> {
+        rows.iter()
+            .map(|r| PlannedRow {
+                parameter: MISPRINT
+                    .into_iter()
+                    .find(|&m| m == r.parameter)
+                    .unwrap_or("dzeta_over_zeta"),
+                value: r.value,
+                label: r.label.clone(),
+            })
+            .collect()
+    }
+
+    #[test]
+    fn the_net_flow_note_reads_a_missing_row_as_not_run() {
+        let p = paper();
+        // Net flows against the paper's 0.078%: stated 0.03% and H = 0.3 0.103% do not
+        // match, H = 0.5 and a_r = 0.5 (0.078%) do. The fluxes match (the text's reading)
+        // at H = 0.3 and a_r = 0.5: a_r = 0.5 gives both.
+        let stated = step_row(1.0, 1e-3, 0.0023, 0.0026);
+        let h3 = misprint_row("hurst", 0.3, 0.00625, 0.00728);
+        let h5 = misprint_row("hurst", 0.5, 0.0030, 0.00378);
+        let a5 = misprint_row("contact_area", 0.5, 0.0063, 0.00708);
+        let planned = planned_of(&[stated.clone(), h3.clone(), h5.clone(), a5.clone()]);
+        let all_notes = |rows: &[SensitivityRow]| notes(rows, &planned, &p, 0.14, 0.1397);
+        let note = |rows: &[SensitivityRow]| {
+            all_notes(rows)
+                .into_iter()
+                .find(|n| n.starts_with("Net flow and the misprint"))
+                .expect("the net flow note")
+        };
+        // Before the campaign computes the H = 0.5 row.
+        let before = [stated.clone(), h3.clone(), a5.clone()];
+        let text = note(&before);
+        for expected in [
+            "the paper's two numbers differ by 0.078% of A0",
+            "at the stated parameters 0.030% +- 0.000%: does not match",
+            "H = 0.3: 0.103% +- 0.000%: does not match",
+            "H = 0.5: not run yet",
+            "a_r = 0.5: 0.078% +- 0.000%: matches",
+            "both the paper's fluxes (either reading) and its net flow: a_r = 0.5; \
+             the fluxes but not the net flow: H = 0.3.",
+            "consistent with a misprint of its parameter alone",
+            "Not run yet: H = 0.5",
+        ] {
+            assert!(text.contains(expected), "{expected}: {text}");
+        }
+        let missing = "Misprinted parameter? H = 0.5: not run yet (its jobs have no results).";
+        assert!(all_notes(&before).iter().any(|n| n == missing));
+        // After.
+        let after = note(&[stated, h3, h5, a5]);
+        for expected in [
+            "H = 0.5: 0.078% +- 0.000%: matches",
+            "its net flow: a_r = 0.5; the net flow but not the fluxes: H = 0.5; the fluxes \
+             but not the net flow: H = 0.3.",
+        ] {
+            assert!(after.contains(expected), "{expected}: {after}");
+        }
+        assert!(!after.contains("not run yet"), "{after}");
+        assert!(!after.contains("The stated parameters give"), "{after}");
+        // Where the stated step gives the net flow too, the net flow alone is no sign.
+        let stated = step_row(1.0, 1e-3, 0.0023, 0.00308);
+        let text = note(&[stated]);
+        assert!(text.contains("at the stated parameters 0.078%"), "{text}");
+        assert!(text.contains("the net flow alone does not point"), "{text}");
+    }
+
+    #[test]
+    fn the_identity_note_names_a_row_that_breaks_it() {
+        let mut rows = vec![
+            step_row(1.0, 1e-3, 0.0023, 0.0026),
+            misprint_row("hurst", 0.3, 0.00625, 0.00728),
+        ];
+        let identity = |rows: &[SensitivityRow]| identity_note(rows).expect("fixed-load rows");
+        let holds = identity(&rows);
+        assert!(holds.contains("holds at fixed load (2 rows;"), "{holds}");
+        assert!(holds.contains("largest |residual| 0 of A0"), "{holds}");
+        // One point of a 64^2 grid is 2.4e-4 of A0: a residual of one point breaks it.
+        rows[1].net_flow_residual = Some(Estimate::new(1.0 / 4096.0, 0.0));
+        let breaks = identity(&rows);
+        assert!(breaks.contains("does not hold in 1 of 2 rows"), "{breaks}");
+        assert!(
+            breaks.contains("hurst = H = 0.3 (2.4e-4 of A0)"),
+            "{breaks}"
+        );
+        // Fixed area: not applicable.
+        rows[1].net_flow_residual = None;
+        let fixed = identity(&rows);
+        assert!(fixed.contains("holds at fixed load (1 row;"), "{fixed}");
+        assert!(
+            fixed.contains("Not applicable at fixed area (1 row)"),
+            "{fixed}"
+        );
     }
 
     #[test]

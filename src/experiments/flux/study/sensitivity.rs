@@ -13,7 +13,9 @@
 //! * `control`: the step at fixed load (0) or at fixed contact area (1);
 //! * `solver`: GFMD (0) or CG (1);
 //! * `hurst`: the Hurst exponent, and `contact_area`: the contact area at `zeta` (were the
-//!   paper's stated parameters misprinted?);
+//!   paper's stated parameters misprinted?); the Hurst exponents of `later_hurst_values`
+//!   are rows as those of `hurst_values`, added after the full scene's study had run (the
+//!   jobs' keys leave that list out, [`crate::experiments::flux::FluxScene`]'s `key_scene`);
 //! * `transition`: the paper's transition scene (section 3.1, figure "reentry_histogram":
 //!   H = 0.5, a_r = 0.01, zeta 63 -> 63.3), whose share of the non-contact that enters
 //!   contact the paper gives as about 1%.
@@ -25,6 +27,13 @@
 //! and the height variance they carry, relative to the variance at `zeta` (on a coarse
 //! grid two nominal steps can add the same shells). Configurations shared by several rows
 //! (the base is in every list) run once.
+//!
+//! Each row at fixed load also checks the net-flow identity: the points in contact after
+//! the step are those before, plus those that entered, less those that left, so the net
+//! flow to non-contact, `out - in`, is the fall of the contact area over the step,
+//! `-(a_r(zeta + dzeta) - a_r(zeta))` ([`crate::experiments::flux::net_flow_residual`]).
+//! At fixed area the control holds `a_r`, and the identity says nothing about its fall
+//! at fixed load: those rows leave the residual empty (not applicable).
 
 use serde::{Deserialize, Serialize};
 
@@ -32,6 +41,7 @@ use crate::engine::solver::SolverKind;
 use crate::engine::spectrum::ShellSpectrum;
 use crate::error::{check_open, check_positive, Error, Result};
 use crate::experiments::contact_change::categories;
+use crate::experiments::flux::net_flow_residual;
 use crate::experiments::reentry::net_over_gross;
 use crate::experiments::scene::Base;
 use crate::experiments::study::{Cell, Study};
@@ -72,6 +82,13 @@ pub struct SensitivityPlan {
     /// Hurst exponents (the scene's is the base's).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub hurst_values: Vec<f64>,
+    /// More Hurst exponents, rows as those of `hurst_values`, added after the full scene's
+    /// study had run. The jobs' keys see the plan without this list
+    /// ([`crate::experiments::flux::FluxScene`]'s `key_scene`), so the stored results keep
+    /// their keys; the new rows' jobs are told apart by their configuration, which names
+    /// the exponent.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub later_hurst_values: Vec<f64>,
     /// Contact areas at `zeta` (the base's is `contact_area`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub contact_areas: Vec<f64>,
@@ -162,6 +179,25 @@ pub struct StudyResult {
     pub modes_added: Option<u64>,
 }
 
+/// A row the plan states, whether or not its jobs have results: its setting, value and
+/// label, as the row's own ([`SensitivityRow`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlannedRow {
+    /// The setting varied.
+    pub parameter: &'static str,
+    /// Its value.
+    pub value: f64,
+    /// The value in words.
+    pub label: String,
+}
+
+impl PlannedRow {
+    /// Whether `row` is this planned row's result.
+    pub fn is(&self, row: &SensitivityRow) -> bool {
+        row.parameter == self.parameter && row.value == self.value
+    }
+}
+
 /// One row of the study: one setting at one value, averaged over realizations.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SensitivityRow {
@@ -189,6 +225,13 @@ pub struct SensitivityRow {
     /// Net over mean one-way flux, `|out - in| / ((out + in) / 2)`, per realization.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub net_over_gross: Option<Estimate>,
+    /// Net flow to non-contact, `out - in`, fraction of the nominal area.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub net_flow: Option<Estimate>,
+    /// The net-flow identity's residual, `(out - in) + (a_r(zeta + dzeta) - a_r(zeta))`,
+    /// per realization (none at fixed area, where the identity is not applicable).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub net_flow_residual: Option<Estimate>,
     /// Share of the non-contact at `zeta` in contact after the step, `in / (1 - a_r)`.
     // Serialised as "zero_bin": the stored name is kept for the committed results.
     #[serde(rename = "zero_bin", default, skip_serializing_if = "Option::is_none")]
@@ -222,6 +265,16 @@ impl SensitivityPlan {
         }
         for &h in &self.hurst_values {
             check_open("sensitivity.hurst_values", h, 0.0, 1.0)?;
+        }
+        for (k, &h) in self.later_hurst_values.iter().enumerate() {
+            check_open("sensitivity.later_hurst_values", h, 0.0, 1.0)?;
+            if self.hurst_values.contains(&h) || self.later_hurst_values[..k].contains(&h) {
+                return Err(Error::invalid(
+                    "sensitivity.later_hurst_values",
+                    h,
+                    "an exponent not already in hurst_values or earlier in this list",
+                ));
+            }
         }
         for &a in &self.contact_areas {
             check_open("sensitivity.contact_areas", a, 0.0, 1.0)?;
@@ -331,7 +384,7 @@ impl SensitivityPlan {
             };
             rows.push(("solver", v, solver.name().to_string(), c));
         }
-        for &h in &self.hurst_values {
+        for &h in self.hurst_values.iter().chain(&self.later_hurst_values) {
             let c = StudyConfig {
                 hurst: Some(h),
                 ..base.clone()
@@ -367,6 +420,18 @@ impl SensitivityPlan {
             rows.push(("transition", t.contact_area, label, c));
         }
         rows
+    }
+
+    /// Every row the plan states, run or not (the steps in multiples of `step`).
+    pub fn planned(&self, step: f64) -> Vec<PlannedRow> {
+        self.rows(step)
+            .into_iter()
+            .map(|(parameter, value, label, _)| PlannedRow {
+                parameter,
+                value,
+                label,
+            })
+            .collect()
     }
 
     /// The jobs: every distinct configuration once, for every seed.
@@ -412,6 +477,10 @@ impl SensitivityPlan {
                 let of_noncontact =
                     |r: &StudyResult| r.flux_in / (1.0 - r.a_r_old).max(f64::MIN_POSITIVE);
                 let variances: Option<Vec<f64>> = runs.iter().map(|r| r.variance_added).collect();
+                // Not applicable at fixed area, where the control holds a_r.
+                let residual = (!config.fixed_area).then(|| {
+                    mean(&|r| net_flow_residual(r.a_r_old, r.a_r_new, r.flux_in, r.flux_out))
+                });
                 let modes: Option<Vec<u64>> = runs.iter().map(|r| r.modes_added).collect();
                 Some(SensitivityRow {
                     parameter: parameter.to_string(),
@@ -425,6 +494,8 @@ impl SensitivityPlan {
                     flux_out_of_contact: mean(&|r| of_contact(r.flux_out, r)),
                     contact_area: mean(&|r| r.a_r_old),
                     net_over_gross: Some(mean(&|r| net_over_gross(r.flux_in, r.flux_out))),
+                    net_flow: Some(mean(&|r| r.flux_out - r.flux_in)),
+                    net_flow_residual: residual,
                     flux_in_of_noncontact: Some(mean(&of_noncontact)),
                     variance_added: variances.map(|v| Estimate::mean_of(&v)),
                     modes_added: modes
@@ -455,6 +526,11 @@ pub fn study(rows: &[SensitivityRow]) -> Study {
                 "out of contact, % of the contact area",
             ),
             ("net_over_gross", "net / mean one-way flux"),
+            ("net_flow", "net flow to non-contact, out - in, % of A0"),
+            (
+                "net_flow_residual",
+                "net flow + change of a_r in the step, % of A0 (fixed load; empty: n/a)",
+            ),
             // The column of `flux_in_of_noncontact`: the stored name is kept for the
             // committed results.
             ("zero_bin", "non-contact entering contact, %"),
@@ -466,6 +542,8 @@ pub fn study(rows: &[SensitivityRow]) -> Study {
     .percent(&[
         "flux_in",
         "flux_out",
+        "net_flow",
+        "net_flow_residual",
         "flux_in_of_contact",
         "flux_out_of_contact",
         "zero_bin",
@@ -474,7 +552,10 @@ pub fn study(rows: &[SensitivityRow]) -> Study {
     .about(
         "Each row moves one setting away from the base configuration (the first row of each \
          setting shares it) and repeats the step over the realizations: mean and standard \
-         error over realizations.",
+         error over realizations. At fixed load the net flow to non-contact is the fall of \
+         a_r over the step (the points in contact after it are those before, plus those \
+         that entered, less those that left): the residual of that identity is its own \
+         column, empty at fixed area, where the control holds a_r.",
     );
     for r in rows {
         let key = if r.parameter == "transition" {
@@ -496,6 +577,8 @@ pub fn study(rows: &[SensitivityRow]) -> Study {
                 r.flux_in_of_contact.into(),
                 r.flux_out_of_contact.into(),
                 r.net_over_gross.into(),
+                r.net_flow.into(),
+                r.net_flow_residual.into(),
                 r.flux_in_of_noncontact.into(),
                 r.contact_area.into(),
                 r.variance_added.into(),
@@ -582,6 +665,7 @@ mod tests {
             fixed_area: true,
             solvers: vec![SolverKind::Gfmd, SolverKind::Cg],
             hurst_values: vec![0.3],
+            later_hurst_values: vec![0.5],
             contact_areas: vec![0.5],
             transition: Some(TransitionRow {
                 n: 128,
@@ -600,7 +684,7 @@ mod tests {
         let p = plan();
         p.validate(0.8, STEP).unwrap();
         let rows = p.rows(STEP);
-        assert_eq!(rows.len(), 2 + 3 + 2 + 2 + 2 + 2 + 1 + 1 + 1);
+        assert_eq!(rows.len(), 2 + 3 + 2 + 2 + 2 + 2 + 1 + 1 + 1 + 1);
         // The base appears once per list; the jobs run it once.
         let base = p.base(STEP);
         assert_eq!(rows.iter().filter(|r| r.3 == base).count(), 6);
@@ -623,6 +707,18 @@ mod tests {
         // The misprint hypotheses and the transition scene carry their own settings.
         let hurst = &rows.iter().find(|r| r.0 == "hurst").unwrap().3;
         assert_eq!((hurst.hurst, hurst.contact_area), (Some(0.3), 0.14));
+        // A later exponent is a row as the others, after them.
+        let exponents: Vec<Option<f64>> = rows
+            .iter()
+            .filter(|r| r.0 == "hurst")
+            .map(|r| r.3.hurst)
+            .collect();
+        assert_eq!(exponents, [Some(0.3), Some(0.5)]);
+        let planned = p.planned(STEP);
+        assert_eq!(planned.len(), rows.len());
+        assert!(planned
+            .iter()
+            .any(|m| (m.parameter, m.value, m.label.as_str()) == ("hurst", 0.5, "H = 0.5")));
         let area = &rows.iter().find(|r| r.0 == "contact_area").unwrap().3;
         assert_eq!((area.hurst, area.contact_area), (None, 0.5));
         let t = &rows.iter().find(|r| r.0 == "transition").unwrap().3;
@@ -635,6 +731,68 @@ mod tests {
         p.transition.as_mut().unwrap().zeta = 63.0;
         let e = p.validate(0.8, STEP).unwrap_err().to_string();
         assert!(e.contains("sensitivity.transition"), "{e}");
+    }
+
+    #[test]
+    fn a_later_exponent_already_in_the_plan_is_refused_by_name() {
+        for later in [vec![0.3], vec![0.5, 0.5]] {
+            let mut p = plan();
+            p.later_hurst_values = later;
+            let e = p.validate(0.8, STEP).unwrap_err().to_string();
+            assert!(e.contains("sensitivity.later_hurst_values"), "{e}");
+        }
+        let mut p = plan();
+        p.later_hurst_values = vec![1.0];
+        let e = p.validate(0.8, STEP).unwrap_err().to_string();
+        assert!(e.contains("sensitivity.later_hurst_values"), "{e}");
+    }
+
+    #[test]
+    fn the_net_flow_identity_is_read_at_fixed_load_only() {
+        // Steps whose contact areas count the points the fluxes count: a_r after = a_r
+        // before + in - out (seed 1: in 0.001, out 0.003; seed 2: in 0.002, out 0.003).
+        let p = plan();
+        let jobs = p.jobs(STEP);
+        let results: Vec<StudyResult> = jobs
+            .iter()
+            .map(|j| {
+                let (a, fin, fout) = (0.14, 0.001 * j.seed as f64, 0.003);
+                StudyResult {
+                    a_r_old: a,
+                    a_r_new: a + fin - fout,
+                    flux_in: fin,
+                    flux_out: fout,
+                    max_residual: 0.0,
+                    variance_added: None,
+                    modes_added: None,
+                }
+            })
+            .collect();
+        let pairs: Vec<(&StudyJob, &StudyResult)> = jobs.iter().zip(&results).collect();
+        let rows = p.conclude(STEP, &pairs);
+        for r in &rows {
+            let net = r.net_flow.unwrap();
+            assert!((net.value - 0.0015).abs() < 1e-15, "{}: {net:?}", r.label);
+            match (r.config.fixed_area, r.net_flow_residual) {
+                (false, Some(e)) => assert!(e.value.abs() < 1e-15, "{}: {e:?}", r.label),
+                (true, None) => {}
+                (fixed, e) => panic!("{}: fixed area {fixed}, residual {e:?}", r.label),
+            }
+        }
+        assert_eq!(rows.iter().filter(|r| r.config.fixed_area).count(), 1);
+        // The table shows both, the residual empty at fixed area.
+        let t = study(&rows);
+        assert_eq!(t.cell("control=1", "net_flow_residual"), Some(Cell::Empty));
+        assert!(t
+            .cell("control=0", "net_flow_residual")
+            .unwrap()
+            .estimate()
+            .is_some());
+        assert!(t
+            .cell("hurst=0.5", "net_flow")
+            .unwrap()
+            .estimate()
+            .is_some());
     }
 
     #[test]
