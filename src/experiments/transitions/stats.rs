@@ -601,8 +601,9 @@ mod tests {
         let r = synthetic(&scene, 1.0, 1.0 / (2.0 * scene.dzeta), &walkers);
         let ratio = lost_over_persson(&scene, &r).unwrap();
         let expected = 1.0 / (4.0 * 0.157_299_207_050_285_13);
+        // statrs' erfc agrees with the tabulated erfc(1) to 5e-11 relative.
         assert!(
-            (ratio / expected - 1.0).abs() < 1e-12,
+            (ratio / expected - 1.0).abs() < 1e-9,
             "{ratio} vs {expected}"
         );
         // No broadening: Persson loses none, no ratio.
