@@ -5,7 +5,7 @@
 use std::collections::BTreeMap;
 
 use super::figures::{asymptote_figure, asymptote_table, curve_figures, curve_table};
-use super::stats::{FrozenStats, MODE_WINDOW};
+use super::stats::{onset_key, FrozenStats, MODE_WINDOW, PANEL_LOADS};
 use super::ModeScene;
 use crate::error::{Error, Result};
 use crate::experiments::ensemble::by_load;
@@ -118,6 +118,7 @@ impl Experiment for ModeFrozen {
                 k2,
             ));
         }
+        details.extend(new_details(scene, s));
         details
     }
 
@@ -310,6 +311,87 @@ impl Experiment for ModeFrozen {
         figures.push(asymptote_figure(run.scene, s, paper_k(run.criteria)));
         figures
     }
+}
+
+/// The statistics read by the paper's claims beyond the changes and asymptotes: the
+/// largest change near full contact, the end-of-sweep long-minus-short difference of panels
+/// c and d, the peak of the shortest target, the curvature of the fall-off and the onset
+/// of every load.
+fn new_details(scene: &ModeScene, s: &FrozenStats) -> Vec<Detail> {
+    let last = scene.targets.len() - 1;
+    let mut details = Vec::new();
+    if let Some(c) = s.change_full_contact_max {
+        details.push(
+            Detail::new(
+                "change_full_contact_max",
+                format!(
+                    "the change of E_norm after resolution of largest magnitude over the \
+                     targets at the highest load, a_r = {}",
+                    s.highest
+                ),
+                c,
+            )
+            .persson(0.0),
+        );
+    }
+    if let Some(d) = s.end_long_minus_short {
+        details.push(
+            Detail::new(
+                "e_end_long_minus_short_cd",
+                format!(
+                    "E_norm at zeta = {} of zeta_t = {} minus that of zeta_t = {}, per \
+                     realization, mean of the loads nearest a_r = {} and {}",
+                    scene.zeta_end,
+                    scene.targets[0],
+                    scene.targets[last],
+                    PANEL_LOADS[0],
+                    PANEL_LOADS[1]
+                ),
+                d,
+            )
+            .persson(0.0),
+        );
+    }
+    if let Some(p) = s.peak_short_partial {
+        details.push(Detail::new(
+            "peak_short_partial",
+            format!(
+                "largest ensemble E_norm over the sweep of zeta_t = {}, mean over the loads in \
+                 partial contact at zeta_t (jackknife error)",
+                scene.targets[last]
+            ),
+            p,
+        ));
+    }
+    if let Some(f) = s.falloff_mid_chord {
+        details.push(
+            Detail::new(
+                "falloff_mid_chord_zeta",
+                format!(
+                    "E_norm of zeta_t = {} at the middle of zeta = {} zeta_t .. {} minus the \
+                     chord linear in zeta, over realizations and partial-contact loads",
+                    scene.targets[0], scene.frozen_from, scene.zeta_end
+                ),
+                f,
+            )
+            .persson(0.0),
+        );
+    }
+    for &(load, onset) in &s.onsets {
+        details.push(
+            Detail::new(
+                onset_key(load),
+                format!(
+                    "E_norm at zeta = {} zeta_t, mean over targets, then over realizations, \
+                     a_r = {load} at full resolution",
+                    scene.onset_ratio
+                ),
+                onset,
+            )
+            .persson(0.0),
+        );
+    }
+    details
 }
 
 #[cfg(test)]

@@ -99,6 +99,74 @@ pub fn deviation_growth(low: Estimate, head: Estimate) -> Estimate {
     )
 }
 
+/// The corrected theory's overestimate of the total energy at step `k`:
+/// `sum_r E_c / sum_r E_exa - 1`, the ratio of sums over realizations.
+pub fn overestimate(load: &Load, k: usize) -> Estimate {
+    let r = load.ratio(|r| (r.e_c[k], r.e_exa[k]));
+    Estimate::new(r.value - 1.0, r.std_error)
+}
+
+/// Loads at or above this contact area are the high and intermediate loads of the
+/// caption of fig. E_vs_ar ("very good" there).
+pub const HIGH_LOADS_FROM: f64 = 0.05;
+
+/// Of the values `E_exa / E_c` at full resolution of the loads with a contact area of at
+/// least [`HIGH_LOADS_FROM`], the deviation `E_exa / E_c - 1` of largest magnitude, with its
+/// standard error (none without such a load).
+pub fn corrected_worst(loads: &[Load], end: usize) -> Option<Estimate> {
+    loads
+        .iter()
+        .filter(|l| l.contact_area >= HIGH_LOADS_FROM)
+        .map(|l| {
+            let c = ratio(l, end, Theory::Corrected);
+            Estimate::new(c.value - 1.0, c.std_error)
+        })
+        .max_by(|a, b| a.value.abs().total_cmp(&b.value.abs()))
+}
+
+/// The coefficient of variation (sample standard deviation over mean) of the increments
+/// of `e` over the consecutive steps of `window` (NaN with fewer than two increments).
+pub fn increment_cv(e: &[f64], window: &[usize]) -> f64 {
+    let inc: Vec<f64> = window.windows(2).map(|p| e[p[1]] - e[p[0]]).collect();
+    let n = inc.len() as f64;
+    if inc.len() < 2 {
+        return f64::NAN;
+    }
+    let mean = inc.iter().sum::<f64>() / n;
+    let var = inc.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0);
+    var.sqrt() / mean
+}
+
+/// How much more the numerator of eq. (S_q_numerical) scatters than its denominator: per
+/// realization and increment window, `ln[CV(increments of E_exa) / CV(increments of
+/// E_P)]`; the mean over windows and realizations with its standard error.
+pub fn numerator_cv_log_ratio(load: &Load) -> Estimate {
+    let logs: Vec<f64> = load
+        .runs
+        .iter()
+        .flat_map(|r| {
+            r.windows
+                .iter()
+                .map(|w| (increment_cv(&r.e_exa, w) / increment_cv(&r.e_p, w)).ln())
+        })
+        .filter(|x| x.is_finite())
+        .collect();
+    Estimate::mean_of(&logs)
+}
+
+/// Of the loads, the largest `|sum_r a_r / sum_r a_c - 1|` at step `k`: the measured
+/// contact area against the corrected theory's at the same load and magnification, with
+/// its standard error (ratio of sums).
+pub fn area_corrected_deviation(loads: &[Load], k: usize) -> Option<Estimate> {
+    loads
+        .iter()
+        .map(|l| {
+            let r = l.ratio(|r| (r.contact_area[k], r.area_corrected[k]));
+            Estimate::new((r.value - 1.0).abs(), r.std_error)
+        })
+        .max_by(|a, b| a.value.total_cmp(&b.value))
+}
+
 /// A load at full resolution: the measured area and both theories' ratios.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AtFullResolution {
@@ -245,6 +313,53 @@ pub fn details(
         ),
         h.growth(),
     ));
+    let headline = group(loads, scene.headline_contact_area);
+    details.push(
+        Detail::new(
+            "overestimate_headline",
+            format!(
+                "E_c / E_exa - 1 at full resolution at the headline load (a_r = {:.3}): the \
+                 corrected theory's overestimate of the total energy",
+                h.head.area.value
+            ),
+            overestimate(headline, end),
+        )
+        .persson(0.0),
+    );
+    if let Some(worst) = corrected_worst(loads, end) {
+        details.push(
+            Detail::new(
+                "corrected_worst_high",
+                format!(
+                    "E_exa / E_c - 1 at full resolution of largest magnitude over the loads \
+                     with a_r >= {HIGH_LOADS_FROM}"
+                ),
+                worst,
+            )
+            .persson(0.0),
+        );
+    }
+    details.push(Detail::new(
+        "numerator_cv_log_ratio",
+        format!(
+            "ln of CV(increments of E_exa) / CV(increments of E_P) over each window's \
+             single-shell steps, mean over windows and realizations at the headline load \
+             (a_r = {:.3})",
+            h.head.area.value
+        ),
+        numerator_cv_log_ratio(headline),
+    ));
+    if let Some(dev) = area_corrected_deviation(loads, end) {
+        details.push(
+            Detail::new(
+                "area_corrected_deviation",
+                "|measured a_r / corrected theory's a_r - 1| at full resolution, largest over \
+                 the loads",
+                dev,
+            )
+            .persson(0.0),
+        );
+    }
     details
 }
 
