@@ -526,6 +526,38 @@ mod tests {
     }
 
     #[test]
+    fn new_statistics_follow_their_formulas() {
+        let mut a = run(vec![1.0, 2.0, 5.0, 10.0], vec![2.0, 3.0, 5.0, 8.0]);
+        let b = run(vec![2.0, 2.5, 3.0, 3.5], vec![4.0, 5.0, 6.0, 7.0]);
+        // Increments of E_exa 1, 3, 5 (CV 2/3), of E_P 1, 2, 3 (CV 1/2).
+        assert!((increment_cv(&a.e_exa, &[0, 1, 2, 3]) - 2.0 / 3.0).abs() < 1e-15);
+        a.windows = vec![vec![0, 1, 2, 3]];
+        let load = Load {
+            contact_area: 0.2,
+            runs: vec![&a],
+        };
+        let l = numerator_cv_log_ratio(&load);
+        assert!((l.value - (4.0f64 / 3.0).ln()).abs() < 1e-14, "{l:?}");
+        let both = Load {
+            contact_area: 0.2,
+            runs: vec![&a, &b],
+        };
+        // sum E_c / sum E_exa - 1 at the end: 0.8 (8 + 7) / (10 + 3.5) - 1.
+        let o = overestimate(&both, 3);
+        assert!((o.value - (12.0 / 13.5 - 1.0)).abs() < 1e-15, "{o:?}");
+        // Measured 0.2 against corrected 0.3 at every load: |2/3 - 1|.
+        let d = area_corrected_deviation(std::slice::from_ref(&both), 3).unwrap();
+        assert!((d.value - 1.0 / 3.0).abs() < 1e-15, "{d:?}");
+        // The load below HIGH_LOADS_FROM is left out even though it deviates more.
+        let low = Load {
+            contact_area: 0.01,
+            runs: vec![&b],
+        };
+        let w = corrected_worst(&[low, both], 3).unwrap();
+        assert!((w.value - (13.5 / 12.0 - 1.0)).abs() < 1e-15, "{w:?}");
+    }
+
+    #[test]
     fn the_reference_step_is_two_octaves_below_the_end() {
         let zetas = [1.0, 2.0, 3.0, 4.0, 8.0, 16.0];
         assert_eq!(two_octaves_below_end(&zetas), 3);
