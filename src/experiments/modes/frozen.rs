@@ -430,11 +430,10 @@ mod tests {
             .iter()
             .map(|zt| value(&format!("change_ar{highest}_zt{zt}")))
             .collect();
-        let max =
-            changes
-                .iter()
-                .copied()
-                .fold(0.0, |m: f64, x| if x.abs() > m.abs() { x } else { m });
+        let max = changes
+            .iter()
+            .copied()
+            .fold(0.0, |m: f64, x| if x.abs() > m.abs() { x } else { m });
         assert_eq!(value("change_full_contact_max"), max);
         // At the end of the sweep every target holds K1 exp(-K2 x) + b / zeta_end.
         assert!(value("e_end_long_minus_short_cd").abs() < 1e-12);
