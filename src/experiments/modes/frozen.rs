@@ -5,7 +5,7 @@
 use std::collections::BTreeMap;
 
 use super::figures::{asymptote_figure, asymptote_table, curve_figures, curve_table};
-use super::stats::{FrozenStats, MODE_WINDOW};
+use super::stats::{onset_key, FrozenStats, MODE_WINDOW, PANEL_LOADS};
 use super::ModeScene;
 use crate::error::{Error, Result};
 use crate::experiments::ensemble::by_load;
@@ -120,6 +120,7 @@ impl Experiment for ModeFrozen {
                 k2,
             ));
         }
+        details.extend(new_details(scene, s));
         details
     }
 
@@ -327,6 +328,87 @@ impl Experiment for ModeFrozen {
     }
 }
 
+/// The statistics read by the paper's claims beyond the changes and asymptotes: the
+/// largest change near full contact, the end-of-sweep long-minus-short difference of panels
+/// c and d, the peak of the shortest target, the curvature of the fall-off and the onset
+/// of every load.
+fn new_details(scene: &ModeScene, s: &FrozenStats) -> Vec<Detail> {
+    let last = scene.targets.len() - 1;
+    let mut details = Vec::new();
+    if let Some(c) = s.change_full_contact_max {
+        details.push(
+            Detail::new(
+                "change_full_contact_max",
+                format!(
+                    "the change of E_norm after resolution of largest magnitude over the \
+                     targets at the highest load, a_r = {}",
+                    s.highest
+                ),
+                c,
+            )
+            .persson(0.0),
+        );
+    }
+    if let Some(d) = s.end_long_minus_short {
+        details.push(
+            Detail::new(
+                "e_end_long_minus_short_cd",
+                format!(
+                    "E_norm at zeta = {} of zeta_t = {} minus that of zeta_t = {}, per \
+                     realization, mean of the loads nearest a_r = {} and {}",
+                    scene.zeta_end,
+                    scene.targets[0],
+                    scene.targets[last],
+                    PANEL_LOADS[0],
+                    PANEL_LOADS[1]
+                ),
+                d,
+            )
+            .persson(0.0),
+        );
+    }
+    if let Some(p) = s.peak_short_partial {
+        details.push(Detail::new(
+            "peak_short_partial",
+            format!(
+                "largest ensemble E_norm over the sweep of zeta_t = {}, mean over the loads in \
+                 partial contact at zeta_t (jackknife error)",
+                scene.targets[last]
+            ),
+            p,
+        ));
+    }
+    if let Some(f) = s.falloff_mid_chord {
+        details.push(
+            Detail::new(
+                "falloff_mid_chord_zeta",
+                format!(
+                    "E_norm of zeta_t = {} at the middle of zeta = {} zeta_t .. {} minus the \
+                     chord linear in zeta, over realizations and partial-contact loads",
+                    scene.targets[0], scene.frozen_from, scene.zeta_end
+                ),
+                f,
+            )
+            .persson(0.0),
+        );
+    }
+    for &(load, onset) in &s.onsets {
+        details.push(
+            Detail::new(
+                onset_key(load),
+                format!(
+                    "E_norm at zeta = {} zeta_t, mean over targets, then over realizations, \
+                     a_r = {load} at full resolution",
+                    scene.onset_ratio
+                ),
+                onset,
+            )
+            .persson(0.0),
+        );
+    }
+    details
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::stats::asymptote;
@@ -341,6 +423,77 @@ mod tests {
         scene.frozen_from = 5.0;
         let e = ModeFrozen::validate(&scene).unwrap_err().to_string();
         assert!(e.contains("targets") && e.contains("zeta_end"), "{e}");
+    }
+
+    #[test]
+    fn new_details_follow_their_formulas() {
+        use super::super::stats::{jackknife_error, mid_chord, onset_key};
+        use crate::experiments::climb::step_of;
+        let (scene, _, criteria) = shipped("e_frozen");
+        let (k, b, onset) = ((0.9, 1.0), 0.8, 0.05);
+        let results = synthetic(&scene, k, b, onset);
+        let c = ModeFrozen::conclude(&criteria, &scene, &results).unwrap();
+        let value = |key: &str| c.detail(key).unwrap().value.value;
+        // Every band holds `onset` before resolution.
+        for &a in &scene.contact_areas {
+            assert!((value(&onset_key(a)) - onset).abs() < 1e-12);
+        }
+        // The largest |change| at the highest load, among its change details.
+        let highest = scene.contact_areas.iter().copied().fold(0.0, f64::max);
+        let changes: Vec<f64> = scene
+            .targets
+            .iter()
+            .map(|zt| value(&format!("change_ar{highest}_zt{zt}")))
+            .collect();
+        let max = changes
+            .iter()
+            .copied()
+            .fold(0.0, |m: f64, x| if x.abs() > m.abs() { x } else { m });
+        assert_eq!(value("change_full_contact_max"), max);
+        // At the end of the sweep every target holds K1 exp(-K2 x) + b / zeta_end.
+        assert!(value("e_end_long_minus_short_cd").abs() < 1e-12);
+        // Against 1/zeta the fall-off is E + b / zeta: the chord in zeta lies above it.
+        let steps = scene.steps();
+        let zt = scene.targets[0];
+        let (za, zb) = (scene.frozen_from * zt, scene.zeta_end);
+        let zm = steps
+            .iter()
+            .copied()
+            .min_by(|x, y| {
+                (x - (za + zb) / 2.0)
+                    .abs()
+                    .total_cmp(&(y - (za + zb) / 2.0).abs())
+            })
+            .unwrap();
+        let f = |z: f64| b / z;
+        let expect = f(zm) - (f(za) + (f(zb) - f(za)) * (zm - za) / (zb - za));
+        assert!((mid_chord(&scene, &results[0].1, 0) - expect).abs() < 1e-12);
+        assert!(expect < 0.0);
+        // The shortest target peaks on resolution, K1 exp(-K2 x_l) + b / zeta_t, at the
+        // loads in partial contact there (synthetic a_r = a_l (zeta / zeta_end)^-x_l).
+        let t = scene.targets.len() - 1;
+        let zt = scene.targets[t];
+        let peaks: Vec<f64> = scene
+            .contact_areas
+            .iter()
+            .enumerate()
+            .map(|(l, &a)| (0.1 * (l + 1) as f64, a))
+            .filter(|&(x, a)| a * (zt / scene.zeta_end).powf(-x) < 0.99)
+            .map(|(x, _)| k.0 * (-k.1 * x).exp() + b / zt)
+            .collect();
+        assert!(!peaks.is_empty());
+        let p = c.detail("peak_short_partial").unwrap().value;
+        let mean = peaks.iter().sum::<f64>() / peaks.len() as f64;
+        assert!((p.value - mean).abs() < 1e-12, "{p:?} vs {mean}");
+        assert!(p.std_error.abs() < 1e-12);
+        assert!(step_of(&steps, zt) < steps.len());
+        // The jackknife error of a mean is the standard error of the mean.
+        let x = [1.0, 3.0, 4.0, 8.0];
+        let loo: Vec<f64> = (0..4)
+            .map(|i| (x.iter().sum::<f64>() - x[i]) / 3.0)
+            .collect();
+        let se = Estimate::mean_of(&x).std_error;
+        assert!((jackknife_error(&loo) - se).abs() < 1e-12);
     }
 
     #[test]

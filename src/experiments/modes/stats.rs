@@ -5,6 +5,7 @@
 //! `x = -d ln a_r / d ln zeta` over the same window, and the paper's law
 //! `E_inf = K1 exp(-K2 x)` fitted to the partial-contact points.
 
+use super::onset::{mean_onset, PARTIAL};
 use super::{ModeResult, ModeScene};
 use crate::experiments::climb::step_of;
 use crate::experiments::ensemble::{group, load_range, LoadGroup};
@@ -161,6 +162,17 @@ pub struct FrozenStats {
     pub k_mode_points: Vec<(f64, f64)>,
     /// The line through `k_mode_points`.
     pub k_mode_fit: Option<LineFit>,
+    /// The change of largest magnitude over the targets at the highest load.
+    pub change_full_contact_max: Option<Estimate>,
+    /// End-of-sweep `E_norm` of the first target minus that of the last, at the loads of
+    /// the paper's panels c and d ([`PANEL_LOADS`]).
+    pub end_long_minus_short: Option<Estimate>,
+    /// The largest ensemble `E_norm` of the last target, mean over the partial loads.
+    pub peak_short_partial: Option<Estimate>,
+    /// `E_norm` of the first target against a chord linear in `zeta` over the frozen window.
+    pub falloff_mid_chord: Option<Estimate>,
+    /// The onset (mean over targets of `E_norm(onset_ratio zeta_t)`) of every load.
+    pub onsets: Vec<(f64, Estimate)>,
 }
 
 impl FrozenStats {
@@ -192,6 +204,14 @@ impl FrozenStats {
         };
         let (lowest, highest) = load_range(&scene.contact_areas);
         Self {
+            change_full_contact_max: change_max_at(&after, highest),
+            end_long_minus_short: end_long_minus_short(scene, loads),
+            peak_short_partial: peak_short_partial(scene, loads),
+            falloff_mid_chord: falloff_mid_chord(scene, loads),
+            onsets: loads
+                .iter()
+                .map(|l| (l.contact_area, l.mean(|r| mean_onset(scene, r))))
+                .collect(),
             long_minus_short: long_minus_short(scene, group(loads, lowest)),
             k_fit: line(&k_points),
             k_mode_fit: line(&k_mode_points),
@@ -247,4 +267,153 @@ fn long_minus_short(scene: &ModeScene, load: &Load) -> Option<Estimate> {
         .filter_map(|r| Some(asymptote(scene, r, 0)?.0 - asymptote(scene, r, last)?.0))
         .collect();
     Some(Estimate::mean_of(&diffs))
+}
+
+/// The key of the onset detail of load `load` (the mean over targets of `E_norm` at
+/// `onset_ratio zeta_t`).
+pub fn onset_key(load: f64) -> String {
+    format!("onset_ar{load}")
+}
+
+/// The loads of the paper's fig. elastic_energy_H08 panels c and d (contact area at full
+/// resolution); the scene's loads nearest them are read.
+pub const PANEL_LOADS: [f64; 2] = [0.083, 0.009];
+
+/// The scene's load nearest `a`.
+fn nearest_load<'g, 'a>(loads: &'g [Load<'a>], a: f64) -> Option<&'g Load<'a>> {
+    loads.iter().min_by(|x, y| {
+        (x.contact_area - a)
+            .abs()
+            .total_cmp(&(y.contact_area - a).abs())
+    })
+}
+
+/// Of the changes after resolution at `load`, the one of largest magnitude.
+pub fn change_max_at(after: &[AfterResolution], load: f64) -> Option<Estimate> {
+    after
+        .iter()
+        .filter(|a| a.load == load)
+        .map(|a| a.change)
+        .max_by(|a, b| a.value.abs().total_cmp(&b.value.abs()))
+}
+
+/// Per realization, `E_norm` of the first target minus that of the last at the end of the
+/// sweep; mean and standard error over realizations at each of the loads nearest
+/// [`PANEL_LOADS`], then the mean of the loads (errors combined). None with one target.
+pub fn end_long_minus_short(scene: &ModeScene, loads: &[Load]) -> Option<Estimate> {
+    let last = scene.targets.len().checked_sub(1).filter(|&l| l > 0)?;
+    let (z0, zl) = (scene.targets[0], scene.targets[last]);
+    let per_load: Vec<Estimate> = PANEL_LOADS
+        .iter()
+        .map(|&a| {
+            let load = nearest_load(loads, a)?;
+            Some(load.mean(|r| {
+                let end = r.zetas.len() - 1;
+                r.e_norm(0, z0)[end] - r.e_norm(last, zl)[end]
+            }))
+        })
+        .collect::<Option<_>>()?;
+    let n = per_load.len() as f64;
+    Some(Estimate::new(
+        per_load.iter().map(|e| e.value).sum::<f64>() / n,
+        per_load
+            .iter()
+            .map(|e| e.std_error.powi(2))
+            .sum::<f64>()
+            .sqrt()
+            / n,
+    ))
+}
+
+/// Whether target `t` is in partial contact at its own resolution at `load`: the
+/// ensemble's measured contact area at `zeta_t` below [`PARTIAL`].
+fn partial_at(scene: &ModeScene, load: &Load, t: usize) -> bool {
+    let steps = scene.steps();
+    load.contact_area_at(step_of(&steps, scene.targets[t]))
+        .value
+        < PARTIAL
+}
+
+/// The largest ensemble `E_norm` over the sweep of the last (shortest-wavelength) target,
+/// mean over the loads in partial contact at its `zeta_t`: the value from all
+/// realizations, the standard error by jackknife over realizations (the `i`-th run of
+/// every load left out in turn).
+pub fn peak_short_partial(scene: &ModeScene, loads: &[Load]) -> Option<Estimate> {
+    let t = scene.targets.len().checked_sub(1)?;
+    let zt = scene.targets[t];
+    let partial: Vec<&Load> = loads.iter().filter(|l| partial_at(scene, l, t)).collect();
+    if partial.is_empty() {
+        return None;
+    }
+    let stat = |skip: Option<usize>| {
+        partial
+            .iter()
+            .map(|l| {
+                let runs: Vec<&ModeResult> = l
+                    .runs
+                    .iter()
+                    .enumerate()
+                    .filter(|(i, _)| Some(*i) != skip)
+                    .map(|(_, r)| *r)
+                    .collect();
+                let steps = runs[0].zetas.len();
+                (0..steps)
+                    .map(|k| {
+                        let (e, d) = runs.iter().fold((0.0, 0.0), |(e, d), r| {
+                            (e + r.band_energy[t][k], d + r.denominator(t, zt))
+                        });
+                        e / d
+                    })
+                    .fold(f64::NEG_INFINITY, f64::max)
+            })
+            .sum::<f64>()
+            / partial.len() as f64
+    };
+    let n = partial.iter().map(|l| l.runs.len()).min()?;
+    let value = stat(None);
+    if n < 2 {
+        return Some(Estimate::new(value, f64::NAN));
+    }
+    let leave_out: Vec<f64> = (0..n).map(|i| stat(Some(i))).collect();
+    Some(Estimate::new(value, jackknife_error(&leave_out)))
+}
+
+/// The jackknife standard error from the leave-one-out values of a statistic:
+/// `sqrt((n - 1)/n sum_i (f_i - mean f)^2)`.
+pub fn jackknife_error(leave_out: &[f64]) -> f64 {
+    let n = leave_out.len() as f64;
+    let mean = leave_out.iter().sum::<f64>() / n;
+    ((n - 1.0) / n * leave_out.iter().map(|f| (f - mean).powi(2)).sum::<f64>()).sqrt()
+}
+
+/// One realization's `E_norm` of target `t` at the step nearest the middle of the frozen
+/// window (`zeta_a = frozen_from zeta_t` to `zeta_b = zeta_end`), minus the chord linear
+/// in `zeta` through the window's ends.
+pub fn mid_chord(scene: &ModeScene, run: &ModeResult, t: usize) -> f64 {
+    let zt = scene.targets[t];
+    let e = run.e_norm(t, zt);
+    let a = step_of(&run.zetas, scene.frozen_from * zt);
+    let b = run.zetas.len() - 1;
+    let (za, zb) = (run.zetas[a], run.zetas[b]);
+    let mid = 0.5 * (za + zb);
+    let m = (0..run.zetas.len())
+        .min_by(|&i, &j| {
+            (run.zetas[i] - mid)
+                .abs()
+                .total_cmp(&(run.zetas[j] - mid).abs())
+        })
+        .expect("a sweep has steps");
+    let chord = e[a] + (e[b] - e[a]) * (run.zetas[m] - za) / (zb - za);
+    e[m] - chord
+}
+
+/// [`mid_chord`] of the first (longest-wavelength) target, mean and standard error over
+/// the realizations of every load in partial contact at its `zeta_t`.
+pub fn falloff_mid_chord(scene: &ModeScene, loads: &[Load]) -> Option<Estimate> {
+    let values: Vec<f64> = loads
+        .iter()
+        .filter(|l| partial_at(scene, l, 0))
+        .flat_map(|l| l.runs.iter().map(|r| mid_chord(scene, r, 0)))
+        .collect();
+    (!values.is_empty()).then(|| Estimate::mean_of(&values))
 }

@@ -99,6 +99,74 @@ pub fn deviation_growth(low: Estimate, head: Estimate) -> Estimate {
     )
 }
 
+/// The corrected theory's overestimate of the total energy at step `k`:
+/// `sum_r E_c / sum_r E_exa - 1`, the ratio of sums over realizations.
+pub fn overestimate(load: &Load, k: usize) -> Estimate {
+    let r = load.ratio(|r| (r.e_c[k], r.e_exa[k]));
+    Estimate::new(r.value - 1.0, r.std_error)
+}
+
+/// Loads at or above this contact area are the high and intermediate loads of the
+/// caption of fig. E_vs_ar ("very good" there).
+pub const HIGH_LOADS_FROM: f64 = 0.05;
+
+/// Of the values `E_exa / E_c` at full resolution of the loads with a contact area of at
+/// least [`HIGH_LOADS_FROM`], the deviation `E_exa / E_c - 1` of largest magnitude, with its
+/// standard error (none without such a load).
+pub fn corrected_worst(loads: &[Load], end: usize) -> Option<Estimate> {
+    loads
+        .iter()
+        .filter(|l| l.contact_area >= HIGH_LOADS_FROM)
+        .map(|l| {
+            let c = ratio(l, end, Theory::Corrected);
+            Estimate::new(c.value - 1.0, c.std_error)
+        })
+        .max_by(|a, b| a.value.abs().total_cmp(&b.value.abs()))
+}
+
+/// The coefficient of variation (sample standard deviation over mean) of the increments
+/// of `e` over the consecutive steps of `window` (NaN with fewer than two increments).
+pub fn increment_cv(e: &[f64], window: &[usize]) -> f64 {
+    let inc: Vec<f64> = window.windows(2).map(|p| e[p[1]] - e[p[0]]).collect();
+    let n = inc.len() as f64;
+    if inc.len() < 2 {
+        return f64::NAN;
+    }
+    let mean = inc.iter().sum::<f64>() / n;
+    let var = inc.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0);
+    var.sqrt() / mean
+}
+
+/// How much more the numerator of eq. (S_q_numerical) scatters than its denominator: per
+/// realization and increment window, `ln[CV(increments of E_exa) / CV(increments of
+/// E_P)]`; the mean over windows and realizations with its standard error.
+pub fn numerator_cv_log_ratio(load: &Load) -> Estimate {
+    let logs: Vec<f64> = load
+        .runs
+        .iter()
+        .flat_map(|r| {
+            r.windows
+                .iter()
+                .map(|w| (increment_cv(&r.e_exa, w) / increment_cv(&r.e_p, w)).ln())
+        })
+        .filter(|x| x.is_finite())
+        .collect();
+    Estimate::mean_of(&logs)
+}
+
+/// Of the loads, the largest `|sum_r a_r / sum_r a_c - 1|` at step `k`: the measured
+/// contact area against the corrected theory's at the same load and magnification, with
+/// its standard error (ratio of sums).
+pub fn area_corrected_deviation(loads: &[Load], k: usize) -> Option<Estimate> {
+    loads
+        .iter()
+        .map(|l| {
+            let r = l.ratio(|r| (r.contact_area[k], r.area_corrected[k]));
+            Estimate::new((r.value - 1.0).abs(), r.std_error)
+        })
+        .max_by(|a, b| a.value.total_cmp(&b.value))
+}
+
 /// A load at full resolution: the measured area and both theories' ratios.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AtFullResolution {
@@ -245,6 +313,53 @@ pub fn details(
         ),
         h.growth(),
     ));
+    let headline = group(loads, scene.headline_contact_area);
+    details.push(
+        Detail::new(
+            "overestimate_headline",
+            format!(
+                "E_c / E_exa - 1 at full resolution at the headline load (a_r = {:.3}): the \
+                 corrected theory's overestimate of the total energy",
+                h.head.area.value
+            ),
+            overestimate(headline, end),
+        )
+        .persson(0.0),
+    );
+    if let Some(worst) = corrected_worst(loads, end) {
+        details.push(
+            Detail::new(
+                "corrected_worst_high",
+                format!(
+                    "E_exa / E_c - 1 at full resolution of largest magnitude over the loads \
+                     with a_r >= {HIGH_LOADS_FROM}"
+                ),
+                worst,
+            )
+            .persson(0.0),
+        );
+    }
+    details.push(Detail::new(
+        "numerator_cv_log_ratio",
+        format!(
+            "ln of CV(increments of E_exa) / CV(increments of E_P) over each window's \
+             single-shell steps, mean over windows and realizations at the headline load \
+             (a_r = {:.3})",
+            h.head.area.value
+        ),
+        numerator_cv_log_ratio(headline),
+    ));
+    if let Some(dev) = area_corrected_deviation(loads, end) {
+        details.push(
+            Detail::new(
+                "area_corrected_deviation",
+                "|measured a_r / corrected theory's a_r - 1| at full resolution, largest over \
+                 the loads",
+                dev,
+            )
+            .persson(0.0),
+        );
+    }
     details
 }
 
@@ -408,6 +523,38 @@ mod tests {
         assert_eq!(window_mean(&a, &[0, 1, 2]), 0.5);
         let r = ratio(&load, 2, Theory::Corrected);
         assert!((r.value - 5.5 / 8.8).abs() < 1e-15, "{r:?}");
+    }
+
+    #[test]
+    fn new_statistics_follow_their_formulas() {
+        let mut a = run(vec![1.0, 2.0, 5.0, 10.0], vec![2.0, 3.0, 5.0, 8.0]);
+        let b = run(vec![2.0, 2.5, 3.0, 3.5], vec![4.0, 5.0, 6.0, 7.0]);
+        // Increments of E_exa 1, 3, 5 (CV 2/3), of E_P 1, 2, 3 (CV 1/2).
+        assert!((increment_cv(&a.e_exa, &[0, 1, 2, 3]) - 2.0 / 3.0).abs() < 1e-15);
+        a.windows = vec![vec![0, 1, 2, 3]];
+        let load = Load {
+            contact_area: 0.2,
+            runs: vec![&a],
+        };
+        let l = numerator_cv_log_ratio(&load);
+        assert!((l.value - (4.0f64 / 3.0).ln()).abs() < 1e-14, "{l:?}");
+        let both = Load {
+            contact_area: 0.2,
+            runs: vec![&a, &b],
+        };
+        // sum E_c / sum E_exa - 1 at the end: 0.8 (8 + 7) / (10 + 3.5) - 1.
+        let o = overestimate(&both, 3);
+        assert!((o.value - (12.0 / 13.5 - 1.0)).abs() < 1e-15, "{o:?}");
+        // Measured 0.2 against corrected 0.3 at every load: |2/3 - 1|.
+        let d = area_corrected_deviation(std::slice::from_ref(&both), 3).unwrap();
+        assert!((d.value - 1.0 / 3.0).abs() < 1e-15, "{d:?}");
+        // The load below HIGH_LOADS_FROM is left out even though it deviates more.
+        let low = Load {
+            contact_area: 0.01,
+            runs: vec![&b],
+        };
+        let w = corrected_worst(&[low, both], 3).unwrap();
+        assert!((w.value - (13.5 / 12.0 - 1.0)).abs() < 1e-15, "{w:?}");
     }
 
     #[test]
