@@ -193,7 +193,7 @@ fn table_rows_state_verdicts(text: &str) {
             "not run",
             "2 (violated)",
             "holds",
-            "yes",
+            "reproduced",
             "yes",
             "64, 128",
             "3 (1-3)",
@@ -203,7 +203,7 @@ fn table_rows_state_verdicts(text: &str) {
     );
     let b = row(text, "b_violated");
     assert_eq!(b[7], "violated");
-    assert_eq!(b[8], "**NO**");
+    assert_eq!(b[8], "**contradicted**");
     assert_eq!(b[9], "no (1 differ: kappa = 2.5, snapshot 2.6)");
     let c = row(text, "c_inconclusive");
     assert_eq!(
@@ -211,7 +211,7 @@ fn table_rows_state_verdicts(text: &str) {
         "NaN read back from null"
     );
     assert_eq!(c[7], "**inconclusive**");
-    assert_eq!(c[8], "**undecided** (verdict inconclusive)");
+    assert_eq!(c[8], "not established (verdict inconclusive)");
     assert_eq!(c[9], "not checked");
     let d = row(text, "d_full");
     assert!(d[0].ends_with("(full)"), "{d:?}");
@@ -536,7 +536,7 @@ fn outcomes_with_null_or_absent_error_bars_are_read_and_say_so() {
     let null = row(&text, "one_seed");
     assert_eq!(null[4], "0.8585 (one realization: no error bar) (GFMD)");
     assert_eq!(null[5], "CG 0.8585 (one realization: no error bar), agrees");
-    assert_eq!(null[8], "**undecided** (verdict inconclusive)");
+    assert_eq!(null[8], "not established (verdict inconclusive)");
     let absent = row(&text, "one_seed_absent");
     assert_eq!(absent[4], null[4], "absent reads as null");
     assert_eq!(absent[5], "not run");
