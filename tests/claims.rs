@@ -84,6 +84,11 @@ fn every_measure_a_claim_names_is_in_the_committed_outcomes() {
                     .collect(),
             };
             for c in &d.claims {
+                // A magnitude of the paper's own scene (`reduced = false`) may name a load
+                // or grid of it that the reduced scene does not have; the full outcome must.
+                if scale == "reduced" && !c.reduced {
+                    continue;
+                }
                 for m in measures_of(c) {
                     if measures.get(&m).is_none() {
                         missing.push(format!("{scale}/{}: {} names {m}", d.name, c.key));

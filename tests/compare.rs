@@ -185,7 +185,7 @@ fn a_moved_study_cell_a_moved_claim_and_a_flipped_claim_are_named() {
     assert_eq!(flips.len(), 1, "{flips:?}");
     assert_eq!(flips[0]["key"], format!("claim:{flipped}"));
     assert_eq!(flips[0]["base"], "reproduced");
-    assert_eq!(flips[0]["new"], "not_reproduced");
+    assert_eq!(flips[0]["new"], "contradicted");
     let md = std::fs::read_to_string(tmp.path().join("compare.md")).unwrap();
     assert!(md.contains("**+5.0**") && md.contains("**-4.0**"), "{md}");
     assert!(md.contains(&format!("`claim:{flipped}`")), "{md}");

@@ -104,7 +104,10 @@ fn a_diffusion_depends_on_pressure() {
         "low-pressure diffusion {} should exceed Persson's",
         o.value
     );
-    assert_eq!(o.reproduced, Some(true), "{:?}", o.checks);
+    // D_n / D_P at high pressure, 0.965 +- 0.026, reaches outside "about 1" (+-10%) at
+    // three standard errors: not established, and so neither is the finding.
+    assert_eq!(claim(&o, "d_ratio_high"), ClaimResult::NotEstablished);
+    assert_eq!(o.reproduced, None, "{:?}", o.claims);
 }
 
 #[test]
@@ -118,7 +121,10 @@ fn b_drift_is_negative_in_contact() {
         o.value,
         o.std_error
     );
-    assert_eq!(o.reproduced, Some(true), "{:?}", o.checks);
+    // The relative change of a_r over the step, -0.45% +- 0.07% on this scene, excludes
+    // the paper's -0.19% +- 10%: contradicted, at the reduced scene's a_r of 0.3.
+    assert_eq!(claim(&o, "a_r_over_the_step"), ClaimResult::Contradicted);
+    assert_eq!(o.reproduced, Some(false), "{:?}", o.claims);
 }
 
 #[test]
@@ -127,7 +133,9 @@ fn c_points_re_enter_contact() {
     // A re-entry share clearly above 0, largest at the lowest load.
     assert_eq!(o.verdict, Verdict::Violated);
     assert!(o.value > 0.3, "re-entry share {}", o.value);
-    assert_eq!(o.reproduced, Some(true), "{:?}", o.checks);
+    assert!(o.checks.iter().all(|c| c.passed), "{:?}", o.checks);
+    // "All points in contact at zeta = 1" is not established on this scene.
+    assert_eq!(o.reproduced, None, "{:?}", o.claims);
 }
 
 #[test]
@@ -260,7 +268,13 @@ fn mode_onset_populates_modes_before_resolution() {
         "E_norm below resolution {}",
         o.value
     );
-    assert_eq!(o.reproduced, Some(true), "{:?}", o.checks);
+    assert!(o.checks.iter().all(|c| c.passed), "{:?}", o.checks);
+    // The peak ratio's region holds its own floor: it does not discriminate.
+    assert_eq!(
+        claim(&o, "peaks_above_resolution"),
+        ClaimResult::NotEstablished
+    );
+    assert_eq!(o.reproduced, None, "{:?}", o.claims);
 }
 
 #[test]
@@ -279,7 +293,10 @@ fn mode_frozen_long_wavelengths_recede_at_low_load() {
 fn mode_frozen_at_h03_long_wavelengths_recede_at_low_load() {
     let o = run_reduced("e_frozen_h03", HEADLINE);
     assert_eq!(o.verdict, Verdict::Violated);
-    assert_eq!(claim(&o, "recede_at_low_load"), ClaimResult::Reproduced);
+    assert_eq!(
+        claim(&o, "oversimplified_partial_contact"),
+        ClaimResult::Reproduced
+    );
     assert_eq!(claim(&o, "k2"), ClaimResult::NotJudgedAtThisScale);
 }
 
@@ -320,7 +337,14 @@ fn total_energy_against_the_corrected_theory() {
     // 10% above the measurement, many error bars from Persson's 1 and inside the paper's
     // range; it still improves on S = 1, whose energy is some 25% too high.
     assert_eq!(o.verdict, Verdict::Violated);
-    assert_eq!(o.reproduced, Some(true), "{:?}", o.checks);
+    assert!(o.checks.iter().all(|c| c.passed), "{:?}", o.checks);
+    // At zeta = 1 and the load nearest p~0 = 0.1 the corrected theory lies below the
+    // measurement, where the caption has it above: contradicted.
+    assert_eq!(
+        claim(&o, "correction_overshoots"),
+        ClaimResult::Contradicted
+    );
+    assert_eq!(o.reproduced, Some(false), "{:?}", o.claims);
     assert!(
         o.value > 0.85 && o.value < 0.97,
         "E_exa / E_c = {}",
@@ -452,5 +476,7 @@ fn committed_outcomes_read_and_a_single_cross_check_reads_as_a_list() {
     // Written again, the list reads back as it was.
     let again: Outcome = serde_json::from_str(&serde_json::to_string(&o).unwrap()).unwrap();
     assert_eq!(again.cross_checks, o.cross_checks);
-    assert!(old_format > 0, "no outcome in the older form was read");
+    // Every committed outcome is now in the list form; the older form is read from the
+    // fixture of tests/old_outcomes.rs.
+    let _ = old_format;
 }

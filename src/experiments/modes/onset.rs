@@ -4,26 +4,14 @@
 use std::collections::BTreeMap;
 
 use super::figures::{curve_figures, curve_table};
-use super::stats::{golden, Load, ModeEnsemble};
-use super::{ModeResult, ModeScene};
+use super::stats::{golden, mean_onset, Load, ModeEnsemble, PARTIAL};
+use super::ModeScene;
 use crate::error::Result;
 use crate::experiments::climb::step_of;
 use crate::experiments::ensemble::{by_load, group, load_range};
 use crate::experiments::{Check, Detail, Experiment, Table};
 use crate::plot::Figure;
 use crate::stats::{decide, round_sig, Claim, Decision, Estimate};
-
-/// One realization's onset: the mean over targets of `E_norm` at `onset_ratio zeta_t`.
-pub fn mean_onset(scene: &ModeScene, run: &ModeResult) -> f64 {
-    let steps = &run.zetas;
-    scene
-        .targets
-        .iter()
-        .enumerate()
-        .map(|(t, &zt)| run.e_norm(t, zt)[step_of(steps, scene.onset_ratio * zt)])
-        .sum::<f64>()
-        / scene.targets.len() as f64
-}
 
 /// Assumption (d): a mode holds no energy before it is resolved.
 pub struct ModeOnset;
@@ -59,10 +47,6 @@ pub struct OnsetStats {
     /// `zeta_t` (measured `a_r` below [`PARTIAL`]).
     pub peak: Estimate,
 }
-
-/// Loads whose measured contact area at `zeta_t` reaches this are in full contact there:
-/// left out of where the bands peak.
-pub const PARTIAL: f64 = 0.99;
 
 /// `zeta_peak / zeta_t` of every band of every realization at the loads in partial contact.
 pub fn peak_ratios(scene: &ModeScene, loads: &[Load]) -> Vec<f64> {

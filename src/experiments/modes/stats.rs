@@ -5,11 +5,26 @@
 //! `x = -d ln a_r / d ln zeta` over the same window, and the paper's law
 //! `E_inf = K1 exp(-K2 x)` fitted to the partial-contact points.
 
-use super::onset::{mean_onset, PARTIAL};
 use super::{ModeResult, ModeScene};
 use crate::experiments::climb::step_of;
 use crate::experiments::ensemble::{group, load_range, LoadGroup};
 use crate::stats::{round_sig, Estimate, LineFit};
+
+/// One realization's onset: the mean over targets of `E_norm` at `onset_ratio zeta_t`.
+pub fn mean_onset(scene: &ModeScene, run: &ModeResult) -> f64 {
+    let steps = &run.zetas;
+    scene
+        .targets
+        .iter()
+        .enumerate()
+        .map(|(t, &zt)| run.e_norm(t, zt)[step_of(steps, scene.onset_ratio * zt)])
+        .sum::<f64>()
+        / scene.targets.len() as f64
+}
+
+/// Loads whose measured contact area at `zeta_t` reaches this are in full contact there:
+/// left out of where the bands peak.
+pub const PARTIAL: f64 = 0.99;
 
 /// Ensemble statistics of the single-mode sweeps at one load.
 pub(super) type Load<'a> = LoadGroup<'a, ModeResult>;
