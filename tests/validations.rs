@@ -136,6 +136,23 @@ fn c_points_re_enter_contact() {
     assert!(o.checks.iter().all(|c| c.passed), "{:?}", o.checks);
     // "All points in contact at zeta = 1" is not established on this scene.
     assert_eq!(o.reproduced, None, "{:?}", o.claims);
+    // The variants: a climb from zeta = 1.6 starts with more contact than it ends with
+    // (fixed load, rougher surface), part of which stays throughout and is outnumbered by
+    // the points that re-enter; at H = 0.3 points re-enter too.
+    let detail = |key: &str| {
+        o.details
+            .iter()
+            .find(|d| d.key == key)
+            .unwrap_or_else(|| panic!("no detail {key}"))
+            .value
+            .value
+    };
+    assert!(detail("range_a_r_start_ar0.14") > 0.14 * 1.5);
+    let remained = detail("range_remained_of_start_ar0.14");
+    assert!(remained > 0.0 && remained < 1.0, "{remained}");
+    assert!(detail("range_coloured_over_grey_ar0.14") > 1.0);
+    assert!(detail("range_share_ar0.14") > 0.3);
+    assert!(detail("h03_share_ar0.14") > 0.3);
 }
 
 #[test]

@@ -18,6 +18,18 @@ pub fn step_palette() -> Vec<([u8; 3], String)> {
     ]
 }
 
+/// The colours of a map of histories, as the paper's re-entry figures: grey in contact
+/// throughout, red re-entered contact, white out of contact and never back, blue out of
+/// contact after having come back.
+pub fn history_palette() -> Vec<([u8; 3], String)> {
+    vec![
+        ([150, 150, 150], "in contact throughout".into()),
+        ([220, 40, 40], "in contact, re-entered".into()),
+        ([255, 255, 255], "out of contact, never back".into()),
+        ([40, 80, 220], "out of contact after re-entering".into()),
+    ]
+}
+
 /// One row per history.
 pub fn table(name: &str, scene: &ReentryScene, results: &[(SeedLoad, ReentryResult)]) -> Table {
     let mut table = Table::new(
@@ -75,12 +87,7 @@ pub fn maps(scene: &ReentryScene, head: &LoadGroup<ReentryResult>) -> Vec<Raster
             ),
             n: scene.n,
             pixels: unpack_categories(r.map.as_deref().unwrap_or(""), n2),
-            palette: vec![
-                ([150, 150, 150], "in contact throughout".into()),
-                ([220, 40, 40], "in contact, re-entered".into()),
-                ([255, 255, 255], "out of contact, never back".into()),
-                ([40, 80, 220], "out of contact after re-entering".into()),
-            ],
+            palette: history_palette(),
         },
         Raster {
             name: "flux_map".into(),

@@ -37,12 +37,15 @@
 //! * `stats.rs`: the re-entry shares and the flux, means over realizations;
 //! * `figures.rs`: the table and the contact maps;
 //! * `tolerance.rs`: the speed-against-error study of a history (the same climbs at
-//!   several solver tolerances), run where the scene states a plan.
+//!   several solver tolerances), run where the scene states a plan;
+//! * `variants.rs`: histories of scenes beside the headline's (another Hurst exponent,
+//!   `eps_c` or range of magnification), for the paper's statements that compare scenes.
 
 mod figures;
 pub mod history;
 pub mod stats;
 pub mod tolerance;
+pub mod variants;
 
 use std::collections::BTreeMap;
 
@@ -53,6 +56,7 @@ use self::figures::{maps, table};
 use self::history::{pack_categories, History};
 use self::stats::{ReentryStats, Share};
 use self::tolerance::{RowSamples, Sample, ToleranceJob, TolerancePlan, ToleranceResult};
+use self::variants::{Variant, VariantJob, VariantResult, VariantStats};
 use super::climb::{climb, Checkpointing};
 use super::ensemble::{by_load, check_contact_areas, seed_load_jobs, SeedLoad};
 use super::scene::scene;
@@ -78,6 +82,9 @@ scene! {
         /// The speed-against-error study (none: not run).
         #[serde(default, skip_serializing_if = "Option::is_none")]
         pub tolerance: Option<TolerancePlan>,
+        /// Scenes beside the headline's, each with its own histories (none: not run).
+        #[serde(default, skip_serializing_if = "Vec::is_empty")]
+        pub variants: Vec<Variant>,
     }
 }
 
@@ -87,6 +94,8 @@ scene! {
 pub enum ReentryJob {
     /// A history of the tolerance study.
     Tolerance(ToleranceJob),
+    /// A history of a variant scene.
+    Variant(VariantJob),
     /// A history of the headline.
     #[serde(untagged)]
     History(SeedLoad),
@@ -97,6 +106,8 @@ pub enum ReentryJob {
 pub enum ReentryOutput {
     /// A history of the tolerance study.
     Tolerance(ToleranceResult),
+    /// A history of a variant scene.
+    Variant(VariantResult),
     /// A history of the headline.
     #[serde(untagged)]
     History(ReentryResult),
@@ -251,6 +262,7 @@ impl Jobs for ReentryScene {
         if let Some(plan) = &self.tolerance {
             plan.validate(self.hurst)?;
         }
+        variants::validate_all(&self.variants)?;
         Ok(())
     }
 
@@ -268,18 +280,22 @@ impl Jobs for ReentryScene {
                     .map(ReentryJob::Tolerance),
             );
         }
+        for v in &self.variants {
+            jobs.extend(v.jobs().into_iter().map(ReentryJob::Variant));
+        }
         jobs
     }
 
     fn headline_only(job: &ReentryJob) -> bool {
-        matches!(job, ReentryJob::Tolerance(_))
+        matches!(job, ReentryJob::Tolerance(_) | ReentryJob::Variant(_))
     }
 
-    /// The headline's histories depend on the scene without the study: their keys are
-    /// those of the scenes that had none.
+    /// The headline's histories depend on the scene without the study and the variants:
+    /// their keys are those of the scenes that had neither.
     fn key_scene(&self) -> serde_json::Value {
         let mut scene = self.clone();
         scene.tolerance = None;
+        scene.variants.clear();
         serde_json::to_value(scene).expect("scenes serialise")
     }
 
@@ -291,6 +307,7 @@ impl Jobs for ReentryScene {
                 Work::search_then(self.n, 0, base.shells(0.0, base.zeta_max()))
             }
             ReentryJob::Tolerance(j) => tolerance::work(j, self.hurst),
+            ReentryJob::Variant(j) => variants::work(j),
         }
     }
 
@@ -302,6 +319,14 @@ impl Jobs for ReentryScene {
             }
             ReentryJob::Tolerance(j) => tolerance::run(j, self.hurst, ctx, self.checkpoint_seconds)
                 .map(ReentryOutput::Tolerance),
+            ReentryJob::Variant(j) => {
+                // The map of the first history of each variant (first load, first seed).
+                let keep_map = self
+                    .variants
+                    .iter()
+                    .any(|v| v.job(v.seeds[0], v.contact_areas[0]) == *j);
+                variants::run(j, ctx, self.checkpoint_seconds, keep_map).map(ReentryOutput::Variant)
+            }
         }
     }
 
@@ -309,6 +334,7 @@ impl Jobs for ReentryScene {
         match result {
             ReentryOutput::History(r) => r.max_residual,
             ReentryOutput::Tolerance(r) => r.max_residual,
+            ReentryOutput::Variant(r) => r.max_residual,
         }
     }
 }
@@ -341,6 +367,60 @@ impl ReentryScene {
 
 type Run<'a> = super::Run<'a, Reentry>;
 
+/// The statistics of a variant: its shares, their shift from the headline's where it
+/// starts from the flat interface too, and where it starts later, the counts of the
+/// paper's 2048^2 figure.
+fn variant_details(v: &VariantStats, headline: &[Share]) -> Vec<Detail> {
+    let (name, what) = (&v.variant.name, &v.variant.what);
+    let mut details = Vec::new();
+    for l in v.loads.iter().filter(|l| l.realizations > 0) {
+        let a = l.load;
+        details.push(
+            Detail::new(
+                format!("{name}_share_ar{a}"),
+                format!("re-entry share at a_r = {a}, {what}"),
+                l.share,
+            )
+            .persson(0.0),
+        );
+        if v.variant.zeta_from == 0.0 {
+            if let Some(h) = headline.iter().find(|h| h.load == a) {
+                details.push(Detail::new(
+                    format!("{name}_share_shift_ar{a}"),
+                    format!("re-entry share at a_r = {a}, {what}, minus the headline's"),
+                    Estimate::difference(l.share, h.share),
+                ));
+            }
+        } else {
+            let from = v.variant.zeta_from;
+            details.extend([
+                Detail::new(
+                    format!("{name}_a_r_start_ar{a}"),
+                    format!("contact area at zeta = {from}, a_r = {a} at zeta_max, {what}"),
+                    l.a_r_start,
+                ),
+                Detail::new(
+                    format!("{name}_remained_of_start_ar{a}"),
+                    format!(
+                        "share of the contact at zeta = {from} in contact at every step \
+                         (grey), a_r = {a}, {what}"
+                    ),
+                    l.remained_of_start,
+                ),
+                Detail::new(
+                    format!("{name}_coloured_over_grey_ar{a}"),
+                    format!(
+                        "points that re-entered contact or non-contact (red, blue) over \
+                         points in contact throughout (grey), a_r = {a}, {what}"
+                    ),
+                    l.coloured_over_grey,
+                ),
+            ]);
+        }
+    }
+    details
+}
+
 /// The key of the share out of contact at the first shell only, at load `a_r`.
 pub fn out_at_first_key(contact_area: f64) -> String {
     format!("out_at_first_ar{contact_area}")
@@ -355,6 +435,66 @@ pub struct RunStats {
     pub histories: Vec<(SeedLoad, ReentryResult)>,
     /// The tolerance study.
     pub tolerance: Option<Study>,
+    /// The variant scenes, each with the statistics of its loads.
+    pub variants: Vec<VariantStats>,
+    /// The re-entry share at `zeta_max` minus the share over a smaller range of
+    /// magnification at the same `eps_c` (a grid of the tolerance study at the headline's
+    /// tolerance), per headline load.
+    pub range_gain: Vec<RangeGain>,
+}
+
+/// The share over the headline's range against a smaller one at the same `eps_c`.
+pub struct RangeGain {
+    /// The load.
+    pub load: f64,
+    /// `zeta_max` of the smaller range.
+    pub zeta_max: f64,
+    /// Headline share minus the smaller range's.
+    pub gain: Estimate,
+}
+
+/// The share gains over the headline's range against the tolerance study's grids of a
+/// smaller range at the headline's `lambda_s` and tolerance.
+fn range_gains(
+    scene: &ReentryScene,
+    results: &[(ReentryJob, ReentryOutput)],
+    stats: &ReentryStats,
+) -> Vec<RangeGain> {
+    let Some(plan) = &scene.tolerance else {
+        return Vec::new();
+    };
+    let zeta_max = scene.base().zeta_max();
+    let Some(grid) = plan.grids.iter().find(|g| {
+        g.lambda_s == scene.lambda_s
+            && g.lambda_l / g.lambda_s < zeta_max
+            && plan.tols.contains(&scene.tol)
+    }) else {
+        return Vec::new();
+    };
+    stats
+        .shares
+        .iter()
+        .filter_map(|share| {
+            let samples: Vec<f64> = grid
+                .seeds
+                .iter()
+                .filter_map(|&seed| {
+                    let job = grid.job(seed, share.load, scene.tol);
+                    results.iter().find_map(|(j, r)| match (j, r) {
+                        (ReentryJob::Tolerance(j), ReentryOutput::Tolerance(r)) if *j == job => {
+                            Some(r.share())
+                        }
+                        _ => None,
+                    })
+                })
+                .collect();
+            (!samples.is_empty()).then(|| RangeGain {
+                load: share.load,
+                zeta_max: grid.lambda_l / grid.lambda_s,
+                gain: Estimate::difference(share.share, Estimate::mean_of(&samples)),
+            })
+        })
+        .collect()
 }
 
 impl std::ops::Deref for RunStats {
@@ -462,6 +602,19 @@ impl Experiment for Reentry {
             .as_ref()
             .map(|plan| tolerance_study(run.scene, plan, run.results, &histories, &stats));
         Ok(RunStats {
+            range_gain: range_gains(run.scene, run.results, &stats),
+            variants: variants::stats(
+                &run.scene.variants,
+                &run.results
+                    .iter()
+                    .filter_map(|(j, r)| match (j, r) {
+                        (ReentryJob::Variant(j), ReentryOutput::Variant(r)) => {
+                            Some((j.clone(), r.clone()))
+                        }
+                        _ => None,
+                    })
+                    .collect::<Vec<_>>(),
+            ),
             stats,
             histories,
             tolerance,
@@ -469,7 +622,11 @@ impl Experiment for Reentry {
     }
 
     fn studies(_run: &Run, s: &RunStats) -> Vec<Study> {
-        s.tolerance.iter().cloned().collect()
+        let mut studies: Vec<Study> = s.tolerance.iter().cloned().collect();
+        if !s.variants.is_empty() {
+            studies.push(variants::study(&s.variants, &s.shares));
+        }
+        studies
     }
 
     fn headline(s: &RunStats) -> (Estimate, f64) {
@@ -547,6 +704,21 @@ impl Experiment for Reentry {
             flux.into_iter()
                 .map(|(key, name, e)| Detail::new(key, name, e).persson(0.0)),
         );
+        let zeta_max = scene.base().zeta_max();
+        for g in &s.range_gain {
+            details.push(Detail::new(
+                format!("range_gain_ar{}", g.load),
+                format!(
+                    "re-entry share at a_r = {} over zeta 1 -> {zeta_max} minus over 1 -> {} \
+                     (same eps_c, independent realizations)",
+                    g.load, g.zeta_max
+                ),
+                g.gain,
+            ));
+        }
+        for v in &s.variants {
+            details.extend(variant_details(v, &s.shares));
+        }
         details
     }
 
@@ -581,7 +753,7 @@ impl Experiment for Reentry {
         ]
     }
 
-    /// The golden values: every share and the flux of the interval.
+    /// The golden values: every share (the variants' too) and the flux of the interval.
     fn golden(_run: &Run, s: &RunStats) -> BTreeMap<String, f64> {
         let mut golden = BTreeMap::new();
         for share in &s.shares {
@@ -591,6 +763,14 @@ impl Experiment for Reentry {
                 format!("share_after_first_{target}"),
                 round_sig(share.after_first.value, 3),
             );
+        }
+        for v in &s.variants {
+            for l in v.loads.iter().filter(|l| l.realizations > 0) {
+                golden.insert(
+                    format!("{}_share_{}", v.variant.name, l.load),
+                    round_sig(l.share.value, 3),
+                );
+            }
         }
         golden.insert("flux_in".into(), round_sig(s.flux_in.value, 3));
         golden.insert("flux_out".into(), round_sig(s.flux_out.value, 3));
@@ -629,10 +809,12 @@ impl Experiment for Reentry {
     }
 
     fn rasters(run: &Run, s: &RunStats) -> Vec<Raster> {
-        maps(
+        let mut rasters = maps(
             run.scene,
             &by_load(&run.scene.contact_areas, &s.histories)[0],
-        )
+        );
+        rasters.extend(s.variants.iter().filter_map(variants::raster));
+        rasters
     }
 }
 

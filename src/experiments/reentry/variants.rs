@@ -1,0 +1,606 @@
+//! Histories of scenes beside the headline's: the same protocol (every shell added one at a
+//! time at fixed load, paper section 3.3) on another Hurst exponent, another continuum
+//! resolution `eps_c = 1 / lambda_s` or another range of magnification, for the paper's
+//! statements that compare scenes:
+//!
+//! * "the numbers for H = 0.3 lay within 4% of those for H = 0.8" (tex 792-794);
+//! * "for eps_c = 1/8 and 1/16, the fractions remain the same" (tex 788-789);
+//! * the 2048^2 history from `zeta = 3.2` to 32 (fig. reentry_visualization_allQ, tex
+//!   796-816): the share of the points in contact at the start that stayed in contact at
+//!   every step (grey), the coloured (re-entered: red and blue) points over the grey ones,
+//!   and the share of the final contact that re-entered.
+//!
+//! A variant starting at `zeta_from > 0` solves its first step with every shell up to
+//! `zeta_from` at once; a point out of contact there counts as having been out, as a point
+//! out at `zeta = 1` does in the headline's histories (the paper's white: "out of contact
+//! at zeta = 3.2 or lost contact exactly once"). The load is the one that gives the
+//! variant's contact area at its `zeta_max`, as for the headline.
+//!
+//! A variant runs at its own tolerance, the one the tolerance study ([`super::tolerance`])
+//! accepted; the committed histories of the headline keep theirs.
+
+use serde::{Deserialize, Serialize};
+
+use super::history::{self, pack_categories, History};
+use super::stats::Share;
+use crate::engine::contact::ContactSolution;
+use crate::engine::sweep::shell_steps;
+use crate::error::{check_positive, Error, Result};
+use crate::experiments::climb::{climb, Arrays, Checkpointing, Recorder};
+use crate::experiments::ensemble::check_contact_areas;
+use crate::experiments::scene::Base;
+use crate::experiments::study::{Cell, Study};
+use crate::experiments::{JobContext, Work};
+use crate::io::checkpoint::Checkpoints;
+use crate::plot::Raster;
+use crate::stats::Estimate;
+
+/// A scene beside the headline's, as a definition states it (`[[full.variants]]`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Variant {
+    /// Short name: the prefix of its statistics' keys.
+    pub name: String,
+    /// What differs from the headline, in words.
+    pub what: String,
+    /// Points per side.
+    pub n: usize,
+    /// Hurst exponent.
+    pub hurst: f64,
+    /// Long-wavelength cutoff (grid units).
+    pub lambda_l: f64,
+    /// Short-wavelength cutoff (grid units).
+    pub lambda_s: f64,
+    /// Magnification of the first step (0: from the flat interface, the first shell).
+    #[serde(default)]
+    pub zeta_from: f64,
+    /// Realizations.
+    pub seeds: Vec<u64>,
+    /// Contact areas at `zeta_max` (the loads).
+    pub contact_areas: Vec<f64>,
+    /// Residual tolerance.
+    pub tol: f64,
+}
+
+/// One history of a variant: everything it depends on.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VariantJob {
+    /// Points per side.
+    pub n: usize,
+    /// Hurst exponent.
+    pub hurst: f64,
+    /// Long-wavelength cutoff (grid units).
+    pub lambda_l: f64,
+    /// Short-wavelength cutoff (grid units).
+    pub lambda_s: f64,
+    /// Magnification of the first step (0: the first shell).
+    pub zeta_from: f64,
+    /// Realization.
+    pub seed: u64,
+    /// Contact area at `zeta_max`.
+    pub contact_area: f64,
+    /// Residual tolerance.
+    pub tol: f64,
+}
+
+/// What one history of a variant measured.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct VariantResult {
+    /// Load.
+    pub p0: f64,
+    /// Points in contact at the first step.
+    pub contact_at_start: u64,
+    /// Points in contact at `zeta_max`.
+    pub contact_points: u64,
+    /// Of those, points that were out of contact at some step (the first included).
+    pub reentered: u64,
+    /// Points in contact at every step (grey).
+    pub in_throughout: u64,
+    /// Points that re-entered contact or non-contact (red and blue).
+    pub coloured: u64,
+    /// Shells added after the first step (the first step is one more solve).
+    pub shells: usize,
+    /// Solver iterations over the climb (the load search excluded).
+    pub iterations: u64,
+    /// Wall time of the climb, seconds.
+    pub wall_s: f64,
+    /// Largest residual.
+    pub max_residual: f64,
+    /// Map categories at `zeta_max` (2 bits a point, hex), for the first seed at the first
+    /// load only.
+    pub map: Option<String>,
+}
+
+impl VariantResult {
+    /// The re-entry share of the final contact.
+    pub fn share(&self) -> f64 {
+        self.reentered as f64 / self.contact_points.max(1) as f64
+    }
+
+    /// The share of the points in contact at the first step that stayed in contact at
+    /// every step.
+    pub fn remained_of_start(&self) -> f64 {
+        self.in_throughout as f64 / self.contact_at_start.max(1) as f64
+    }
+
+    /// Coloured (re-entered) points over grey (always in contact) ones.
+    pub fn coloured_over_grey(&self) -> f64 {
+        self.coloured as f64 / self.in_throughout.max(1) as f64
+    }
+
+    /// Contact area at the first step.
+    pub fn a_r_start(&self, n: usize) -> f64 {
+        self.contact_at_start as f64 / (n * n) as f64
+    }
+}
+
+impl Variant {
+    /// The job of `seed` at `contact_area`.
+    pub fn job(&self, seed: u64, contact_area: f64) -> VariantJob {
+        VariantJob {
+            n: self.n,
+            hurst: self.hurst,
+            lambda_l: self.lambda_l,
+            lambda_s: self.lambda_s,
+            zeta_from: self.zeta_from,
+            seed,
+            contact_area,
+            tol: self.tol,
+        }
+    }
+
+    /// Every history, loads outermost.
+    pub fn jobs(&self) -> Vec<VariantJob> {
+        self.contact_areas
+            .iter()
+            .flat_map(|&a| self.seeds.iter().map(move |&s| self.job(s, a)))
+            .collect()
+    }
+
+    fn base(&self) -> Base<'_> {
+        Base {
+            n: self.n,
+            hurst: self.hurst,
+            lambda_l: self.lambda_l,
+            lambda_s: self.lambda_s,
+            seeds: &self.seeds,
+            tol: self.tol,
+        }
+    }
+
+    /// Checks the variant: a valid scene, loads in (0, 1), `zeta_from` in `[0,
+    /// zeta_max)`, a name usable as a key; errors name the field.
+    pub fn validate(&self) -> Result<()> {
+        let ok = !self.name.is_empty()
+            && self
+                .name
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || c == '_');
+        if !ok {
+            return Err(Error::invalid(
+                "variants.name",
+                &self.name,
+                "letters, digits and '_', not empty",
+            ));
+        }
+        self.base().validate()?;
+        check_contact_areas(&self.contact_areas)?;
+        let zeta_max = self.base().zeta_max();
+        if !(self.zeta_from >= 0.0 && self.zeta_from < zeta_max) {
+            return Err(Error::invalid(
+                "variants.zeta_from",
+                self.zeta_from,
+                format!("in [0, zeta_max = {zeta_max})"),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Checks a list of variants: each valid, names and jobs distinct.
+pub fn validate_all(variants: &[Variant]) -> Result<()> {
+    for (k, v) in variants.iter().enumerate() {
+        v.validate()?;
+        if variants[..k].iter().any(|w| w.name == v.name) {
+            return Err(Error::invalid("variants.name", &v.name, "each name once"));
+        }
+        let jobs = v.jobs();
+        if variants[..k]
+            .iter()
+            .any(|w| w.jobs().iter().any(|j| jobs.contains(j)))
+        {
+            return Err(Error::invalid(
+                "variants",
+                &v.name,
+                "scenes that share no history with another variant",
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The steps of a variant's climb: `zeta_from` (every shell up to it at once) unless 0,
+/// then every shell above it one at a time.
+fn steps(surface: &crate::engine::surface::Surface, zeta_from: f64) -> Vec<f64> {
+    let mut steps = Vec::new();
+    if zeta_from > 0.0 {
+        steps.push(zeta_from);
+    }
+    steps.extend(shell_steps(surface, zeta_from, surface.zeta_max()));
+    steps
+}
+
+/// What a job costs: a load search, the first step and every shell.
+pub fn work(job: &VariantJob) -> Work {
+    let b = job_base(job, &[]);
+    Work::search_then(
+        job.n,
+        usize::from(job.zeta_from > 0.0),
+        b.shells(job.zeta_from, b.zeta_max()),
+    )
+}
+
+fn job_base<'a>(job: &VariantJob, seeds: &'a [u64]) -> Base<'a> {
+    Base {
+        n: job.n,
+        hurst: job.hurst,
+        lambda_l: job.lambda_l,
+        lambda_s: job.lambda_s,
+        seeds,
+        tol: job.tol,
+    }
+}
+
+/// A history that also counts the contact after its first step.
+struct FromStart {
+    history: History,
+    contact_at_start: Option<u64>,
+}
+
+#[derive(Serialize, Deserialize)]
+struct FromStartMeta {
+    history: serde_json::Value,
+    contact_at_start: Option<u64>,
+}
+
+impl Recorder for FromStart {
+    fn record(&mut self, step: usize, zeta: f64, solution: &ContactSolution) -> Result<()> {
+        self.history.record(step, zeta, solution)?;
+        if step == 0 {
+            self.contact_at_start =
+                Some(self.history.in_contact.iter().map(|&c| u64::from(c)).sum());
+        }
+        Ok(())
+    }
+
+    fn state(&self) -> (serde_json::Value, Arrays<'_>) {
+        let (meta, arrays) = self.history.state();
+        let meta = FromStartMeta {
+            history: meta,
+            contact_at_start: self.contact_at_start,
+        };
+        (
+            serde_json::to_value(meta).expect("checkpoint metadata serialises"),
+            arrays,
+        )
+    }
+
+    fn restore(&mut self, meta: serde_json::Value, ck: &Checkpoints) -> Result<()> {
+        let meta: FromStartMeta = serde_json::from_value(meta)
+            .map_err(|e| Error::invalid("checkpoint", e, "a variant's re-entry history"))?;
+        self.contact_at_start = meta.contact_at_start;
+        self.history.restore(meta.history, ck)
+    }
+}
+
+/// Runs (or resumes) one history of a variant; `keep_map` keeps its contact map.
+pub fn run(
+    job: &VariantJob,
+    ctx: &JobContext,
+    seconds: f64,
+    keep_map: bool,
+) -> Result<VariantResult> {
+    check_positive("variants.tol", job.tol)?;
+    let seeds = [job.seed];
+    let b = job_base(job, &seeds);
+    let r = b.realization(job.seed)?;
+    let steps = steps(&r.surface, job.zeta_from);
+    let mut rec = FromStart {
+        // No flux interval: a variant reads the history only.
+        history: History::new(r.model.grid.points(), (f64::INFINITY, f64::INFINITY)),
+        contact_at_start: None,
+    };
+    let climbed = climb(
+        &b,
+        ctx.solver,
+        &r,
+        job.contact_area,
+        &steps,
+        &mut rec,
+        Some(Checkpointing {
+            dir: &ctx.state_dir,
+            seconds,
+        }),
+    )?;
+    let categories = rec.history.categories();
+    let count = |c: u8| categories.iter().filter(|&&x| x == c).count() as u64;
+    let (contact_points, reentered, _) = rec.history.counts();
+    Ok(VariantResult {
+        p0: climbed.p0,
+        contact_at_start: rec.contact_at_start.unwrap_or(0),
+        contact_points,
+        reentered,
+        in_throughout: count(history::IN_THROUGHOUT),
+        coloured: count(history::REENTERED) + count(history::OUT_AFTER_RETURN),
+        shells: steps.len() - usize::from(job.zeta_from > 0.0),
+        iterations: climbed.iterations,
+        wall_s: climbed.wall_s,
+        max_residual: climbed.max_residual,
+        map: keep_map.then(|| pack_categories(&categories)),
+    })
+}
+
+/// The statistics of one load of a variant, means over its realizations.
+#[derive(Debug, Clone, PartialEq)]
+pub struct VariantLoad {
+    /// The load (contact area at `zeta_max`).
+    pub load: f64,
+    /// Realizations that have a result.
+    pub realizations: usize,
+    /// Re-entry share of the final contact.
+    pub share: Estimate,
+    /// Share of the contact at the first step in contact at every step.
+    pub remained_of_start: Estimate,
+    /// Coloured over grey points.
+    pub coloured_over_grey: Estimate,
+    /// Contact area at the first step.
+    pub a_r_start: Estimate,
+    /// Shells a history added after its first step.
+    pub shells: Estimate,
+    /// Solver iterations per shell.
+    pub iterations_per_shell: Estimate,
+}
+
+/// The statistics of every load of `variant` from its histories (`None` where a seed has
+/// no result).
+pub fn loads(variant: &Variant, results: &[(VariantJob, VariantResult)]) -> Vec<VariantLoad> {
+    variant
+        .contact_areas
+        .iter()
+        .map(|&a| {
+            let runs: Vec<&VariantResult> = variant
+                .seeds
+                .iter()
+                .filter_map(|&s| {
+                    let job = variant.job(s, a);
+                    results.iter().find(|(j, _)| *j == job).map(|(_, r)| r)
+                })
+                .collect();
+            let mean = |f: &dyn Fn(&VariantResult) -> f64| {
+                Estimate::mean_of(&runs.iter().map(|r| f(r)).collect::<Vec<_>>())
+            };
+            VariantLoad {
+                load: a,
+                realizations: runs.len(),
+                share: mean(&VariantResult::share),
+                remained_of_start: mean(&VariantResult::remained_of_start),
+                coloured_over_grey: mean(&VariantResult::coloured_over_grey),
+                a_r_start: mean(&|r| r.a_r_start(variant.n)),
+                shells: super::stats::shells(runs.iter().map(|r| r.shells)),
+                iterations_per_shell: mean(&|r| r.iterations as f64 / r.shells.max(1) as f64),
+            }
+        })
+        .collect()
+}
+
+/// A variant scene's statistics.
+pub struct VariantStats {
+    /// The variant.
+    pub variant: Variant,
+    /// Its loads.
+    pub loads: Vec<VariantLoad>,
+    /// The map of its first history, if run.
+    pub map: Option<String>,
+}
+
+/// The statistics of every variant from the histories among `results`.
+pub fn stats(variants: &[Variant], results: &[(VariantJob, VariantResult)]) -> Vec<VariantStats> {
+    variants
+        .iter()
+        .map(|v| VariantStats {
+            variant: v.clone(),
+            loads: loads(v, results),
+            map: results
+                .iter()
+                .find(|(j, _)| *j == v.job(v.seeds[0], v.contact_areas[0]))
+                .and_then(|(_, r)| r.map.clone()),
+        })
+        .collect()
+}
+
+/// The variants' table: one row per variant and load, beside the headline's share at
+/// that load.
+pub fn study(variants: &[VariantStats], headline: &[Share]) -> Study {
+    let mut study = Study::new(
+        "variants",
+        "Re-entry histories of scenes beside the headline's",
+        &[
+            ("n", "points per side"),
+            ("hurst", "Hurst exponent"),
+            ("lambda_l", "lambda_l (grid units)"),
+            ("lambda_s", "lambda_s (grid units)"),
+            ("zeta_from", "first magnification (0: the first shell)"),
+            ("contact_area", "a_r at zeta_max"),
+            ("realizations", "realizations"),
+            ("tol", "residual tolerance"),
+            ("share", "re-entry share"),
+            ("headline_share", "the headline's share at this load"),
+            ("a_r_start", "a_r at the first step"),
+            (
+                "remained_of_start",
+                "contact at the first step in contact throughout",
+            ),
+            (
+                "coloured_over_grey",
+                "re-entered (red, blue) over always in contact (grey)",
+            ),
+            ("shells", "shells added one at a time"),
+            ("iterations_per_shell", "solver iterations a shell"),
+        ],
+    )
+    .about(
+        "Each row: one variant scene at one load, the mean over its realizations with the \
+         standard error. Every history climbs at fixed load through every shell, as the \
+         headline's; a variant that starts at zeta_from > 0 solves its first step with every \
+         shell up to zeta_from, and a point out of contact there counts as having been out.",
+    )
+    .percent(&["share", "headline_share", "a_r_start", "remained_of_start"]);
+    for v in variants {
+        let x = &v.variant;
+        for l in &v.loads {
+            let head = headline.iter().find(|h| h.load == l.load).map(|h| h.share);
+            study.push(
+                format!("{}_ar{}", x.name, l.load),
+                format!("{}, a_r {}", x.what, l.load),
+                vec![
+                    Cell::from(x.n as f64),
+                    Cell::from(x.hurst),
+                    Cell::from(x.lambda_l),
+                    Cell::from(x.lambda_s),
+                    Cell::from(x.zeta_from),
+                    Cell::from(l.load),
+                    Cell::from(l.realizations as f64),
+                    Cell::from(x.tol),
+                    Cell::from(l.share),
+                    Cell::from(head),
+                    Cell::from(l.a_r_start),
+                    Cell::from(l.remained_of_start),
+                    Cell::from(l.coloured_over_grey),
+                    Cell::from(l.shells),
+                    Cell::from(l.iterations_per_shell),
+                ],
+            );
+        }
+    }
+    study
+}
+
+/// The contact map at `zeta_max` of a variant's first history, coloured as the paper's
+/// re-entry figures (none before it has run).
+pub fn raster(v: &VariantStats) -> Option<Raster> {
+    let map = v.map.as_deref()?;
+    let x = &v.variant;
+    Some(Raster {
+        name: format!("reentry_map_{}", x.name),
+        title: format!(
+            "{}: contact at zeta_max = {}, a_r = {} (seed {}), history of every point from \
+             zeta = {}",
+            x.what,
+            x.lambda_l / x.lambda_s,
+            x.contact_areas[0],
+            x.seeds[0],
+            if x.zeta_from > 0.0 { x.zeta_from } else { 1.0 },
+        ),
+        n: x.n,
+        pixels: history::unpack_categories(map, x.n * x.n),
+        palette: super::figures::history_palette(),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn variant() -> Variant {
+        Variant {
+            name: "h03".into(),
+            what: "H = 0.3".into(),
+            n: 64,
+            hurst: 0.3,
+            lambda_l: 32.0,
+            lambda_s: 4.0,
+            zeta_from: 0.0,
+            seeds: vec![1, 2],
+            contact_areas: vec![0.14, 0.88],
+            tol: 1e-6,
+        }
+    }
+
+    #[test]
+    fn variants_are_checked_field_by_field() {
+        assert!(validate_all(&[variant()]).is_ok());
+        let mut bad = variant();
+        bad.name = "h 0.3".into();
+        assert!(bad
+            .validate()
+            .unwrap_err()
+            .to_string()
+            .contains("variants.name"));
+        let mut bad = variant();
+        bad.zeta_from = 8.0;
+        assert!(bad
+            .validate()
+            .unwrap_err()
+            .to_string()
+            .contains("zeta_from"));
+        let mut twin = variant();
+        twin.name = "other".into();
+        let err = validate_all(&[variant(), twin]).unwrap_err().to_string();
+        assert!(err.contains("variants"), "{err}");
+        let err = validate_all(&[variant(), variant()])
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("each name once"), "{err}");
+    }
+
+    #[test]
+    fn counts_from_a_later_start_follow_the_paper_s_colours() {
+        // Three points: in throughout; out at the start and in at the end (red); in at
+        // the start, out, in, out (blue).
+        let mut h = History::new(3, (f64::INFINITY, f64::INFINITY));
+        h.update(0, &[1.0, 0.0, 1.0]);
+        h.update(1, &[1.0, 1.0, 0.0]);
+        h.update(2, &[1.0, 1.0, 1.0]);
+        h.update(3, &[1.0, 1.0, 0.0]);
+        assert_eq!(
+            h.categories(),
+            vec![
+                history::IN_THROUGHOUT,
+                history::REENTERED,
+                history::OUT_AFTER_RETURN
+            ]
+        );
+        let r = VariantResult {
+            p0: 0.1,
+            contact_at_start: 2,
+            contact_points: 2,
+            reentered: 1,
+            in_throughout: 1,
+            coloured: 2,
+            shells: 3,
+            iterations: 0,
+            wall_s: 0.0,
+            max_residual: 0.0,
+            map: None,
+        };
+        assert_eq!(r.remained_of_start(), 0.5);
+        assert_eq!(r.coloured_over_grey(), 2.0);
+        assert_eq!(r.share(), 0.5);
+    }
+
+    #[test]
+    fn a_later_start_is_one_step_then_the_shells_above_it() {
+        let v = Variant {
+            zeta_from: 2.0,
+            ..variant()
+        };
+        let b = v.base();
+        let r = b.realization(1).unwrap();
+        let s = steps(&r.surface, 2.0);
+        assert_eq!(s[0], 2.0);
+        assert!(s[1] > 2.0);
+        assert_eq!(s.len() - 1, b.shells(2.0, b.zeta_max()));
+        assert_eq!(steps(&r.surface, 0.0).len(), b.shells(0.0, b.zeta_max()));
+    }
+}
