@@ -1,7 +1,7 @@
 //! One forward and one inverse real 2D FFT ([`Fft2::forward`] then
 //! [`Fft2::inverse_in_place`]) on `N x N` grids, `N = 256, 512, 1024`.
 //!
-//! Every iteration of both solvers applies the elastic Green's function in Fourier space,
+//! Every iteration of every solver applies the elastic Green's function in Fourier space,
 //! so one transform pair is the floor of an iteration's cost: a solve cannot take less than
 //! (iterations) x (this time). Comparing it with the solve benchmarks (`benches/solve.rs`)
 //! shows how much of a solve is transforms and how much is the pointwise work around them.

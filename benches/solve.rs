@@ -1,7 +1,7 @@
-//! Hard-wall solves, both solvers ([`SolverKind::Cg`], [`SolverKind::Gfmd`]), on the
-//! standard scene of the speed study (`src/speed.rs`): H = 0.8, `lambda_l = N/2`,
-//! `lambda_s = 8`, seed 1, `p0 = 0.1` in units of `E* g_bar` (surfaces have unit rms
-//! gradient), `tol = 1e-8`.
+//! Hard-wall solves with CG and GFMD ([`SolverKind::Cg`], [`SolverKind::Gfmd`]; FIRE is
+//! not timed here) on the standard scene of the speed study (`src/speed/`): H = 0.8,
+//! `lambda_l = N/2`, `lambda_s = 8`, seed 1, `p0 = 0.1` in units of `E* g_bar` (surfaces
+//! have unit rms gradient), `tol = 1e-8`.
 //!
 //! * `cold/<solver>/<N>`, `N = 256, 512, 1024`: one solve from scratch at full resolution,
 //!   the cost of a single contact solution;

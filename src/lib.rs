@@ -3,9 +3,9 @@
 //! A theory-versus-simulation harness for Persson's contact mechanics of randomly rough
 //! elastic surfaces, after Dapp, Prodanov & Müser, J. Phys.: Condens. Matter 26, 355002
 //! (2014) ("the paper"). A rigid self-affine surface is pressed against an elastic
-//! half-space; hard-wall contact is solved with GFMD and with constrained conjugate
-//! gradients while roughness is added one magnification at a time, and each assumption of
-//! Persson's theory is measured against the simulation.
+//! half-space; hard-wall contact is solved with GFMD, with constrained conjugate gradients
+//! and with FIRE while roughness is added one magnification at a time, and each assumption
+//! of Persson's theory is measured against the simulation.
 //!
 //! Units, the Fourier convention, magnification, the residual, the validations and the
 //! command-line contract are fixed in [`conventions`]; in short: lengths in grid spacings,

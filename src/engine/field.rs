@@ -76,15 +76,6 @@ where
     partial.into_iter().fold(init, combine)
 }
 
-/// Deterministic parallel reduction of `K` sums: `f` maps each fixed chunk of indices
-/// `0..len` to `K` partial sums, which are added chunk by chunk in order.
-pub fn reduce_chunks<const K: usize, F>(len: usize, f: F) -> [f64; K]
-where
-    F: Fn(std::ops::Range<usize>) -> [f64; K] + Sync,
-{
-    fold_chunks(len, [0.0; K], f, add)
-}
-
 /// Deterministic parallel pass over two fields of equal length that it may change: `f`
 /// maps each fixed chunk of indices, with the matching chunks of `a` and `b`, to a
 /// partial result; the partials come back in chunk order, to be combined in that order.

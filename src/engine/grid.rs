@@ -22,7 +22,9 @@ use crate::error::{Error, Result};
 
 /// Relative slack on `|k|^2` when deciding whether a shell is resolved at a magnification:
 /// a `zeta` computed from a shell's own `|q|` includes that shell despite rounding. Every
-/// "is this shell resolved at zeta" decision (grid, surfaces, theory) uses it.
+/// "is this shell resolved at zeta" decision (grid, surfaces, the spectrum's cutoffs,
+/// theory) uses it, and the sweep of a measured map's modes, which compares magnifications
+/// (`zeta`, not `|k|^2`) with it.
 pub const SHELL_SLACK: f64 = 1e-9;
 
 /// Smallest grid accepted: below this the FFT tables and the spectra are degenerate.

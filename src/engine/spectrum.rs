@@ -87,7 +87,7 @@ impl SelfAffine {
         let k2 = k2 as f64;
         let kl2 = (l / self.lambda_l).powi(2);
         let ks2 = (l / self.lambda_s).powi(2);
-        let slack = 1e-9;
+        let slack = crate::engine::grid::SHELL_SLACK;
         if k2 > ks2 * (1.0 + slack) {
             return 0.0;
         }

@@ -34,7 +34,9 @@ pub fn seed_load_jobs(contact_areas: &[f64], seeds: &[u64]) -> Vec<SeedLoad> {
         .collect()
 }
 
-/// Checks a list of contact areas: not empty, each in (0, 1).
+/// Checks a list of contact areas: not empty, each in (0, 1), each named once (a
+/// repeated load would run every realization at it twice, count each twice in its
+/// ensemble and shrink the error bar for nothing).
 pub fn check_contact_areas(contact_areas: &[f64]) -> Result<()> {
     if contact_areas.is_empty() {
         return Err(Error::invalid(
@@ -43,8 +45,15 @@ pub fn check_contact_areas(contact_areas: &[f64]) -> Result<()> {
             "at least one contact area in (0, 1)",
         ));
     }
-    for &a in contact_areas {
+    for (k, &a) in contact_areas.iter().enumerate() {
         check_open("contact_areas", a, 0.0, 1.0)?;
+        if contact_areas[..k].contains(&a) {
+            return Err(Error::invalid(
+                "contact_areas",
+                format!("{contact_areas:?}"),
+                format!("each contact area once ({a} appears twice)"),
+            ));
+        }
     }
     Ok(())
 }
@@ -171,6 +180,11 @@ mod tests {
             .to_string()
             .contains("contact_areas"));
         assert!(check_contact_areas(&[0.2, 1.0]).is_err());
+        let e = check_contact_areas(&[0.14, 0.014, 0.14])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("contact_areas") && e.contains("once"), "{e}");
+        assert!(check_contact_areas(&[0.14, 0.014, 0.88]).is_ok());
         let e = check_headline(0.3, &[0.2]).unwrap_err().to_string();
         assert!(e.contains("headline_contact_area"), "{e}");
     }

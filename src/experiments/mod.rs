@@ -22,6 +22,8 @@
 //! * [`contact_area`]: the contact-area law, `a_r` against `p~0`;
 //! * [`transitions`]: assumptions (a) pressure-independent diffusion and (b) no drift;
 //! * [`reentry`]: assumption (c), no re-entry into contact;
+//! * [`flux`]: assumption (c) in one step, the points that enter and leave contact
+//!   between two magnifications (the paper's contact-change figure);
 //! * [`source`]: assumption (c) in one step, the share of the zero-pressure bin that
 //!   moves into contact (the paper's "about 1%");
 //! * [`modes`]: assumptions (d) a mode holds energy only once resolved, (e) and keeps it;

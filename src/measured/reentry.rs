@@ -27,7 +27,7 @@ use super::body::window_of;
 use super::psd::{dft2, idft2, Boundary, ScanSpectrum, Shape};
 use super::theory::E_STAR;
 use crate::engine::contact::{ContactProblem, ContactSolution, Model};
-use crate::engine::grid::{signed_index, Grid};
+use crate::engine::grid::{signed_index, Grid, SHELL_SLACK};
 use crate::engine::solver::{SolveOptions, SolverKind, Start};
 use crate::error::{Error, Result};
 use crate::experiments::reentry::history::History;
@@ -117,7 +117,8 @@ fn wrap(m: i64, n: usize) -> usize {
     m.rem_euclid(n as i64) as usize
 }
 
-/// The distinct shells' magnifications, increasing (equal within `1e-12` are one shell).
+/// The distinct shells' magnifications, increasing (those that round to the same multiple of
+/// `1e-9` are one shell).
 fn shells(modes: &[(f64, usize, Complex64)]) -> Vec<f64> {
     let mut zetas: BTreeMap<u64, f64> = BTreeMap::new();
     for &(z, _, _) in modes {
@@ -153,7 +154,8 @@ pub fn reentry_share(
     let mut iterations = 0u64;
     let mut failed = None;
     for (step, &zeta) in steps.iter().enumerate() {
-        while next < truncated.modes.len() && truncated.modes[next].0 <= zeta * (1.0 + 1e-9) {
+        let limit = zeta * (1.0 + SHELL_SLACK);
+        while next < truncated.modes.len() && truncated.modes[next].0 <= limit {
             let (_, at, amplitude) = truncated.modes[next];
             spec[at] = amplitude;
             next += 1;

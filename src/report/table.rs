@@ -42,10 +42,12 @@ impl Scorecard<'_> {
             "\nVerdict rule (per validation: significance z, resolution r): **violated** when \
              |measured − Persson| > z · error; **holds** when the whole interval measured ± \
              z · error lies within Persson ± r; **inconclusive** otherwise. \"Reproduced\" \
-             requires the paper's verdict, the paper's range, every check of the paper's \
-             finding and every claim that is evidence; \"contradicted\" when any of them \
-             fails; \"not established\" otherwise (the verdict inconclusive, or the claims \
-             named not established). \"Grid\" lists points \
+             requires the paper's verdict, the paper's range (overlapped by measured ± z · \
+             error), every check of the paper's finding and every claim that is evidence \
+             (consistency checks and statements the paper makes two ways take no part); \
+             \"contradicted\" when the verdict is conclusive and any of them fails; \"not \
+             established\" otherwise (the verdict inconclusive, or a check or claim the data \
+             do not decide: the claims named not established). \"Grid\" lists points \
              per side (all refinements); \"solver residual\" is the largest residual of all \
              solves.\n"
         );

@@ -150,18 +150,6 @@ impl Registry {
     pub fn check(&self, source: &Source) -> Result<()> {
         self.entry(source)?.check(source)
     }
-
-    /// Runs several definitions in turn; one failure does not stop the others.
-    pub fn run_all(
-        &self,
-        sources: &[Source],
-        opts: &RunOptions,
-    ) -> Vec<(std::path::PathBuf, Result<Option<Outcome>>)> {
-        sources
-            .iter()
-            .map(|s| (s.path.clone(), self.run(s, opts)))
-            .collect()
-    }
 }
 
 /// Runs `source` with the built-in experiments (every job, to its outcome).

@@ -226,6 +226,40 @@ fn every_definition_rejects_a_repeated_seed() {
     every_definition_rejects_seeds("seeds = [3, 5, 3]", &["distinct", "3 appears twice"]);
 }
 
+/// Every built-in definition whose reduced scene lists its loads (`contact_areas`) is
+/// rejected when one load appears twice, with the file, the table, the field and "once".
+#[test]
+fn every_definition_with_loads_rejects_a_repeated_load() {
+    let mut checked = 0;
+    for (name, text) in DEFINITIONS {
+        let mut table = "";
+        let Some(line) = text.lines().find(|l| {
+            if l.starts_with('[') {
+                table = l;
+            }
+            l.starts_with("contact_areas = [")
+        }) else {
+            continue;
+        };
+        if table != "[reduced]" {
+            continue;
+        }
+        let first = line["contact_areas = [".len()..]
+            .split([',', ']'])
+            .next()
+            .unwrap();
+        let repeated = format!("{}, {first}]", line.trim_end().trim_end_matches(']'));
+        let file = format!("{name}.toml");
+        let text = edit(text, line, &repeated);
+        bad_definitions(
+            &[(&file, &text)],
+            &[file.as_str(), "[reduced]", "contact_areas", "once"],
+        );
+        checked += 1;
+    }
+    assert!(checked >= 4, "only {checked} definitions list their loads");
+}
+
 #[test]
 fn one_bad_definition_stops_all_before_any_runs() {
     // contact_area sorts first and is valid: it must not run (nor write) either.

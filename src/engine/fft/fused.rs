@@ -50,6 +50,11 @@ impl Fft2 {
     /// consumed, row by row by `pass` (see the module docs). `kernel` comes from
     /// [`Fft2::kernel`]; `side`, if given, is a second field the pass keeps; `spec` is
     /// work space. Returns what the pass returned for each row, in row order.
+    ///
+    /// # Panics
+    ///
+    /// If `kernel` was planned for another grid, or `spec`, `out` or `side` is not of the
+    /// planned grid's length (a half spectrum; `n x n`).
     pub fn convolve<P: FusedPass>(
         &self,
         kernel: &Kernel,

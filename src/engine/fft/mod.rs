@@ -145,6 +145,10 @@ impl Fft2 {
 
     /// The convolution kernel of `table`, a real multiplier in the half-spectrum layout of
     /// [`crate::engine::grid`] (e.g. the half-space's stiffness `q E*/2`).
+    ///
+    /// # Panics
+    ///
+    /// If `table` is not a half spectrum of the planned grid (length `n (n/2 + 1)`).
     pub fn kernel(&self, table: &[f64]) -> Kernel {
         let (n, m) = (self.n, self.m);
         assert_eq!(table.len(), n * m, "kernel table length");
@@ -178,6 +182,10 @@ impl Fft2 {
     }
 
     /// `spec = F[field]` with the `1/N^2` normalisation.
+    ///
+    /// # Panics
+    ///
+    /// If `field` is not `n x n` or `spec` not a half spectrum ([`Fft2::spectrum_len`]).
     pub fn forward(&self, field: &[f64], spec: &mut [Complex64]) {
         let (n, m) = (self.n, self.m);
         assert_eq!(field.len(), n * n, "field length");
@@ -207,6 +215,10 @@ impl Fft2 {
     /// `spec` must be the half spectrum of a real field (Hermitian on the columns
     /// `kx = 0` and, for even `n`, `kx = n/2`); the imaginary parts that a real field
     /// cannot have are ignored.
+    ///
+    /// # Panics
+    ///
+    /// If `field` is not `n x n` or `spec` not a half spectrum ([`Fft2::spectrum_len`]).
     pub fn inverse_in_place(&self, spec: &mut [Complex64], field: &mut [f64]) {
         let (n, m) = (self.n, self.m);
         assert_eq!(field.len(), n * n, "field length");
@@ -252,6 +264,11 @@ impl Fft2 {
     }
 
     /// `field = F^-1[spec]`, keeping `spec`; `work` is resized and used as scratch.
+    ///
+    /// # Panics
+    ///
+    /// As [`Fft2::inverse_in_place`]: if `field` is not `n x n` or `spec` not a half
+    /// spectrum.
     pub fn inverse(&self, spec: &[Complex64], field: &mut [f64], work: &mut Vec<Complex64>) {
         work.clear();
         work.extend_from_slice(spec);
