@@ -284,6 +284,27 @@ pub fn details(
             )
             .persson(1.0),
         );
+        // "Low magnification" read over the first octaves too: the step nearest zeta = 2
+        // and 4.
+        for z in [2.0_f64, 4.0] {
+            let Some(k) = (0..zetas.len()).min_by(|&a, &b| {
+                (zetas[a] / z).ln().abs().total_cmp(&(zetas[b] / z).ln().abs())
+            }) else {
+                continue;
+            };
+            details.push(
+                Detail::new(
+                    format!("corrected_p0.1_zeta{z}"),
+                    format!(
+                        "E_exa / E_c at zeta = {:.3}, at the load whose p~0 at full resolution \
+                         is nearest 0.1 (a_r = {})",
+                        zetas[k], near.contact_area
+                    ),
+                    ratio(near, k, Theory::Corrected),
+                )
+                .persson(1.0),
+            );
+        }
     }
     details.push(
         Detail::new(
