@@ -139,6 +139,10 @@ pub trait Experiment {
     /// The statistics an experiment draws from a run's results.
     type Stats;
 
+    /// The claims whose paper values ([`Criteria::paper`]) this experiment reads: a
+    /// definition of it must state each with a value, or it is refused when it loads.
+    const PAPER_CLAIMS: &'static [&'static str] = &[];
+
     /// Checks the scene's ranges for this experiment: the scene's own checks
     /// ([`Jobs::validate`]), and any this experiment adds.
     fn validate(scene: &Self::Scene) -> Result<()> {

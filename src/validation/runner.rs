@@ -555,6 +555,22 @@ fn checked_scene<'a, E: Experiment>(
     def: &'a Definition<E::Scene>,
     scale: Scale,
 ) -> Result<(&'a E::Scene, Vec<JobOf<E>>)> {
+    for key in E::PAPER_CLAIMS {
+        if !def
+            .claims
+            .iter()
+            .any(|c| c.key == *key && c.value.is_some())
+        {
+            return Err(Error::bad_file(
+                &source.path,
+                format!(
+                    "[[claims]] must hold the claim `{key}` with a value: the experiment \
+                     `{}` reads the paper's value from it",
+                    def.experiment
+                ),
+            ));
+        }
+    }
     let scene = def.scene(scale);
     E::validate(scene).map_err(|e| Error::bad_file(&source.path, format!("[{scale}] {e}")))?;
     let jobs = scene.jobs();

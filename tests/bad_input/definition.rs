@@ -317,3 +317,35 @@ fn validate_missing_out() {
     let dir = tempdir();
     rejected(dir.path(), &["validate", "contact_area"], &["--out"]);
 }
+
+#[test]
+fn definition_without_a_claim_its_experiment_reads() {
+    // c_flux's experiment reads the paper's fluxes from the claims flux_in and flux_out,
+    // total_energy's the contact area below which the correction fails: a definition
+    // that renames one is refused when it loads, naming the claim.
+    for (name, from, to, key) in [
+        (
+            "c_flux",
+            "key = \"flux_in\"",
+            "key = \"flux_into\"",
+            "`flux_in`",
+        ),
+        (
+            "total_energy",
+            "key = \"correction_fails_below\"",
+            "key = \"fails_below\"",
+            "`correction_fails_below`",
+        ),
+    ] {
+        let text = DEFINITIONS
+            .iter()
+            .find(|(n, _)| *n == name)
+            .map(|(_, t)| *t)
+            .unwrap();
+        let file = format!("{name}.toml");
+        bad_definitions(
+            &[(file.as_str(), &edit(text, from, to))],
+            &[key, "[[claims]]", file.as_str()],
+        );
+    }
+}

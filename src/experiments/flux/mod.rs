@@ -244,6 +244,8 @@ type Run<'a> = super::Run<'a, Flux>;
 impl Experiment for Flux {
     type Scene = FluxScene;
     type Stats = FluxStats;
+    const PAPER_CLAIMS: &'static [&'static str] =
+        &[study::reading::CLAIM_IN, study::reading::CLAIM_OUT];
 
     fn stats(run: &Run) -> Result<FluxStats> {
         Ok(FluxStats::of(run.scene, run.results))

@@ -26,6 +26,7 @@ fn paper_k(criteria: &Criteria) -> Option<(f64, f64)> {
 type Run<'a> = crate::experiments::Run<'a, ModeFrozen>;
 
 impl Experiment for ModeFrozen {
+    const PAPER_CLAIMS: &'static [&'static str] = &["k1", "k2"];
     type Scene = ModeScene;
     type Stats = FrozenStats;
 

@@ -319,6 +319,7 @@ type Run<'a> = super::Run<'a, BoundarySource>;
 impl Experiment for BoundarySource {
     type Scene = SourceScene;
     type Stats = SourceStats;
+    const PAPER_CLAIMS: &'static [&'static str] = &[study::CLAIM];
 
     fn stats(run: &Run) -> Result<SourceStats> {
         SourceStats::of(run.scene, run.results)

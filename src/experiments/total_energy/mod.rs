@@ -305,6 +305,7 @@ fn loads<'a>(run: &Run<'a>) -> Vec<Load<'a>> {
 impl Experiment for TotalEnergy {
     type Scene = EnergyScene;
     type Stats = EnergyStats;
+    const PAPER_CLAIMS: &'static [&'static str] = &[FAILS_BELOW];
 
     /// Errors when the jobs' sweeps have different steps.
     fn stats(run: &Run) -> Result<EnergyStats> {

@@ -288,7 +288,10 @@ pub fn details(
         // and 4.
         for z in [2.0_f64, 4.0] {
             let Some(k) = (0..zetas.len()).min_by(|&a, &b| {
-                (zetas[a] / z).ln().abs().total_cmp(&(zetas[b] / z).ln().abs())
+                (zetas[a] / z)
+                    .ln()
+                    .abs()
+                    .total_cmp(&(zetas[b] / z).ln().abs())
             }) else {
                 continue;
             };
