@@ -245,6 +245,18 @@ pub struct SensitivityRow {
     pub modes_added: Option<f64>,
 }
 
+/// Refuses a list that names a value twice: its row would be run and counted twice.
+fn check_once(field: &str, values: &[f64]) -> Result<()> {
+    match (1..values.len()).find(|&k| values[..k].contains(&values[k])) {
+        Some(k) => Err(Error::invalid(
+            field,
+            format!("{values:?}"),
+            format!("each value once ({} appears twice)", values[k]),
+        )),
+        None => Ok(()),
+    }
+}
+
 impl SensitivityPlan {
     /// Checks the ranges (`step`: the headline's relative step `dzeta / zeta`); errors
     /// name the field.
@@ -262,10 +274,12 @@ impl SensitivityPlan {
             for &v in values {
                 check_positive(field, v)?;
             }
+            check_once(field, values)?;
         }
         for &h in &self.hurst_values {
             check_open("sensitivity.hurst_values", h, 0.0, 1.0)?;
         }
+        check_once("sensitivity.hurst_values", &self.hurst_values)?;
         for (k, &h) in self.later_hurst_values.iter().enumerate() {
             check_open("sensitivity.later_hurst_values", h, 0.0, 1.0)?;
             if self.hurst_values.contains(&h) || self.later_hurst_values[..k].contains(&h) {
@@ -279,6 +293,7 @@ impl SensitivityPlan {
         for &a in &self.contact_areas {
             check_open("sensitivity.contact_areas", a, 0.0, 1.0)?;
         }
+        check_once("sensitivity.contact_areas", &self.contact_areas)?;
         if let Some(t) = &self.transition {
             check_open("sensitivity.transition.hurst", t.hurst, 0.0, 1.0)?;
             check_open(
@@ -731,6 +746,21 @@ mod tests {
         p.transition.as_mut().unwrap().zeta = 63.0;
         let e = p.validate(0.8, STEP).unwrap_err().to_string();
         assert!(e.contains("sensitivity.transition"), "{e}");
+    }
+
+    #[test]
+    fn a_value_named_twice_is_refused_by_name() {
+        let mut p = plan();
+        p.contact_areas = vec![0.5, 0.5];
+        let e = p.validate(0.8, STEP).unwrap_err().to_string();
+        assert!(
+            e.contains("sensitivity.contact_areas") && e.contains("once"),
+            "{e}"
+        );
+        let mut p = plan();
+        p.tols = vec![1e-6, 1e-8, 1e-6];
+        let e = p.validate(0.8, STEP).unwrap_err().to_string();
+        assert!(e.contains("sensitivity.tols") && e.contains("once"), "{e}");
     }
 
     #[test]
