@@ -38,11 +38,14 @@
 //! * `figures.rs`: the table and the contact maps;
 //! * `tolerance.rs`: the speed-against-error study of a history (the same climbs at
 //!   several solver tolerances), run where the scene states a plan;
+//! * `range.rs`: the share against the range of magnification (the headline against the
+//!   tolerance study's smaller range);
 //! * `variants.rs`: histories of scenes beside the headline's (another Hurst exponent,
 //!   `eps_c` or range of magnification), for the paper's statements that compare scenes.
 
 mod figures;
 pub mod history;
+pub mod range;
 pub mod stats;
 pub mod tolerance;
 pub mod variants;
@@ -54,6 +57,7 @@ use serde::{Deserialize, Serialize};
 pub use self::figures::step_palette;
 use self::figures::{maps, table};
 use self::history::{pack_categories, History};
+use self::range::{range_gains, RangeGain};
 use self::stats::{ReentryStats, Share};
 use self::tolerance::{RowSamples, Sample, ToleranceJob, TolerancePlan, ToleranceResult};
 use self::variants::{Variant, VariantJob, VariantResult, VariantStats};
@@ -367,60 +371,6 @@ impl ReentryScene {
 
 type Run<'a> = super::Run<'a, Reentry>;
 
-/// The statistics of a variant: its shares, their shift from the headline's where it
-/// starts from the flat interface too, and where it starts later, the counts of the
-/// paper's 2048^2 figure.
-fn variant_details(v: &VariantStats, headline: &[Share]) -> Vec<Detail> {
-    let (name, what) = (&v.variant.name, &v.variant.what);
-    let mut details = Vec::new();
-    for l in v.loads.iter().filter(|l| l.realizations > 0) {
-        let a = l.load;
-        details.push(
-            Detail::new(
-                format!("{name}_share_ar{a}"),
-                format!("re-entry share at a_r = {a}, {what}"),
-                l.share,
-            )
-            .persson(0.0),
-        );
-        if v.variant.zeta_from == 0.0 {
-            if let Some(h) = headline.iter().find(|h| h.load == a) {
-                details.push(Detail::new(
-                    format!("{name}_share_shift_ar{a}"),
-                    format!("re-entry share at a_r = {a}, {what}, minus the headline's"),
-                    Estimate::difference(l.share, h.share),
-                ));
-            }
-        } else {
-            let from = v.variant.zeta_from;
-            details.extend([
-                Detail::new(
-                    format!("{name}_a_r_start_ar{a}"),
-                    format!("contact area at zeta = {from}, a_r = {a} at zeta_max, {what}"),
-                    l.a_r_start,
-                ),
-                Detail::new(
-                    format!("{name}_remained_of_start_ar{a}"),
-                    format!(
-                        "share of the contact at zeta = {from} in contact at every step \
-                         (grey), a_r = {a}, {what}"
-                    ),
-                    l.remained_of_start,
-                ),
-                Detail::new(
-                    format!("{name}_coloured_over_grey_ar{a}"),
-                    format!(
-                        "points that re-entered contact or non-contact (red, blue) over \
-                         points in contact throughout (grey), a_r = {a}, {what}"
-                    ),
-                    l.coloured_over_grey,
-                ),
-            ]);
-        }
-    }
-    details
-}
-
 /// The key of the share out of contact at the first shell only, at load `a_r`.
 pub fn out_at_first_key(contact_area: f64) -> String {
     format!("out_at_first_ar{contact_area}")
@@ -441,60 +391,6 @@ pub struct RunStats {
     /// magnification at the same `eps_c` (a grid of the tolerance study at the headline's
     /// tolerance), per headline load.
     pub range_gain: Vec<RangeGain>,
-}
-
-/// The share over the headline's range against a smaller one at the same `eps_c`.
-pub struct RangeGain {
-    /// The load.
-    pub load: f64,
-    /// `zeta_max` of the smaller range.
-    pub zeta_max: f64,
-    /// Headline share minus the smaller range's.
-    pub gain: Estimate,
-}
-
-/// The share gains over the headline's range against the tolerance study's grids of a
-/// smaller range at the headline's `lambda_s` and tolerance.
-fn range_gains(
-    scene: &ReentryScene,
-    results: &[(ReentryJob, ReentryOutput)],
-    stats: &ReentryStats,
-) -> Vec<RangeGain> {
-    let Some(plan) = &scene.tolerance else {
-        return Vec::new();
-    };
-    let zeta_max = scene.base().zeta_max();
-    let Some(grid) = plan.grids.iter().find(|g| {
-        g.lambda_s == scene.lambda_s
-            && g.lambda_l / g.lambda_s < zeta_max
-            && plan.tols.contains(&scene.tol)
-    }) else {
-        return Vec::new();
-    };
-    stats
-        .shares
-        .iter()
-        .filter_map(|share| {
-            let samples: Vec<f64> = grid
-                .seeds
-                .iter()
-                .filter_map(|&seed| {
-                    let job = grid.job(seed, share.load, scene.tol);
-                    results.iter().find_map(|(j, r)| match (j, r) {
-                        (ReentryJob::Tolerance(j), ReentryOutput::Tolerance(r)) if *j == job => {
-                            Some(r.share())
-                        }
-                        _ => None,
-                    })
-                })
-                .collect();
-            (!samples.is_empty()).then(|| RangeGain {
-                load: share.load,
-                zeta_max: grid.lambda_l / grid.lambda_s,
-                gain: Estimate::difference(share.share, Estimate::mean_of(&samples)),
-            })
-        })
-        .collect()
 }
 
 impl std::ops::Deref for RunStats {
@@ -717,7 +613,7 @@ impl Experiment for Reentry {
             ));
         }
         for v in &s.variants {
-            details.extend(variant_details(v, &s.shares));
+            details.extend(variants::details(v, &s.shares));
         }
         details
     }

@@ -30,7 +30,7 @@ use crate::experiments::climb::{climb, Arrays, Checkpointing, Recorder};
 use crate::experiments::ensemble::check_contact_areas;
 use crate::experiments::scene::Base;
 use crate::experiments::study::{Cell, Study};
-use crate::experiments::{JobContext, Work};
+use crate::experiments::{Detail, JobContext, Work};
 use crate::io::checkpoint::Checkpoints;
 use crate::plot::Raster;
 use crate::stats::Estimate;
@@ -506,6 +506,60 @@ pub fn raster(v: &VariantStats) -> Option<Raster> {
         pixels: history::unpack_categories(map, x.n * x.n),
         palette: super::figures::history_palette(),
     })
+}
+
+/// The statistics of a variant: its shares, their shift from the headline's where it
+/// starts from the flat interface too, and where it starts later, the counts of the
+/// paper's 2048^2 figure.
+pub fn details(v: &VariantStats, headline: &[Share]) -> Vec<Detail> {
+    let (name, what) = (&v.variant.name, &v.variant.what);
+    let mut details = Vec::new();
+    for l in v.loads.iter().filter(|l| l.realizations > 0) {
+        let a = l.load;
+        details.push(
+            Detail::new(
+                format!("{name}_share_ar{a}"),
+                format!("re-entry share at a_r = {a}, {what}"),
+                l.share,
+            )
+            .persson(0.0),
+        );
+        if v.variant.zeta_from == 0.0 {
+            if let Some(h) = headline.iter().find(|h| h.load == a) {
+                details.push(Detail::new(
+                    format!("{name}_share_shift_ar{a}"),
+                    format!("re-entry share at a_r = {a}, {what}, minus the headline's"),
+                    Estimate::difference(l.share, h.share),
+                ));
+            }
+        } else {
+            let from = v.variant.zeta_from;
+            details.extend([
+                Detail::new(
+                    format!("{name}_a_r_start_ar{a}"),
+                    format!("contact area at zeta = {from}, a_r = {a} at zeta_max, {what}"),
+                    l.a_r_start,
+                ),
+                Detail::new(
+                    format!("{name}_remained_of_start_ar{a}"),
+                    format!(
+                        "share of the contact at zeta = {from} in contact at every step \
+                         (grey), a_r = {a}, {what}"
+                    ),
+                    l.remained_of_start,
+                ),
+                Detail::new(
+                    format!("{name}_coloured_over_grey_ar{a}"),
+                    format!(
+                        "points that re-entered contact or non-contact (red, blue) over \
+                         points in contact throughout (grey), a_r = {a}, {what}"
+                    ),
+                    l.coloured_over_grey,
+                ),
+            ]);
+        }
+    }
+    details
 }
 
 #[cfg(test)]

@@ -1,0 +1,63 @@
+//! The re-entry share against the range of magnification (paper, tex 774-779: "when
+//! taking into account a larger range of magnifications more points are bound to
+//! experience re-entry"): the headline's share at `zeta_max` minus the share of the
+//! tolerance study's histories over a smaller range at the same `eps_c` and tolerance
+//! (a range extended at its upper end: finer roughness, the same `lambda_l / L`).
+
+use super::stats::ReentryStats;
+use super::{ReentryJob, ReentryOutput, ReentryScene};
+use crate::stats::Estimate;
+
+/// The share over the headline's range against a smaller one at the same `eps_c`.
+pub struct RangeGain {
+    /// The load.
+    pub load: f64,
+    /// `zeta_max` of the smaller range.
+    pub zeta_max: f64,
+    /// Headline share minus the smaller range's.
+    pub gain: Estimate,
+}
+
+/// The share gains over the headline's range against the tolerance study's grids of a
+/// smaller range at the headline's `lambda_s` and tolerance.
+pub fn range_gains(
+    scene: &ReentryScene,
+    results: &[(ReentryJob, ReentryOutput)],
+    stats: &ReentryStats,
+) -> Vec<RangeGain> {
+    let Some(plan) = &scene.tolerance else {
+        return Vec::new();
+    };
+    let zeta_max = scene.base().zeta_max();
+    let Some(grid) = plan.grids.iter().find(|g| {
+        g.lambda_s == scene.lambda_s
+            && g.lambda_l / g.lambda_s < zeta_max
+            && plan.tols.contains(&scene.tol)
+    }) else {
+        return Vec::new();
+    };
+    stats
+        .shares
+        .iter()
+        .filter_map(|share| {
+            let samples: Vec<f64> = grid
+                .seeds
+                .iter()
+                .filter_map(|&seed| {
+                    let job = grid.job(seed, share.load, scene.tol);
+                    results.iter().find_map(|(j, r)| match (j, r) {
+                        (ReentryJob::Tolerance(j), ReentryOutput::Tolerance(r)) if *j == job => {
+                            Some(r.share())
+                        }
+                        _ => None,
+                    })
+                })
+                .collect();
+            (!samples.is_empty()).then(|| RangeGain {
+                load: share.load,
+                zeta_max: grid.lambda_l / grid.lambda_s,
+                gain: Estimate::difference(share.share, Estimate::mean_of(&samples)),
+            })
+        })
+        .collect()
+}
