@@ -44,19 +44,23 @@
 //! * `mod.rs`: the scene, its jobs (the load, then the climb recording every theory's
 //!   energy) and the [`Experiment`] implementation;
 //! * `stats.rs`: the statistics of the sweeps, and the findings as data;
-//! * `figures.rs`: the account, the tables and the figures.
+//! * `figures.rs`: the account, the tables and the figures;
+//! * `resolutions.rs`: `S~` on finer grids, size-scaled (the paper's convergence check).
 
 mod figures;
+pub mod resolutions;
 pub mod stats;
 
 use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
+use self::resolutions::{Resolution, ResolutionJob};
 use self::stats::{EnergyStats, Headline, Load};
 use super::climb::{check_steps_per_octave, climb, ladder, step_of, Recorder};
 use super::ensemble::{by_load, check_headline, load_range, seed_load_jobs, SeedLoad};
 use super::scene::scene;
+use super::study::Study;
 use super::{Check, Detail, Experiment, JobContext, Jobs, Table, Work};
 use crate::engine::contact::{ContactSolution, Model};
 use crate::engine::solver::SolverKind;
@@ -93,7 +97,21 @@ scene! {
         /// The correction factor `S(a_r)` of the corrected theory.
         #[serde(default)]
         pub correction: Correction,
+        /// The scene on finer grids, size-scaled ([`resolutions`]).
+        #[serde(default, skip_serializing_if = "Vec::is_empty")]
+        pub resolutions: Vec<Resolution>,
     }
+}
+
+/// A job: one sweep of the headline (stored as the bare seed and load, as before the
+/// resolutions existed), or one sweep on a finer grid.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum EnergyJob {
+    /// A sweep on a finer grid.
+    Resolution(ResolutionJob),
+    /// A sweep of the headline's scene.
+    #[serde(untagged)]
+    Sweep(SeedLoad),
 }
 
 /// The sweep of one realization at one load, with the theory beside it.
@@ -220,7 +238,7 @@ pub struct TotalEnergy;
 
 impl Jobs for EnergyScene {
     const FAMILY: &'static str = "total_energy";
-    type Job = SeedLoad;
+    type Job = EnergyJob;
     type JobResult = EnergyResult;
 
     fn validate(&self) -> Result<()> {
@@ -243,6 +261,7 @@ impl Jobs for EnergyScene {
             ));
         }
         check_steps_per_octave(self.steps_per_octave)?;
+        resolutions::validate_all(&self.resolutions, self)?;
         for &z in &self.increments_at {
             if !(z >= self.zeta_start && z < base.zeta_max()) {
                 return Err(Error::invalid(
@@ -266,7 +285,8 @@ impl Jobs for EnergyScene {
         self.correction.validate()
     }
 
-    fn jobs(&self) -> Vec<SeedLoad> {
+    /// The headline's sweeps, then the finer grids'.
+    fn jobs(&self) -> Vec<EnergyJob> {
         let (lowest, _) = load_range(&self.contact_areas);
         let mut jobs = Vec::new();
         for &a in &self.contact_areas {
@@ -275,19 +295,46 @@ impl Jobs for EnergyScene {
                 jobs.extend(seed_load_jobs(&[a], &self.low_load_seeds));
             }
         }
+        let mut jobs: Vec<EnergyJob> = jobs.into_iter().map(EnergyJob::Sweep).collect();
+        for r in &self.resolutions {
+            jobs.extend(r.jobs().into_iter().map(EnergyJob::Resolution));
+        }
         jobs
     }
 
-    fn work(&self, _job: &SeedLoad) -> Work {
-        // The ladder's steps plus the windows of single-shell increments.
-        let zeta_max = self.base().zeta_max();
-        let ladder = (zeta_max / self.zeta_start).log2() * self.steps_per_octave as f64;
-        let windows = self.increments_at.len() * (self.increments + 1);
-        Work::search_then(self.n, ladder.ceil() as usize + 1, windows)
+    fn headline_only(job: &EnergyJob) -> bool {
+        matches!(job, EnergyJob::Resolution(_))
     }
 
-    fn run_job(&self, job: &SeedLoad, ctx: &JobContext) -> Result<EnergyResult> {
-        run_sweep(self, job, ctx.solver)
+    /// The headline's sweeps depend on the scene without the finer grids: their keys are
+    /// those of the scenes that had none.
+    fn key_scene(&self) -> serde_json::Value {
+        let mut scene = self.clone();
+        scene.resolutions.clear();
+        serde_json::to_value(scene).expect("scenes serialise")
+    }
+
+    fn work(&self, job: &EnergyJob) -> Work {
+        let scene = match job {
+            EnergyJob::Sweep(_) => self,
+            EnergyJob::Resolution(j) => &resolutions::scene_on(self, j),
+        };
+        // The ladder's steps plus the windows of single-shell increments.
+        let zeta_max = scene.base().zeta_max();
+        let ladder = (zeta_max / scene.zeta_start).log2() * scene.steps_per_octave as f64;
+        let windows = scene.increments_at.len() * (scene.increments + 1);
+        Work::search_then(scene.n, ladder.ceil() as usize + 1, windows)
+    }
+
+    fn run_job(&self, job: &EnergyJob, ctx: &JobContext) -> Result<EnergyResult> {
+        match job {
+            EnergyJob::Sweep(j) => run_sweep(self, j, ctx.solver),
+            EnergyJob::Resolution(j) => run_sweep(
+                &resolutions::scene_on(self, j),
+                &resolutions::seed_load(j),
+                ctx.solver,
+            ),
+        }
     }
 
     fn residual(result: &EnergyResult) -> f64 {
@@ -297,9 +344,9 @@ impl Jobs for EnergyScene {
 
 type Run<'a> = super::Run<'a, TotalEnergy>;
 
-/// The realizations of every load, in the scene's order.
-fn loads<'a>(run: &Run<'a>) -> Vec<Load<'a>> {
-    by_load(&run.scene.contact_areas, run.results)
+/// The realizations of every load of the headline's sweeps, in the scene's order.
+fn loads<'a>(run: &Run, s: &'a EnergyStats) -> Vec<Load<'a>> {
+    by_load(&run.scene.contact_areas, &s.sweeps)
 }
 
 impl Experiment for TotalEnergy {
@@ -307,10 +354,18 @@ impl Experiment for TotalEnergy {
     type Stats = EnergyStats;
     const PAPER_CLAIMS: &'static [&'static str] = &[FAILS_BELOW];
 
-    /// Errors when the jobs' sweeps have different steps.
+    /// Errors when the headline's sweeps have different steps.
     fn stats(run: &Run) -> Result<EnergyStats> {
-        let first = &run.results.first().expect("jobs ran").1;
-        if run.results.iter().any(|(_, r)| r.zetas != first.zetas) {
+        let mut sweeps = Vec::new();
+        let mut finer = Vec::new();
+        for (job, r) in run.results {
+            match job {
+                EnergyJob::Sweep(j) => sweeps.push((j.clone(), r.clone())),
+                EnergyJob::Resolution(j) => finer.push((j.clone(), r.clone())),
+            }
+        }
+        let first = &sweeps.first().expect("jobs ran").1;
+        if sweeps.iter().any(|(_, r)| r.zetas != first.zetas) {
             return Err(Error::invalid(
                 "sweep steps",
                 "different between realizations",
@@ -318,10 +373,19 @@ impl Experiment for TotalEnergy {
             ));
         }
         let headline = run.scene.headline_contact_area;
+        let (zetas, windows) = (first.zetas.clone(), first.windows.clone());
+        let resolutions = resolutions::stats(&run.scene.resolutions, &finer, &sweeps);
+        let head = Headline::of(
+            &by_load(&run.scene.contact_areas, &sweeps),
+            headline,
+            &zetas,
+        );
         Ok(EnergyStats {
-            headline: Headline::of(&loads(run), headline, &first.zetas),
-            zetas: first.zetas.clone(),
-            windows: first.windows.clone(),
+            headline: head,
+            zetas,
+            windows,
+            sweeps,
+            resolutions,
         })
     }
 
@@ -331,7 +395,10 @@ impl Experiment for TotalEnergy {
     }
 
     fn details(run: &Run, s: &EnergyStats) -> Vec<Detail> {
-        stats::details(run.scene, &loads(run), &s.zetas, &s.windows, &s.headline)
+        let mut details =
+            stats::details(run.scene, &loads(run, s), &s.zetas, &s.windows, &s.headline);
+        details.extend(resolutions::details(&s.resolutions));
+        details
     }
 
     fn checks(run: &Run, s: &EnergyStats) -> Vec<Check> {
@@ -339,7 +406,7 @@ impl Experiment for TotalEnergy {
     }
 
     fn golden(run: &Run, s: &EnergyStats) -> BTreeMap<String, f64> {
-        stats::golden(&loads(run), s.zetas.len() - 1, &s.headline)
+        stats::golden(&loads(run, s), s.zetas.len() - 1, &s.headline)
     }
 
     fn account(run: &Run, s: &EnergyStats) -> String {
@@ -347,7 +414,7 @@ impl Experiment for TotalEnergy {
     }
 
     fn tables(run: &Run, s: &EnergyStats) -> Vec<Table> {
-        let loads = loads(run);
+        let loads = loads(run, s);
         vec![
             figures::curve_table(&run.criteria.name, &loads, &s.zetas),
             figures::s_tilde_table(&loads, &s.zetas, &s.windows, run.scene.correction),
@@ -356,7 +423,14 @@ impl Experiment for TotalEnergy {
 
     fn figures(run: &Run, s: &EnergyStats) -> Vec<Figure> {
         let (hurst, correction) = (run.scene.hurst, run.scene.correction);
-        figures::figures(hurst, &loads(run), &s.zetas, &s.windows, correction)
+        figures::figures(hurst, &loads(run, s), &s.zetas, &s.windows, correction)
+    }
+
+    fn studies(run: &Run, s: &EnergyStats) -> Vec<Study> {
+        if s.resolutions.iter().all(|r| r.loads.is_empty()) {
+            return Vec::new();
+        }
+        vec![resolutions::study(&s.resolutions, run.scene.n)]
     }
 }
 
@@ -407,17 +481,17 @@ mod tests {
         let scene = &scene;
         let zetas = ladder(scene.zeta_start, scene.base().zeta_max(), 2, &[]);
         let n = zetas.len();
-        let results: Vec<(SeedLoad, EnergyResult)> = scene
+        let results: Vec<(EnergyJob, EnergyResult)> = scene
             .contact_areas
             .iter()
             .flat_map(|&a| scene.seeds.iter().map(move |&seed| (seed, a)))
             .map(|(seed, a)| {
                 let wobble = 1.0 + 0.01 * seed as f64;
                 (
-                    SeedLoad {
+                    EnergyJob::Sweep(SeedLoad {
                         seed,
                         contact_area: a,
-                    },
+                    }),
                     EnergyResult {
                         p0: 0.1,
                         zetas: zetas.clone(),
@@ -477,6 +551,7 @@ mod tests {
             increments: 4,
             correction: Correction::default(),
             tol: 1e-8,
+            resolutions: Vec::new(),
         };
         let w = &window_shells(&surface, &scene)[0];
         // Shells k2 = m^2 + n^2 with |k| = 2 zeta: the last at or below zeta = 3 is k2 = 36,

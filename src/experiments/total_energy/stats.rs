@@ -6,8 +6,9 @@
 
 use std::collections::BTreeMap;
 
+use super::resolutions::ResolutionStats;
 use super::{EnergyResult, EnergyScene, FAILS_BELOW};
-use crate::experiments::ensemble::{group, LoadGroup};
+use crate::experiments::ensemble::{group, LoadGroup, SeedLoad};
 use crate::experiments::{Check, Criteria, Detail};
 use crate::stats::{decide, round_sig, Claim, Estimate};
 
@@ -241,6 +242,10 @@ impl Headline {
 /// job) and the headline and lowest loads.
 #[derive(Debug, Clone)]
 pub struct EnergyStats {
+    /// The headline's sweeps (the finer grids' apart).
+    pub sweeps: Vec<(SeedLoad, EnergyResult)>,
+    /// The finer grids beside the headline's.
+    pub resolutions: Vec<ResolutionStats>,
     /// Magnifications of the sweeps.
     pub zetas: Vec<f64>,
     /// The increment windows, indices into `zetas`.
