@@ -140,6 +140,18 @@ pub struct EnergyResult {
     pub max_residual: f64,
 }
 
+impl EnergyResult {
+    /// This realization's `S~` averaged over the consecutive steps of a window (indices
+    /// into its sweep).
+    pub fn window_mean(&self, window: &[usize]) -> f64 {
+        let steps: Vec<f64> = window
+            .windows(2)
+            .map(|p| (self.e_exa[p[1]] - self.e_exa[p[0]]) / (self.e_p[p[1]] - self.e_p[p[0]]))
+            .collect();
+        steps.iter().sum::<f64>() / steps.len().max(1) as f64
+    }
+}
+
 /// The magnifications of the increment windows: for each start, the last shell at or
 /// below it and the next `increments` shells.
 fn window_shells(surface: &Surface, scene: &EnergyScene) -> Vec<Vec<f64>> {

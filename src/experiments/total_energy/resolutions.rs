@@ -10,13 +10,12 @@
 //! one load, climbed exactly as the headline's sweep ([`super::run_sweep`]).
 //!
 //! Per load, the statistic is the windows' `S~` averaged per realization (the mean of
-//! [`window_mean`] over the scene's increment windows), then over realizations; its shift
+//! [`EnergyResult::window_mean`] over the scene's increment windows), then over realizations; its shift
 //! from the headline grid's is the difference of two means over independent realizations
 //! (different grids draw different surfaces), with the combined standard error.
 
 use serde::{Deserialize, Serialize};
 
-use super::stats::window_mean;
 use super::{EnergyResult, EnergyScene};
 use crate::error::{check_seeds, Error, Result};
 use crate::experiments::ensemble::{check_contact_areas, SeedLoad};
@@ -189,7 +188,7 @@ pub fn seed_load(job: &ResolutionJob) -> SeedLoad {
 
 /// One realization's `S~` averaged over every increment window.
 fn windows_mean(r: &EnergyResult) -> f64 {
-    r.windows.iter().map(|w| window_mean(r, w)).sum::<f64>() / r.windows.len().max(1) as f64
+    r.windows.iter().map(|w| r.window_mean(w)).sum::<f64>() / r.windows.len().max(1) as f64
 }
 
 /// The windows' `S~` at one load on one grid, over its realizations.

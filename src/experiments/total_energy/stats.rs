@@ -60,16 +60,6 @@ pub fn s_tilde(load: &Load, a: usize, b: usize) -> Estimate {
     load.ratio(|r| (r.e_exa[b] - r.e_exa[a], r.e_p[b] - r.e_p[a]))
 }
 
-/// One realization's `S~` averaged over the consecutive steps of a window (indices into
-/// its sweep).
-pub fn window_mean(r: &EnergyResult, window: &[usize]) -> f64 {
-    let steps: Vec<f64> = window
-        .windows(2)
-        .map(|p| (r.e_exa[p[1]] - r.e_exa[p[0]]) / (r.e_p[p[1]] - r.e_p[p[0]]))
-        .collect();
-    steps.iter().sum::<f64>() / steps.len().max(1) as f64
-}
-
 /// The index of the step closest (in `ln zeta`) to a quarter of the last magnification:
 /// two octaves below the end.
 pub fn two_octaves_below_end(zetas: &[f64]) -> usize {
@@ -434,7 +424,7 @@ fn load_details(
         .persson(1.0),
     ];
     for (w, window) in windows.iter().enumerate() {
-        let s_w = load.mean(|r| window_mean(r, &r.windows[w]));
+        let s_w = load.mean(|r| r.window_mean(&r.windows[w]));
         let last = *window.last().expect("non-empty window");
         let s_p = scene.correction.factor(original_area(load, last).value);
         details.push(
@@ -549,7 +539,7 @@ mod tests {
         };
         // (0.5 + 0.5) / (1 + 1) from step 0 to 1.
         assert_eq!(s_tilde(&load, 0, 1).value, 0.5);
-        assert_eq!(window_mean(&a, &[0, 1, 2]), 0.5);
+        assert_eq!(a.window_mean(&[0, 1, 2]), 0.5);
         let r = ratio(&load, 2, Theory::Corrected);
         assert!((r.value - 5.5 / 8.8).abs() < 1e-15, "{r:?}");
     }
