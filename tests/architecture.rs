@@ -208,6 +208,39 @@ fn no_two_modules_depend_on_each_other() {
     }
 }
 
+/// One experiment's internals are its own: no module imports `experiments::<one
+/// experiment>` (a folder under src/experiments) but that experiment and the registry,
+/// which names every experiment once. What two experiments share lives beside them.
+#[test]
+fn no_module_imports_one_experiment_but_the_registry() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("src/experiments");
+    let experiments: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.is_dir())
+        .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
+    assert!(experiments.len() >= 7, "{experiments:?}");
+    let registry = ["validation".to_string(), "registry".to_string()];
+    let mut wrong = Vec::new();
+    for (m, refs) in graph() {
+        if m.starts_with(&registry) {
+            continue;
+        }
+        for r in refs {
+            let into = r.len() >= 2 && r[0] == "experiments" && experiments.contains(&r[1]);
+            if into && !m.starts_with(&r[..2]) {
+                wrong.push(format!("{} uses {}", m.join("::"), r.join("::")));
+            }
+        }
+    }
+    assert!(
+        wrong.is_empty(),
+        "imports of one experiment's internals:\n{}",
+        wrong.join("\n")
+    );
+}
+
 #[test]
 fn the_reader_finds_crate_and_super_paths() {
     // In experiments/modes/onset.rs.

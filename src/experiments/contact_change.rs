@@ -63,9 +63,59 @@ pub fn categories(before: &[f64], after: &[f64]) -> Vec<u8> {
         .collect()
 }
 
+/// Packs 2-bit categories, four to a byte, as hex.
+pub fn pack_categories(c: &[u8]) -> String {
+    c.chunks(4)
+        .map(|q| {
+            let b = q
+                .iter()
+                .enumerate()
+                .fold(0u8, |acc, (k, &v)| acc | ((v & 3) << (2 * k)));
+            format!("{b:02x}")
+        })
+        .collect()
+}
+
+/// Unpacks [`pack_categories`] into `len` categories.
+pub fn unpack_categories(hex: &str, len: usize) -> Vec<u8> {
+    let mut out = Vec::with_capacity(len);
+    for k in (0..hex.len()).step_by(2) {
+        let b = u8::from_str_radix(&hex[k..k + 2], 16).unwrap_or(0);
+        for j in 0..4 {
+            if out.len() < len {
+                out.push((b >> (2 * j)) & 3);
+            }
+        }
+    }
+    out
+}
+
+/// The colours of a map of the changes over one step, as the paper's contact-change
+/// figure: grey in contact at both, red entered, white out of contact at both, blue left.
+pub fn step_palette() -> Vec<([u8; 3], String)> {
+    vec![
+        ([150, 150, 150], "in contact at both".into()),
+        ([220, 40, 40], "entered contact".into()),
+        ([255, 255, 255], "out of contact at both".into()),
+        ([40, 80, 220], "left contact".into()),
+    ]
+}
+
+/// `|out - in| / ((out + in) / 2)`: the net flux over the mean one-way flux (0 when
+/// both are 0).
+pub fn net_over_gross(flux_in: f64, flux_out: f64) -> f64 {
+    (flux_out - flux_in).abs() / (0.5 * (flux_out + flux_in)).max(f64::MIN_POSITIVE)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn categories_pack_and_unpack() {
+        let c: Vec<u8> = (0..37).map(|k| (k * 7 % 4) as u8).collect();
+        assert_eq!(unpack_categories(&pack_categories(&c), c.len()), c);
+    }
 
     #[test]
     fn the_four_changes_are_the_map_colours() {

@@ -221,42 +221,9 @@ impl Recorder for History {
     }
 }
 
-/// Packs 2-bit categories, four to a byte, as hex.
-pub fn pack_categories(c: &[u8]) -> String {
-    c.chunks(4)
-        .map(|q| {
-            let b = q
-                .iter()
-                .enumerate()
-                .fold(0u8, |acc, (k, &v)| acc | ((v & 3) << (2 * k)));
-            format!("{b:02x}")
-        })
-        .collect()
-}
-
-/// Unpacks [`pack_categories`] into `len` categories.
-pub fn unpack_categories(hex: &str, len: usize) -> Vec<u8> {
-    let mut out = Vec::with_capacity(len);
-    for k in (0..hex.len()).step_by(2) {
-        let b = u8::from_str_radix(&hex[k..k + 2], 16).unwrap_or(0);
-        for j in 0..4 {
-            if out.len() < len {
-                out.push((b >> (2 * j)) & 3);
-            }
-        }
-    }
-    out
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn categories_pack_and_unpack() {
-        let c: Vec<u8> = (0..37).map(|k| (k * 7 % 4) as u8).collect();
-        assert_eq!(unpack_categories(&pack_categories(&c), c.len()), c);
-    }
 
     #[test]
     fn history_counts_departures_and_returns() {

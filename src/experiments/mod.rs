@@ -36,14 +36,17 @@
 //!
 //! Shared machinery: [`scene`] (the fields every scene repeats), [`ensemble`] (the
 //! seeds x contact areas job grid and the per-load ensemble statistics), [`climb`] (the
-//! fixed-load magnification climb with optional checkpoints) and [`contact_change`] (which
-//! points entered or left contact in a step).
+//! fixed-load magnification climb with optional checkpoints), [`contact_change`] (which
+//! points entered or left contact in a step, and the maps' packing and colours) and
+//! [`history`] (every point's contact history over a climb, and the flux over an interval).
+//! No experiment imports another: what two share lives here.
 
 pub mod climb;
 pub mod contact_area;
 pub mod contact_change;
 pub mod ensemble;
 pub mod flux;
+pub mod history;
 pub mod modes;
 pub mod reentry;
 pub mod scene;

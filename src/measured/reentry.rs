@@ -30,7 +30,7 @@ use crate::engine::contact::{ContactProblem, ContactSolution, Model};
 use crate::engine::grid::{signed_index, Grid, SHELL_SLACK};
 use crate::engine::solver::{SolveOptions, SolverKind, Start};
 use crate::error::{Error, Result};
-use crate::experiments::reentry::history::History;
+use crate::experiments::history::History;
 
 /// The magnification the sweep climbs to, `L / lambda_s`: the reduced `c_reentry` scene's
 /// `zeta_max` (`lambda_l / lambda_s = 64 / 4`), with the scan's side as `lambda_l`. On a

@@ -6,8 +6,7 @@ use super::stats::StepStats;
 use super::study::reading::{percent, step_rows, PaperFlux};
 use super::study::sensitivity::SensitivityRow;
 use super::{FluxResult, FluxScene};
-use crate::experiments::reentry::history::unpack_categories;
-use crate::experiments::reentry::step_palette;
+use crate::experiments::contact_change::{step_palette, unpack_categories};
 use crate::plot::{Axis, Figure, Point, Raster, Series, Style};
 use crate::stats::Estimate;
 

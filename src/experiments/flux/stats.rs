@@ -6,7 +6,7 @@ use std::collections::BTreeMap;
 
 use super::study::sensitivity::{SensitivityRow, StudyJob, StudyResult};
 use super::{net_flow_residual, FluxJob, FluxOutput, FluxResult, FluxScene};
-use crate::experiments::reentry::net_over_gross;
+use crate::experiments::contact_change::net_over_gross;
 use crate::experiments::{Check, Criteria, Detail};
 use crate::stats::{decide, round_sig, Claim, Estimate};
 

@@ -1,22 +1,11 @@
 //! The table and maps of the re-entry experiment: one row per history, and the contact
 //! map at `zeta_max` and of the flux interval, coloured as the paper's figures.
 
-use super::history::unpack_categories;
 use super::{ReentryResult, ReentryScene};
+use crate::experiments::contact_change::{step_palette, unpack_categories};
 use crate::experiments::ensemble::{LoadGroup, SeedLoad};
 use crate::experiments::Table;
 use crate::plot::Raster;
-
-/// The colours of a map of the changes over one step, as the paper's contact-change
-/// figure: grey in contact at both, red entered, white out of contact at both, blue left.
-pub fn step_palette() -> Vec<([u8; 3], String)> {
-    vec![
-        ([150, 150, 150], "in contact at both".into()),
-        ([220, 40, 40], "entered contact".into()),
-        ([255, 255, 255], "out of contact at both".into()),
-        ([40, 80, 220], "left contact".into()),
-    ]
-}
 
 /// The colours of a map of histories, as the paper's re-entry figures: grey in contact
 /// throughout, red re-entered contact, white out of contact and never back, blue out of

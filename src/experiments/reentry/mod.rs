@@ -44,7 +44,6 @@
 //!   `eps_c` or range of magnification), for the paper's statements that compare scenes.
 
 mod figures;
-pub mod history;
 pub mod range;
 pub mod stats;
 pub mod tolerance;
@@ -54,15 +53,15 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-pub use self::figures::step_palette;
 use self::figures::{maps, table};
-use self::history::{pack_categories, History};
 use self::range::{range_gains, RangeGain};
 use self::stats::{ReentryStats, Share};
 use self::tolerance::{RowSamples, Sample, ToleranceJob, TolerancePlan, ToleranceResult};
 use self::variants::{Variant, VariantJob, VariantResult, VariantStats};
 use super::climb::{climb, Checkpointing};
+use super::contact_change::{net_over_gross, pack_categories, unpack_categories};
 use super::ensemble::{by_load, check_contact_areas, seed_load_jobs, SeedLoad};
+use super::history::{self, History};
 use super::scene::scene;
 use super::study::Study;
 use super::{Check, Detail, Experiment, JobContext, Jobs, Table, Work};
@@ -177,12 +176,6 @@ impl ReentryResult {
     pub fn net_over_gross(&self) -> f64 {
         net_over_gross(self.flux_in, self.flux_out)
     }
-}
-
-/// `|out - in| / ((out + in) / 2)`: the net flux over the mean one-way flux (0 when
-/// both are 0).
-pub fn net_over_gross(flux_in: f64, flux_out: f64) -> f64 {
-    (flux_out - flux_in).abs() / (0.5 * (flux_out + flux_in)).max(f64::MIN_POSITIVE)
 }
 
 /// The experiment.
@@ -430,7 +423,7 @@ fn tolerance_study(
         .iter()
         .filter_map(|(j, r)| {
             let map = r.map.as_deref()?;
-            let contact = history::unpack_categories(map, n2)
+            let contact = unpack_categories(map, n2)
                 .into_iter()
                 .map(|c| u8::from(c == history::IN_THROUGHOUT || c == history::REENTERED))
                 .collect();

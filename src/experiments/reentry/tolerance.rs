@@ -3,7 +3,7 @@
 //! claims read unchanged.
 //!
 //! A history adds every shell of modes one at a time at fixed load and records, for every
-//! point, whether it was ever out of contact ([`super::history`]). A looser residual
+//! point, whether it was ever out of contact ([`crate::experiments::history`]). A looser residual
 //! tolerance stops each of the ~10^3 warm-started solves earlier; the question is whether
 //! the re-entry share (the headline of assumption (c), paper section 3.3) and the contact
 //! set at `zeta_max` move. Each row of the study is one grid, one load and one tolerance,
@@ -27,11 +27,11 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::history::History;
 use crate::engine::sweep::shell_steps;
 use crate::error::{check_positive, Error, Result};
 use crate::experiments::climb::{climb, Checkpointing};
 use crate::experiments::ensemble::check_contact_areas;
+use crate::experiments::history::History;
 use crate::experiments::scene::Base;
 use crate::experiments::study::{Cell, Study};
 use crate::experiments::{JobContext, Work};

@@ -21,13 +21,14 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::history::{self, pack_categories, History};
 use super::stats::Share;
 use crate::engine::contact::ContactSolution;
 use crate::engine::sweep::shell_steps;
 use crate::error::{check_positive, Error, Result};
 use crate::experiments::climb::{climb, Arrays, Checkpointing, Recorder};
+use crate::experiments::contact_change::{pack_categories, unpack_categories};
 use crate::experiments::ensemble::check_contact_areas;
+use crate::experiments::history::{self, History};
 use crate::experiments::scene::Base;
 use crate::experiments::study::{Cell, Study};
 use crate::experiments::{Detail, JobContext, Work};
@@ -503,7 +504,7 @@ pub fn raster(v: &VariantStats) -> Option<Raster> {
             if x.zeta_from > 0.0 { x.zeta_from } else { 1.0 },
         ),
         n: x.n,
-        pixels: history::unpack_categories(map, x.n * x.n),
+        pixels: unpack_categories(map, x.n * x.n),
         palette: super::figures::history_palette(),
     })
 }

@@ -6,7 +6,7 @@
 //! load, the fall of the contact area over the step) points to a misprinted parameter.
 
 use super::sensitivity::{PlannedRow, SensitivityRow};
-use crate::experiments::reentry::net_over_gross;
+use crate::experiments::contact_change::net_over_gross;
 use crate::experiments::Criteria;
 use crate::plot::significant;
 use crate::stats::{decide, Claim, Estimate, LineFit};
@@ -712,7 +712,7 @@ mod tests {
             flux_in_of_contact: e(flux_in / 0.14),
             flux_out_of_contact: e(flux_out / 0.14),
             contact_area: e(0.14),
-            net_over_gross: Some(e(crate::experiments::reentry::net_over_gross(
+            net_over_gross: Some(e(crate::experiments::contact_change::net_over_gross(
                 flux_in, flux_out,
             ))),
             net_flow: Some(e(flux_out - flux_in)),
