@@ -92,7 +92,7 @@ print(f"{len(missing)} of {len(plan['jobs'])} full jobs have no committed result
       f"({', '.join(validations) or 'none'}): estimated {cost / 3600:.2f} core-hours, "
       f"{hours_needed:.2f} h on {cores} cores with the margin")
 if hours_needed > hours:
-    print(f"more than the {hours} h allowed: run them as a campaign of shares (README, "
+    print(f"more than the {hours} h allowed: run them as a campaign of shares (docs/cluster.md, "
           "'Running the paper-scale scenes on a cluster') and commit the results")
     sys.exit(3)
 PY

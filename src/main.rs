@@ -13,7 +13,7 @@
 //! persson-check audit    [--from DIR] [--budget 20m] [--seed K] [--job KEY ...]
 //!                        [--validation NAME ...] [--out DIR]
 //! persson-check compare  BASE NEW [--out FILE.md] [--z Z]
-//! persson-check claims   [--full DIR] [--reduced DIR] [--write FILE.md]
+//! persson-check claims   [--full DIR] [--reduced DIR] [--write [FILE.md]]
 //! ```
 //!
 //! Exit code 0 on success; otherwise a message on stderr and a non-zero code, and no
@@ -61,7 +61,7 @@ enum Command {
     Audit(commands::audit::Args),
     /// Compare two folders of outcomes statistic by statistic (z-scores, flips).
     Compare(commands::compare::Args),
-    /// The paper's claims, full and reduced scenes side by side (the README's table).
+    /// The paper's claims, full and reduced scenes side by side (the table of docs/claims.md).
     Claims(commands::claims::Args),
 }
 

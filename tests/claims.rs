@@ -106,15 +106,43 @@ fn every_measure_a_claim_names_is_in_the_committed_outcomes() {
 }
 
 #[test]
-fn the_readme_states_each_phrases_rule() {
+fn the_reviewers_guide_states_each_phrases_rule() {
     use persson_check::validation::claims::PHRASES;
-    let readme = include_str!("../README.md");
+    let guide = include_str!("../docs/reviewing.md");
     for p in PHRASES {
-        let row = readme
+        let row = guide
             .lines()
             .find(|l| l.starts_with(&format!("| `{}` |", p.name())))
-            .unwrap_or_else(|| panic!("README: no row for phrase `{}`", p.name()));
+            .unwrap_or_else(|| panic!("docs/reviewing.md: no row for phrase `{}`", p.name()));
         assert!(row.contains(p.wordings()), "{row}");
         assert!(row.ends_with(&format!("| {} |", p.rule_text())), "{row}");
     }
+}
+
+/// `docs/claims.md` holds the table that the committed outcomes give, as
+/// `persson-check claims --write docs/claims.md` writes it: an outcome changed without
+/// writing the table again fails here.
+#[test]
+fn the_committed_claims_table_is_the_committed_outcomes_table() {
+    use persson_check::report::claims::{table, MARKERS};
+    use persson_check::report::read_outcomes;
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let read = |scale: &str| -> Vec<Outcome> {
+        read_outcomes(&root.join("results").join(scale))
+            .unwrap_or_else(|e| panic!("results/{scale}: {e}"))
+            .into_iter()
+            .map(|l| l.outcome)
+            .collect()
+    };
+    let (full, reduced) = (read("full"), read("reduced"));
+    assert!(!full.is_empty() && !reduced.is_empty());
+    let doc = include_str!("../docs/claims.md");
+    let (open, close) = MARKERS;
+    let start = doc.find(open).expect("docs/claims.md: no opening marker") + open.len() + 1;
+    let end = doc.find(close).expect("docs/claims.md: no closing marker");
+    assert!(
+        doc[start..end] == table(&full, &reduced),
+        "docs/claims.md is not the table of results/full and results/reduced: write it again \
+         with `persson-check claims --write docs/claims.md`"
+    );
 }

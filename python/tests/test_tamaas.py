@@ -29,6 +29,6 @@ def test_same_contact_area_as_tamaas_and_faster():
 
     print(f"persson_check {ours_s:.3f} s, tamaas {theirs_s:.3f} s: {theirs_s / ours_s:.1f}x")
     assert abs(area - ours.contact_area) <= 1e-3
-    # The README's measured ratio is about 20x; on a shared test machine only the
+    # The measured ratio of docs/python.md is about 20x; on a shared test machine only the
     # direction is checked.
     assert theirs_s > 3 * ours_s

@@ -8,7 +8,7 @@
 # OUT must be a folder every node sees (NFS or the like). Without --shards, N is chosen so
 # that each share's estimated time on C cores is at most the time limit (default 24 h).
 # Memory per task: the largest grid of the planned jobs times BYTES_PER_POINT (measured
-# peak of one job per grid point, see README), plus a fixed 512 MiB.
+# peak of one job per grid point, see docs/measured.md, "Memory"), plus a fixed 512 MiB.
 set -euo pipefail
 
 BYTES_PER_POINT=${BYTES_PER_POINT:-200}

@@ -1,5 +1,5 @@
 //! `claims`: the paper's claims, full and reduced scenes side by side, as a Markdown table
-//! printed or written between the markers of a file (the README's table).
+//! printed or written between the markers of a file (`docs/claims.md` by default).
 
 use std::path::PathBuf;
 
@@ -7,6 +7,9 @@ use clap::Args as ClapArgs;
 use persson_check::error::{Error, Result};
 use persson_check::report::claims::{table, write_between_markers, MARKERS};
 use persson_check::report::read_outcomes;
+
+/// The file that holds the committed claims table, relative to the repository's root.
+pub const CLAIMS_FILE: &str = "docs/claims.md";
 
 /// Arguments of `claims`.
 #[derive(ClapArgs, Debug)]
@@ -18,8 +21,9 @@ pub struct Args {
     #[arg(long, default_value = "results/reduced")]
     reduced: PathBuf,
     /// A Markdown file to write the table into, between its `<!-- paper-claims -->` and
-    /// `<!-- /paper-claims -->` lines (default: print the table).
-    #[arg(long)]
+    /// `<!-- /paper-claims -->` lines; `--write` alone writes `docs/claims.md` (without
+    /// `--write`: print the table).
+    #[arg(long, value_name = "FILE.md", num_args = 0..=1, default_missing_value = CLAIMS_FILE)]
     write: Option<PathBuf>,
 }
 

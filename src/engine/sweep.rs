@@ -18,7 +18,7 @@
 //! ```
 //!
 //! exact in full contact and a step towards the solution in partial contact, which saves
-//! iterations of both solvers (the README's measured section gives the figures). The
+//! iterations of both solvers (`docs/measured.md` gives the figures). The
 //! prediction costs one inverse transform (of `K dh`; `dh` is the difference of the
 //! heights).
 

@@ -32,7 +32,7 @@ pub const CROSS_CHECK_MIN_S: f64 = 2.0;
 
 /// The loads cross-checked unless every load is asked for: the lowest, the middle and
 /// the highest (GFMD, the cross-check of the default, takes some three times CG's time
-/// per load on measured scans: the README's speed section).
+/// per load on measured scans: `docs/check-surface.md`, where the time goes).
 pub const CROSS_CHECKED_LOADS: usize = 3;
 
 /// What the check reports while it runs.

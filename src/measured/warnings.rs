@@ -2,7 +2,7 @@
 //! [`Limit`] names a statistic of the surface or the curve, its threshold and why it
 //! matters, and the check reports a [`Warning`] with the scan's number beside the
 //! threshold wherever one is crossed. The list is written once, [`LIMITS`]; the page, the
-//! JSON and the README's list come from it.
+//! JSON and the list in `docs/check-surface.md` come from it.
 
 use serde::{Deserialize, Serialize};
 

@@ -1,8 +1,8 @@
 //! The paper's claims as tables: the scorecard's opening section (one row per claim of
 //! every outcome, with the statement, its place in the paper, the paper's value, the
-//! measured value with its error bar and whether it reproduces), and the table for the
-//! README, full and reduced scenes side by side, written between two markers of a
-//! Markdown file (`persson-check claims --write README.md`).
+//! measured value with its error bar and whether it reproduces), and the table of
+//! `docs/claims.md`, full and reduced scenes side by side, written between two markers of
+//! a Markdown file (`persson-check claims --write docs/claims.md`).
 //!
 //! Every cell comes from the outcomes' `claims` ([`crate::validation::claims`]): the
 //! statement, the rule and the paper's value are the definitions' data, the result is the
@@ -16,7 +16,7 @@ use crate::error::{Error, Result};
 use crate::validation::claims::{ClaimKind, ReadingOutcome};
 use crate::validation::{ClaimOutcome, ClaimResult, Outcome};
 
-/// The marker lines of the README's table.
+/// The marker lines of the table in `docs/claims.md`.
 pub const MARKERS: (&str, &str) = ("<!-- paper-claims -->", "<!-- /paper-claims -->");
 
 /// A value as the tables print it: in % where the paper prints a percentage.
@@ -151,7 +151,7 @@ pub fn section(s: &mut String, outcomes: &[&Outcome]) {
     );
 }
 
-/// The README's table: every claim of the full outcomes and the reduced ones, side by
+/// The table of `docs/claims.md`: every claim of the full outcomes and the reduced ones, side by
 /// side, in the order of the full outcomes (then any claim only the reduced have).
 pub fn table(full: &[Outcome], reduced: &[Outcome]) -> String {
     let key = |o: &Outcome, c: &ClaimOutcome| (o.name.clone(), c.key.clone());

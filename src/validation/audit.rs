@@ -46,7 +46,7 @@ use crate::error::{Error, Result};
 
 /// The factor on the cost model's estimate when a sample is fitted into a budget: at paper
 /// scale measured job times run 1.2 to 2 times the estimate on a busy 2-core machine (the
-/// README's cost section: "plan on about 1.5 times the table").
+/// cost section of `docs/cluster.md`: "plan on about 1.5 times the table").
 pub const COST_MARGIN: f64 = 1.5;
 
 /// The keys under which a job's result holds a measured time rather than a computed

@@ -96,7 +96,7 @@ pub enum Phrase {
     Violates,
 }
 
-/// Every phrase, in the order of the README's table.
+/// Every phrase, in the order of the phrase table in `docs/reviewing.md`.
 pub const PHRASES: [Phrase; 10] = [
     Phrase::About,
     Phrase::Order,
@@ -156,7 +156,7 @@ impl Phrase {
         }
     }
 
-    /// The rule in words, as the README's table states it.
+    /// The rule in words, as the phrase table in `docs/reviewing.md` states it.
     pub fn rule_text(self) -> &'static str {
         match self {
             Phrase::About => "`near = 0.1`: the paper's value +- 10%",

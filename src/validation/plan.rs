@@ -17,7 +17,7 @@
 //! the measured job times of the reduced scenes, and [`SEARCH_GROWTH`] to a 4096^2 search
 //! (the full `c_flux` scene): each stored result records its wall time, and `--plan --out DIR` sets
 //! the estimate beside the measurement of every finished job (`measured_s`, and the range
-//! of measured over estimated in `measured_over_estimated`). The README's measured section
+//! of measured over estimated in `measured_over_estimated`). `docs/measured.md`
 //! states the fit.
 //!
 //! Jobs that several validations share (the same scene of the same family, so the same

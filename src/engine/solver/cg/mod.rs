@@ -37,7 +37,7 @@
 //! grows like `N`; the search direction is built from `z = K g` (the stiffness applied to
 //! the gap, restricted to the contact set and made mean-free) instead of `g`, and `beta`
 //! from `g.z`. One more FFT pair per iteration buys a several times smaller iteration
-//! count (the README's measured section gives the figures).
+//! count (`docs/measured.md` gives the figures).
 //!
 //! The displacement is updated incrementally, `u <- u - tau r`, which is exact as long as
 //! step 4 clips nothing and adds nothing; otherwise `u = K^-1 p` is recomputed. `u`
@@ -119,7 +119,7 @@ pub const STAGNATION: usize = 200;
 /// Polonsky & Keer reset conjugacy whenever a point enters contact. Late in a solve a few
 /// points enter or leave at every iteration, so that rule turns CG into steepest descent;
 /// resetting only when more than this fraction of the contact set enters keeps the
-/// conjugate directions through those small changes (the README's measured section:
+/// conjugate directions through those small changes (`docs/measured.md`:
 /// 83 -> 50 iterations at 1024^2; 0 restores the original rule).
 pub const KEEP_CONJUGACY: f64 = 0.01;
 /// The factor on the step length once the estimate has stagnated for [`STAGNATION`]
@@ -138,8 +138,8 @@ pub const DAMPING: f64 = 0.5;
 pub struct ConstrainedCg {
     /// Recompute `u = K^-1 p` from scratch at least this often (iterations).
     pub refresh_every: usize,
-    /// Precondition the gap with the stiffness `K` (one more FFT pair per iteration; the
-    /// README's measured section: 104 -> 37 iterations at 256^2, 488 -> 85 at 1024^2).
+    /// Precondition the gap with the stiffness `K` (one more FFT pair per iteration;
+    /// `docs/measured.md`: 104 -> 37 iterations at 256^2, 488 -> 85 at 1024^2).
     pub preconditioned: bool,
     /// `p`, `u`, `t` and `r` (see [`Solve`]) and a half spectrum.
     work: Workspace<4>,

@@ -58,31 +58,31 @@ impl Default for FireParams {
 }
 
 impl FireParams {
-    /// First time step (README, measured: "FIRE", the tuning set; 0.3 took 3-9% more
+    /// First time step (docs/measured.md: "FIRE", the tuning set; 0.3 took 3-9% more
     /// iterations).
     pub const DT_START: f64 = 0.6;
     /// Largest time step: below the stability limit of the stiffest constrained modes
     /// (the wall makes modes up to about 2.5 times as fast as the free ones). 1.5 and 0.7
-    /// took 1.4 times the iterations at the lowest loads (README, measured: "FIRE").
+    /// took 1.4 times the iterations at the lowest loads (docs/measured.md: "FIRE").
     pub const DT_MAX: f64 = 1.0;
     /// Bitzek et al.'s `N_min` is 5, which took 1.2 and 2.3 times the iterations (the
     /// tuning set, its lowest loads): mass weighting gives the free modes one frequency,
     /// so there is no slow mode to wait for.
     pub const N_DELAY: usize = 0;
-    /// Bitzek et al.'s `f_inc` is 1.1, which took 1.1 times the iterations (README,
-    /// measured: "FIRE").
+    /// Bitzek et al.'s `f_inc` is 1.1, which took 1.1 times the iterations (docs/measured.md:
+    /// "FIRE").
     pub const F_INC: f64 = 1.05;
     /// Bitzek et al.'s `f_dec` is 0.5: restarts come every few steps on this problem (the
     /// wall turns the motion), and halving `dt` at each kept it far below its stable size,
-    /// 4.8 and 1.9 times the iterations (README, measured: "FIRE").
+    /// 4.8 and 1.9 times the iterations (docs/measured.md: "FIRE").
     pub const F_DEC: f64 = 0.95;
     /// Bitzek et al.'s `alpha_start` is 0.1: strong mixing after a restart damps the
     /// oscillation of the modes the wall couples near the contact edges; 0.1 took 1.8
-    /// and 1.6 times the iterations (README, measured: "FIRE").
+    /// and 1.6 times the iterations (docs/measured.md: "FIRE").
     pub const ALPHA_START: f64 = 0.9;
     /// Bitzek et al.'s `f_alpha` is 0.99: with mixing this strong, a slow decay keeps a
     /// soft mode (the rigid approach at the lowest loads) from gathering speed; 0.99
-    /// took 1.2 and 18 times the iterations (README, measured: "FIRE").
+    /// took 1.2 and 18 times the iterations (docs/measured.md: "FIRE").
     pub const F_ALPHA: f64 = 0.7;
     /// Smallest time step, as a fraction of the first: FIRE 2.0's `Delta t_min`
     /// (Guénolé et al., Comput. Mater. Sci. 175, 109584 (2020)), so that a run of
@@ -94,7 +94,7 @@ impl FireParams {
     /// from convergence. A stopping rule, not a tuned value.
     pub const STALL_WINDOW: usize = 300;
     /// FIRE 2.0's step back at a restart (Guénolé et al., half a step, 0.5) took 1.4 and
-    /// 1.1 times the iterations here (README, measured: "FIRE"): none.
+    /// 1.1 times the iterations here (docs/measured.md: "FIRE"): none.
     pub const BACK: f64 = 0.0;
 }
 

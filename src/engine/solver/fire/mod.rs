@@ -63,7 +63,7 @@ pub struct Fire {
 impl Method for Fire {
     const NAME: &'static str = "fire";
     /// A load search at 512^2 (four warm-started solves) took FIRE 1.29 times CG's CPU
-    /// time, cold solves 1.07 to 1.17 at tol 1e-8 and 1e-10 (README, measured: "FIRE").
+    /// time, cold solves 1.07 to 1.17 at tol 1e-8 and 1e-10 (docs/measured.md: "FIRE").
     const RELATIVE_COST: f64 = 1.3;
     type Solve<'a> = Relaxation<'a>;
 

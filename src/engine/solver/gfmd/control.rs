@@ -2,7 +2,7 @@
 //! `beta`, and the step `tau`, which shrinks when the residual shows a mode that the step
 //! makes unstable and grows back at every new low.
 //!
-//! The defaults are the values of the measurements in the README's measured section
+//! The defaults are the values of the measurements in `docs/measured.md`
 //! ("GFMD's dynamics": what each change bought), each a named constant of [`GfmdParams`]
 //! that says where its value comes from.
 
@@ -58,29 +58,29 @@ impl Default for GfmdParams {
 
 impl GfmdParams {
     /// First step of a cold solve, in units of the squared mode period: the best fixed
-    /// step on the speed study's scenes (README, measured: "the momentum schedule with a
+    /// step on the speed study's scenes (docs/measured.md: "the momentum schedule with a
     /// fixed step 0.3", cold 142 -> 36 iterations at 128^2).
     pub const TAU_COLD: f64 = 0.3;
-    /// First step of a warm solve (README, measured: "a warm step of 0.2", a 512^2 sweep
+    /// First step of a warm solve (docs/measured.md: "a warm step of 0.2", a 512^2 sweep
     /// segment from zeta = 20, 29.6 -> 18.7 iterations per shell).
     pub const TAU_WARM: f64 = 0.2;
-    /// Steps without a new lowest residual before the step shrinks (README, measured:
+    /// Steps without a new lowest residual before the step shrinks (docs/measured.md:
     /// "shrinking the step when the residual stalls", 256^2 cold 142 -> 67 iterations
     /// and no limit cycle left).
     pub const STALL_WINDOW: usize = 8;
     /// Steps in a row in which the residual alternately rises and falls before the step
-    /// shrinks (README, measured: "shrinking on a zigzag or a steady rise of the
+    /// shrinks (docs/measured.md: "shrinking on a zigzag or a steady rise of the
     /// residual", 1024^2 cold 111 -> 77 iterations).
     pub const ZIGZAG_WINDOW: usize = 4;
     /// Steps in a row in which the residual rises, to above twice its low, before the
     /// step shrinks (the same measurement as [`Self::ZIGZAG_WINDOW`]).
     pub const RISE_WINDOW: usize = 3;
-    /// Largest `beta` (README, measured: the cap of 0.8 left a low load crawling; 0.95
+    /// Largest `beta` (docs/measured.md: the cap of 0.8 left a low load crawling; 0.95
     /// took a solve at `a_r = 2e-4`, where the rigid mode is soft, from over 1500 to 363
     /// iterations at tol 1e-8).
     pub const BETA_MAX: f64 = 0.95;
-    /// Growth of the step at every new lowest residual, up to the first (README,
-    /// measured: "regrowing the step at every new low", no stalled solve left on the hard
+    /// Growth of the step at every new lowest residual, up to the first
+    /// (docs/measured.md: "regrowing the step at every new low", no stalled solve left on the hard
     /// scenes).
     pub const REGROW: f64 = 1.02;
     /// Factor of a shrink: the value of the measurements of [`Self::STALL_WINDOW`]
