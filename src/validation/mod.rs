@@ -17,6 +17,7 @@
 //!
 //! * [`definition`]: verdict rule, the paper's finding, the two scenes;
 //! * [`claims`]: the paper's quantitative statements as data, each decided by one rule;
+//! * [`phrase`]: the paper's wordings, each with the one rule it maps to;
 //! * [`source`]: the built-in definitions and definition folders;
 //! * [`outcome`]: the record of a run;
 //! * [`store`]: job results and checkpoints on disk;
@@ -30,6 +31,7 @@ pub mod audit;
 pub mod claims;
 pub mod definition;
 pub mod outcome;
+pub mod phrase;
 pub mod plan;
 pub mod registry;
 pub mod runner;
