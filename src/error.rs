@@ -173,6 +173,20 @@ pub fn check_open(field: &str, value: f64, lo: f64, hi: f64) -> Result<()> {
     }
 }
 
+/// Checks that `name` can prefix a statistic's key: letters, digits and '_', not empty.
+pub fn check_key_name(field: &str, name: &str) -> Result<()> {
+    let ok = !name.is_empty() && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+    if ok {
+        Ok(())
+    } else {
+        Err(Error::invalid(
+            field,
+            name,
+            "letters, digits and '_', not empty",
+        ))
+    }
+}
+
 /// Checks that a list of realization seeds is not empty and names each seed once: a
 /// repeated seed would count one realization twice and shrink the error bar for nothing.
 pub fn check_seeds(seeds: &[u64]) -> Result<()> {

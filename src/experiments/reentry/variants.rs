@@ -24,7 +24,7 @@ use serde::{Deserialize, Serialize};
 use super::stats::Share;
 use crate::engine::contact::ContactSolution;
 use crate::engine::sweep::shell_steps;
-use crate::error::{check_positive, Error, Result};
+use crate::error::{check_key_name, check_positive, Error, Result};
 use crate::experiments::climb::{climb, Arrays, Checkpointing, Recorder};
 use crate::experiments::contact_change::{pack_categories, unpack_categories};
 use crate::experiments::ensemble::check_contact_areas;
@@ -173,18 +173,7 @@ impl Variant {
     /// Checks the variant: a valid scene, loads in (0, 1), `zeta_from` in `[0,
     /// zeta_max)`, a name usable as a key; errors name the field.
     pub fn validate(&self) -> Result<()> {
-        let ok = !self.name.is_empty()
-            && self
-                .name
-                .chars()
-                .all(|c| c.is_ascii_alphanumeric() || c == '_');
-        if !ok {
-            return Err(Error::invalid(
-                "variants.name",
-                &self.name,
-                "letters, digits and '_', not empty",
-            ));
-        }
+        check_key_name("variants.name", &self.name)?;
         self.base().validate()?;
         check_contact_areas(&self.contact_areas)?;
         let zeta_max = self.base().zeta_max();

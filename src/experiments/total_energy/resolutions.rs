@@ -17,7 +17,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::{EnergyResult, EnergyScene};
-use crate::error::{check_seeds, Error, Result};
+use crate::error::{check_key_name, check_seeds, Error, Result};
 use crate::experiments::ensemble::{check_contact_areas, SeedLoad};
 use crate::experiments::study::{Cell, Study};
 use crate::experiments::Detail;
@@ -81,18 +81,7 @@ impl Resolution {
     /// Checks the resolution against the headline's scene: a valid scene on its grid,
     /// size-scaled, loads among the headline's; errors name the field.
     pub fn validate(&self, headline: &EnergyScene) -> Result<()> {
-        let ok = !self.name.is_empty()
-            && self
-                .name
-                .chars()
-                .all(|c| c.is_ascii_alphanumeric() || c == '_');
-        if !ok {
-            return Err(Error::invalid(
-                "resolutions.name",
-                &self.name,
-                "letters, digits and '_', not empty",
-            ));
-        }
+        check_key_name("resolutions.name", &self.name)?;
         let job = self.jobs().into_iter().next();
         let scene = scene_on(
             headline,
