@@ -28,7 +28,11 @@
 //! `q = dq (mx rows/g, my cols/g)`, so a shell of equal `|q|` is the integer
 //! `k2 = (mx rows/g)^2 + (my cols/g)^2`, in units of `dq^2`: the same rule, which on a
 //! square (`g = n`) is `mx^2 + my^2`, and the rule of the measured spectra
-//! ([`crate::measured`]). A rectangle whose largest `k2` does not fit in 32 bits is refused.
+//! ([`crate::measured`]). A rectangle whose largest `k2` does not fit in 32 bits (large,
+//! nearly coprime sides) has no shell table: its `|q|` is computed from the two axes'
+//! units, and asking for its shells ([`Grid::k2`], [`Grid::k2_table`]) is a programming
+//! error. Surfaces and magnification live on square grids; the free-boundary body, which
+//! needs only the stiffness, on rectangles of any shape.
 
 use crate::error::{Error, Result};
 
@@ -52,8 +56,9 @@ pub struct Grid {
     spacing: f64,
     /// `lcm(rows, cols)`: the common period in points, `n` on a square grid.
     period: usize,
-    /// Integer `|k|^2` of every half-spectrum mode, in units of `dq^2` (module docs).
-    k2: Vec<u32>,
+    /// Integer `|k|^2` of every half-spectrum mode, in units of `dq^2` (module docs);
+    /// `None` on a rectangle whose shells do not fit in 32 bits.
+    k2: Option<Vec<u32>>,
 }
 
 impl Grid {
@@ -77,8 +82,8 @@ impl Grid {
     ///
     /// # Errors
     ///
-    /// If `rows` or `cols` is outside `[MIN_N, MAX_N]`, `spacing` is not a finite number
-    /// `> 0`, or the shells of the rectangle do not fit in 32 bits (module docs).
+    /// If `rows` or `cols` is outside `[MIN_N, MAX_N]`, or `spacing` is not a finite number
+    /// `> 0`.
     pub fn rectangle(rows: usize, cols: usize, spacing: f64) -> Result<Self> {
         for (name, side) in [("rows", rows), ("cols", cols)] {
             if !(MIN_N..=MAX_N).contains(&side) {
@@ -101,22 +106,17 @@ impl Grid {
         let m = cols / 2 + 1;
         let (mx_max, my_max) = ((cols / 2) as u64, (rows / 2) as u64);
         let largest = (mx_max * sx).pow(2) + (my_max * sy).pow(2);
-        if largest > u32::MAX as u64 {
-            return Err(Error::invalid(
-                "rows x cols",
-                format!("{rows} x {cols}"),
-                "sides whose largest shell (cols/2 rows/g)^2 + (rows/2 cols/g)^2, \
-                 g = gcd(rows, cols), fits in 32 bits",
-            ));
-        }
-        let mut k2 = vec![0u32; rows * m];
-        for ky in 0..rows {
-            let my = signed_index(ky, rows).unsigned_abs() * sy;
-            for kx in 0..m {
-                let mx = kx as u64 * sx;
-                k2[ky * m + kx] = (mx * mx + my * my) as u32;
+        let k2 = (largest <= u32::MAX as u64).then(|| {
+            let mut k2 = vec![0u32; rows * m];
+            for ky in 0..rows {
+                let my = signed_index(ky, rows).unsigned_abs() * sy;
+                for kx in 0..m {
+                    let mx = kx as u64 * sx;
+                    k2[ky * m + kx] = (mx * mx + my * my) as u32;
+                }
             }
-        }
+            k2
+        });
         Ok(Self {
             rows,
             cols,
@@ -189,20 +189,49 @@ impl Grid {
     }
 
     /// Integer `|k|^2` of half-spectrum mode `s` (`mx^2 + my^2` on a square grid).
+    ///
+    /// # Panics
+    ///
+    /// On a rectangle without shells ([`Grid::has_shells`]).
     #[inline]
     pub fn k2(&self, s: usize) -> u32 {
-        self.k2[s]
+        self.k2_table()[s]
     }
 
     /// The table of integer `|k|^2` over the half spectrum.
+    ///
+    /// # Panics
+    ///
+    /// On a rectangle without shells ([`Grid::has_shells`]).
     pub fn k2_table(&self) -> &[u32] {
-        &self.k2
+        match &self.k2 {
+            Some(k2) => k2,
+            None => panic!(
+                "the {} x {} grid's shells do not fit in 32 bits",
+                self.rows, self.cols
+            ),
+        }
     }
 
-    /// `|q|` of half-spectrum mode `s`.
+    /// Whether the grid has integer shells: every square grid, and every rectangle whose
+    /// largest shell fits in 32 bits (module docs).
+    pub fn has_shells(&self) -> bool {
+        self.k2.is_some()
+    }
+
+    /// `|q|` of half-spectrum mode `s`: `dq sqrt(k2)`, or on a rectangle without shells
+    /// `2 pi sqrt((mx / L_x)^2 + (my / L_y)^2)`.
     #[inline]
     pub fn q(&self, s: usize) -> f64 {
-        self.dq() * (self.k2[s] as f64).sqrt()
+        match &self.k2 {
+            Some(k2) => self.dq() * (k2[s] as f64).sqrt(),
+            None => {
+                let (mx, my) = self.wavevector(s);
+                let qx = mx as f64 / self.cols as f64;
+                let qy = my as f64 / self.rows as f64;
+                2.0 * std::f64::consts::PI * (qx * qx + qy * qy).sqrt() / self.spacing
+            }
+        }
     }
 
     /// Integer wavevector `(mx, my)` of half-spectrum mode `s`, in the units of each axis,
@@ -383,7 +412,21 @@ mod tests {
         assert!(Grid::new(16, f64::NAN).is_err());
         assert!(Grid::rectangle(3, 16, 1.0).is_err());
         assert!(Grid::rectangle(16, MAX_N + 1, 1.0).is_err());
-        // Coprime sides near the limit: the largest shell overflows 32 bits.
-        assert!(Grid::rectangle(MAX_N, MAX_N - 1, 1.0).is_err());
+    }
+
+    #[test]
+    fn a_rectangle_whose_shells_overflow_has_exact_q_but_no_shells() {
+        // 2042 x 2000: g = 2, the largest shell (1000 * 1021)^2 + (1021 * 1000)^2 > 2^32.
+        let g = Grid::rectangle(2042, 2000, 0.5).unwrap();
+        assert!(!g.has_shells());
+        assert!(Grid::rectangle(2000, 2000, 0.5).unwrap().has_shells());
+        let two_pi = 2.0 * std::f64::consts::PI;
+        for s in [1usize, 1001, 5 * g.half_cols() + 17, g.modes() - 1] {
+            let (mx, my) = g.wavevector(s);
+            let q = two_pi * (mx as f64 / 1000.0).hypot(my as f64 / 1021.0);
+            assert!((g.q(s) / q - 1.0).abs() < 1e-14, "mode {s}");
+        }
+        let err = std::panic::catch_unwind(|| g.k2(1));
+        assert!(err.is_err(), "no shells to read");
     }
 }
