@@ -11,6 +11,7 @@ mod common;
 mod compare;
 mod determinism;
 mod fire_bits;
+mod free_bits;
 mod gfmd_bits;
 mod hard_scenes;
 mod old_outcomes;

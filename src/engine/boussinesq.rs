@@ -23,16 +23,18 @@
 //! at the centre `G(0, 0) = 4 a ln(1 + sqrt 2) / (pi E*)`, and far away
 //! `G -> a^2 / (pi E* r)`.
 //!
-//! On a grid of `M = 2N` points per side whose pressure vanishes outside an `N x N`
+//! On a grid of `M_y x M_x = 2R x 2C` points whose pressure vanishes outside an `R x C`
 //! window, the sum `u(r) = sum_r' G(r - r') p(r')` over the window needs `G` at distances
-//! below `N` pixels in each direction only, so the periodic convolution on the doubled grid
-//! with `G` sampled at the signed distances `(i - M [i >= N]) a` is exactly the
-//! free-boundary sum: no image reaches the window (Hockney's method; Liu, Wang & Liu, Wear
-//! 243, 101 (2000), for contact mechanics). In the crate's Fourier convention
-//! (`f~ = M^-2 sum f e^(-i q.r)`) the convolution is `u~(q) = M^2 G~(q) p~(q)`, so the
-//! stiffness of the padded half-space is `K(q) = 1 / (M^2 G~(q))`, mode by mode, in place
-//! of the periodic `q E* / 2`. The `q = 0` mode is the rigid shift, free in a contact
-//! problem at given load: its stiffness is 0, as in the periodic case.
+//! below `R` pixels along y and `C` along x only, so the periodic convolution on the
+//! doubled grid with `G` sampled at the signed distances `(j - M_x [j >= C]) a` along x and
+//! `(i - M_y [i >= R]) a` along y is exactly the free-boundary sum: no image reaches the
+//! window along either axis (Hockney's method; Liu, Wang & Liu, Wear 243, 101 (2000), for
+//! contact mechanics). In the crate's Fourier convention (`f~ = M^-2 sum f e^(-i q.r)`,
+//! `M^2 = M_y M_x` points) the convolution is `u~(q) = M^2 G~(q) p~(q)`, so the stiffness
+//! of the padded half-space is `K(q) = 1 / (M^2 G~(q))`, mode by mode, in place of the
+//! periodic `q E* / 2`. The `q = 0` mode is the rigid shift, free in a contact problem at
+//! given load: its stiffness is 0, as in the periodic case. A square window (`R = C`) is
+//! the square doubled grid `M = 2N`.
 
 use crate::engine::fft::Fft2;
 use crate::engine::grid::Grid;
@@ -61,19 +63,20 @@ pub fn pixel_displacement(x: f64, y: f64, a: f64, e_star: f64) -> f64 {
         / (std::f64::consts::PI * e_star)
 }
 
-/// The response field of a unit pressure on pixel `(0, 0)` of a doubled grid of `m = 2N`
-/// points per side (spacing `a`): `G` at the signed distances of the periodic layout
-/// (row `i` at `(i - m [i >= m/2]) a`), row-major.
-pub fn padded_response(m: usize, a: f64, e_star: f64) -> Vec<f64> {
-    let signed = |i: usize| {
+/// The response field of a unit pressure on pixel `(0, 0)` of a doubled grid of
+/// `rows x cols` points (`2R x 2C`, spacing `a`): `G` at the signed distances of the
+/// periodic layout (row `i` at `y = (i - rows [i >= rows/2]) a`, column `j` at
+/// `x = (j - cols [j >= cols/2]) a`), row-major.
+pub fn padded_response(rows: usize, cols: usize, a: f64, e_star: f64) -> Vec<f64> {
+    let signed = |i: usize, m: usize| {
         let k = crate::engine::grid::signed_index(i, m);
         k as f64 * a
     };
-    let mut g = vec![0.0; m * m];
-    for (i, row) in g.chunks_mut(m).enumerate() {
-        let y = signed(i);
+    let mut g = vec![0.0; rows * cols];
+    for (i, row) in g.chunks_mut(cols).enumerate() {
+        let y = signed(i, rows);
         for (j, v) in row.iter_mut().enumerate() {
-            *v = pixel_displacement(signed(j), y, a, e_star);
+            *v = pixel_displacement(signed(j, cols), y, a, e_star);
         }
     }
     g
@@ -81,22 +84,28 @@ pub fn padded_response(m: usize, a: f64, e_star: f64) -> Vec<f64> {
 
 /// The stiffness `K(q) = 1 / (M^2 G~(q))` of the free-boundary half-space over the half
 /// spectrum of the doubled grid `padded` (0 at `q = 0`, the free rigid shift), for the
-/// window of `padded.n() / 2` points per side. An error if the sampled response is not
+/// window of `padded.rows() / 2 x padded.cols() / 2` points.
+///
+/// # Errors
+///
+/// If `e_star` is not positive, a side of `padded` is odd, or the sampled response is not
 /// positive definite (it is for every grid tried; the check guards the division).
 pub fn padded_stiffness(padded: &Grid, fft: &Fft2, e_star: f64) -> Result<Vec<f64>> {
     check_positive("e_star", e_star)?;
-    let m = padded.n();
-    if m % 2 != 0 {
-        return Err(Error::invalid(
-            "padded grid",
-            m,
-            "an even number of points per side (twice the window)",
-        ));
+    let (rows, cols) = (padded.rows(), padded.cols());
+    for (name, side) in [("padded grid rows", rows), ("padded grid cols", cols)] {
+        if side % 2 != 0 {
+            return Err(Error::invalid(
+                name,
+                side,
+                "an even number of points (twice the window)",
+            ));
+        }
     }
-    let response = padded_response(m, padded.spacing(), e_star);
+    let response = padded_response(rows, cols, padded.spacing(), e_star);
     let mut spec = fft.new_spectrum();
     fft.forward(&response, &mut spec);
-    let scale = (m * m) as f64;
+    let scale = (rows * cols) as f64;
     let mut table = Vec::with_capacity(spec.len());
     for (s, g) in spec.iter().enumerate() {
         if s == 0 {
@@ -160,48 +169,63 @@ mod tests {
 
     #[test]
     fn the_padded_convolution_is_the_free_boundary_sum() {
-        // A pressure on a 6 x 6 window of a 12 x 12 grid: the FFT convolution with the
-        // padded stiffness's inverse equals the direct sum over the window, with no image.
-        let (n, m, e) = (6usize, 12usize, 1.0);
-        let grid = Grid::new(m, 1.0).unwrap();
-        let fft = Fft2::new(&grid);
-        let table = padded_stiffness(&grid, &fft, e).unwrap();
-        let mut p = vec![0.0; m * m];
-        for i in 0..n {
-            for j in 0..n {
-                p[i * m + j] = 1.0 + ((i * 7 + j * 3) % 5) as f64;
-            }
-        }
-        let mut spec = fft.new_spectrum();
-        fft.forward(&p, &mut spec);
-        for (s, v) in spec.iter_mut().enumerate() {
-            *v = if s == 0 {
-                num_complex_zero()
-            } else {
-                *v / table[s]
-            };
-        }
-        let mut u = vec![0.0; m * m];
-        fft.inverse(&spec, &mut u, &mut Vec::new());
-        // The FFT result lacks the q = 0 part (the free rigid shift): compare differences.
-        let direct = |i: usize, j: usize| -> f64 {
-            let mut sum = 0.0;
-            for k in 0..n {
-                for l in 0..n {
-                    let (dx, dy) = (j as f64 - l as f64, i as f64 - k as f64);
-                    sum += pixel_displacement(dx, dy, 1.0, e) * p[k * m + l];
+        // A pressure on an R x C window of a 2R x 2C grid: the FFT convolution with the
+        // padded stiffness's inverse equals the direct sum over the window, with no image,
+        // on a square window and on rectangles either way round.
+        let e = 1.0;
+        for (r, c) in [(6usize, 6usize), (4, 7), (7, 4)] {
+            let (rows, cols) = (2 * r, 2 * c);
+            let grid = Grid::rectangle(rows, cols, 1.0).unwrap();
+            let fft = Fft2::new(&grid);
+            let table = padded_stiffness(&grid, &fft, e).unwrap();
+            let mut p = vec![0.0; rows * cols];
+            for i in 0..r {
+                for j in 0..c {
+                    p[i * cols + j] = 1.0 + ((i * 7 + j * 3) % 5) as f64;
                 }
             }
-            sum
-        };
-        let (u0, d0) = (u[0], direct(0, 0));
-        for i in 0..n {
-            for j in 0..n {
-                let du = u[i * m + j] - u0;
-                let dd = direct(i, j) - d0;
-                assert!((du - dd).abs() < 1e-12 * d0, "({i}, {j}): {du} vs {dd}");
+            let mut spec = fft.new_spectrum();
+            fft.forward(&p, &mut spec);
+            for (s, v) in spec.iter_mut().enumerate() {
+                *v = if s == 0 {
+                    num_complex_zero()
+                } else {
+                    *v / table[s]
+                };
+            }
+            let mut u = vec![0.0; rows * cols];
+            fft.inverse(&spec, &mut u, &mut Vec::new());
+            // The FFT result lacks the q = 0 part (the free rigid shift): compare differences.
+            let direct = |i: usize, j: usize| -> f64 {
+                let mut sum = 0.0;
+                for k in 0..r {
+                    for l in 0..c {
+                        let (dx, dy) = (j as f64 - l as f64, i as f64 - k as f64);
+                        sum += pixel_displacement(dx, dy, 1.0, e) * p[k * cols + l];
+                    }
+                }
+                sum
+            };
+            let (u0, d0) = (u[0], direct(0, 0));
+            for i in 0..r {
+                for j in 0..c {
+                    let du = u[i * cols + j] - u0;
+                    let dd = direct(i, j) - d0;
+                    assert!(
+                        (du - dd).abs() < 1e-12 * d0,
+                        "{r} x {c}: ({i}, {j}): {du} vs {dd}"
+                    );
+                }
             }
         }
+    }
+
+    #[test]
+    fn an_odd_padded_side_is_refused_naming_it() {
+        let grid = Grid::rectangle(12, 9, 1.0).unwrap();
+        let fft = Fft2::new(&grid);
+        let e = padded_stiffness(&grid, &fft, 1.0).unwrap_err().to_string();
+        assert!(e.contains("padded grid cols"), "{e}");
     }
 
     fn num_complex_zero() -> rustfft::num_complex::Complex64 {

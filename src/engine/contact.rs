@@ -101,11 +101,16 @@ impl Model {
         Self::free_window(window, window, e_star)
     }
 
-    /// A free-boundary model for a `rows x cols` surface: the square grid of twice the
-    /// longer side, zero-padded (no image of the window reaches it along either axis), the
-    /// wall over the window only.
+    /// A free-boundary model for a `rows x cols` surface: the `2 rows x 2 cols` grid,
+    /// zero-padded (no image of the window reaches it along either axis), the wall over
+    /// the window only.
+    ///
+    /// # Errors
+    ///
+    /// If a side of the doubled grid is outside the grid's range ([`Grid::rectangle`]), or
+    /// `e_star` is not positive.
     pub fn free_window(rows: usize, cols: usize, e_star: f64) -> Result<Self> {
-        let grid = Grid::new(2 * rows.max(cols), 1.0)?;
+        let grid = Grid::rectangle(2 * rows, 2 * cols, 1.0)?;
         let fft = Fft2::new(&grid);
         let table = crate::engine::boussinesq::padded_stiffness(&grid, &fft, e_star)?;
         let halfspace = HalfSpace::with_stiffness(e_star, table)?;
@@ -151,7 +156,7 @@ impl Model {
         match self.window {
             None => true,
             Some((rows, cols)) => {
-                let n = self.grid.n();
+                let n = self.grid.cols();
                 k / n < rows && k % n < cols
             }
         }
@@ -176,9 +181,11 @@ impl Model {
         let lo = heights.iter().copied().fold(f64::INFINITY, f64::min);
         let hi = heights.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         let floor = lo - FLOOR_DEPTH * ((hi - lo) + rows.max(cols) as f64);
-        let n = self.grid.n();
-        let mut padded = vec![floor; n * n];
-        for (row, src) in padded.chunks_mut(n).zip(heights.chunks(cols)) {
+        let mut padded = vec![floor; self.grid.points()];
+        for (row, src) in padded
+            .chunks_mut(self.grid.cols())
+            .zip(heights.chunks(cols))
+        {
             row[..cols].copy_from_slice(src);
         }
         Ok(padded)
@@ -250,15 +257,19 @@ impl<'a> ContactProblem<'a> {
             return Err(Error::invalid(
                 "heights",
                 format!("{} values", heights.len()),
-                format!("n^2 = {} values", model.grid.points()),
+                format!("rows x cols = {} values", model.grid.points()),
             ));
         }
         // A free boundary's statistics are the window's (the floor outside it is no surface).
         let window: Vec<f64>;
         let (heights_seen, side) = match model.window {
-            None => (heights, model.grid.length()),
+            None if model.grid.is_square() => (heights, model.grid.length()),
+            None => {
+                let area = model.grid.points() as f64;
+                (heights, area.sqrt() * model.grid.spacing())
+            }
             Some((rows, cols)) => {
-                let n = model.grid.n();
+                let n = model.grid.cols();
                 window = heights
                     .chunks(n)
                     .take(rows)
@@ -442,7 +453,7 @@ impl Residual {
         );
         // Stress balance: K u + p0 - p (the stiffness has no q = 0 mode: p0 is added).
         let model = problem.model;
-        let n = model.grid.n();
+        let n = model.grid.cols();
         let unbalanced = StressBalance {
             u,
             p,
@@ -480,6 +491,7 @@ struct StressBalance<'a> {
     u: &'a [f64],
     p: &'a [f64],
     p0: f64,
+    /// Points in a row, the grid's columns.
     n: usize,
 }
 

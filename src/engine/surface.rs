@@ -120,7 +120,19 @@ impl Surface {
 
     /// A surface from measured heights on `grid` (row-major, `n x n`). `lambda_l` sets the
     /// magnification scale; it defaults to the box size `L`.
+    ///
+    /// # Errors
+    ///
+    /// If `grid` is not square (a surface's shells and `lambda_l` are the square grid's),
+    /// `heights` is not `n x n` finite values, or `lambda_l` is outside `(0, L]`.
     pub fn from_heights(grid: Grid, heights: &[f64], lambda_l: Option<f64>) -> Result<Self> {
+        if !grid.is_square() {
+            return Err(Error::invalid(
+                "grid",
+                format!("{} x {}", grid.rows(), grid.cols()),
+                "a square n x n grid (a surface is periodic on a square)",
+            ));
+        }
         if heights.len() != grid.points() {
             return Err(Error::invalid(
                 "heights",

@@ -73,11 +73,11 @@ impl Body {
             Boundary::Free => {
                 let model = Model::free_window(shape.rows, shape.cols, E_STAR)?;
                 let heights = model.pad_heights(&spectrum.heights)?;
-                let m = model.grid.n();
-                let g = crate::engine::boussinesq::padded_response(m, 1.0, E_STAR);
+                let (rows, cols) = (model.grid.rows(), model.grid.cols());
+                let g = crate::engine::boussinesq::padded_response(rows, cols, 1.0, E_STAR);
                 let mut spec = model.fft.new_spectrum();
                 model.fft.forward(&g, &mut spec);
-                let scale = (m * m) as f64;
+                let scale = (rows * cols) as f64;
                 spec.iter_mut().for_each(|v| *v *= scale);
                 let punch = flat_punch(&model, shape)?;
                 Ok(Self {
@@ -141,9 +141,8 @@ impl Body {
 /// The values of a field on `model`'s grid over the `shape` window at its origin,
 /// row-major (the whole field for a periodic model of that shape).
 pub fn window_of(model: &Model, shape: Shape, field: &[f64]) -> Vec<f64> {
-    let m = model.grid.n();
     field
-        .chunks(m)
+        .chunks(model.grid.cols())
         .take(shape.rows)
         .flat_map(|row| &row[..shape.cols])
         .copied()

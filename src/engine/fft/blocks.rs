@@ -4,8 +4,8 @@
 
 use rustfft::num_complex::Complex64;
 
-/// Largest grid whose column pass gathers (and scatters) one column at a time; larger grids
-/// go row by row. Column by column, the block buffer is written contiguously but every row
+/// Largest side (of the longer axis) of a grid whose column pass gathers (and scatters) one
+/// column at a time; larger grids go row by row. Column by column, the block buffer is written contiguously but every row
 /// of the spectrum is visited once per column: cheap while those rows stay in cache and in
 /// the TLB. Row by row, each row is visited once but a row's values go to `block` places
 /// `n` values apart, and with `n` a power of two more than eight of them share one L1
@@ -28,7 +28,7 @@ impl SharedMut {
     }
 }
 
-/// Copies columns `c0..c0 + buf.len() / n` of the half spectrum at `base` (rows of `m`
+/// Copies columns `c0..c0 + buf.len() / n` of the half spectrum at `base` (`n` rows of `m`
 /// values) into `buf`, column after column, `n` values each; visiting the spectrum one
 /// column at a time or one row at a time ([`COLUMN_ORDER_MAX_N`]).
 ///

@@ -23,16 +23,17 @@ const BLOCK_COLUMNS_MIN: usize = 4;
 /// blocks per thread.
 const BLOCK_COLUMNS_MAX: usize = 16;
 
-/// Columns in a block of the column pass on an `n x n` grid.
-pub(super) fn block_width(n: usize) -> usize {
-    (BLOCK_VALUES / n).clamp(BLOCK_COLUMNS_MIN, BLOCK_COLUMNS_MAX)
+/// Columns in a block of the column pass on a grid of `rows` rows (the length of a
+/// column).
+pub(super) fn block_width(rows: usize) -> usize {
+    (BLOCK_VALUES / rows).clamp(BLOCK_COLUMNS_MIN, BLOCK_COLUMNS_MAX)
 }
 
 impl Fft2 {
     /// Column pass of a convolution: forward transform, multiplication by the kernel,
     /// inverse transform, block by block.
     pub(super) fn columns_with(&self, spec: &mut [Complex64], kernel: &Kernel) {
-        let n = self.n;
+        let n = self.rows;
         let scratch_len = self
             .col_fwd
             .get_inplace_scratch_len()
@@ -78,7 +79,8 @@ impl Fft2 {
     where
         F: Fn(usize, &mut [Complex64], &mut [Complex64]) + Sync,
     {
-        let (n, m, block, by_column) = (self.n, self.m, self.block, self.by_column);
+        // `n`: the length of a column, the grid's rows.
+        let (n, m, block, by_column) = (self.rows, self.m, self.block, self.by_column);
         let blocks = m.div_ceil(block);
         let base = SharedMut(spec.as_mut_ptr());
         (0..blocks).into_par_iter().for_each(|b| {

@@ -54,7 +54,7 @@ impl Fft2 {
     /// # Panics
     ///
     /// If `kernel` was planned for another grid, or `spec`, `out` or `side` is not of the
-    /// planned grid's length (a half spectrum; `n x n`).
+    /// planned grid's length (a half spectrum; `rows x cols`).
     pub fn convolve<P: FusedPass>(
         &self,
         kernel: &Kernel,
@@ -63,15 +63,18 @@ impl Fft2 {
         pass: &P,
         out: &mut [f64],
     ) -> PassValues<P> {
-        let n = self.n;
-        assert_eq!(kernel.n, n, "kernel planned for another grid");
-        assert_eq!(spec.len(), n * self.m, "spectrum length");
-        assert_eq!(out.len(), n * n, "output length");
+        assert_eq!(
+            kernel.shape,
+            (self.rows, self.cols),
+            "kernel planned for another grid"
+        );
+        assert_eq!(spec.len(), self.spectrum_len(), "spectrum length");
+        assert_eq!(out.len(), self.field_len(), "output length");
         if let Some(s) = &side {
-            assert_eq!(s.len(), n * n, "side length");
+            assert_eq!(s.len(), self.field_len(), "side length");
         }
         self.count(2);
-        let rows = rows_per_task(n);
+        let rows = rows_per_task(self.rows);
         let mut side = side;
         let generated = self.generate(spec, side.as_deref_mut(), out, rows, pass);
         self.columns_with(spec, kernel);
@@ -93,9 +96,9 @@ impl Fft2 {
         rows: usize,
         pass: &P,
     ) -> Vec<Vec<P::Generated>> {
-        let (n, m) = (self.n, self.m);
+        let (n, m) = (self.cols, self.m);
         spec.par_chunks_mut(m * rows)
-            .zip(side_chunks(side, n * rows, n.div_ceil(rows)))
+            .zip(side_chunks(side, n * rows, self.rows.div_ceil(rows)))
             .zip(old.par_chunks(n * rows))
             .enumerate()
             .map(|(c, ((spec_chunk, side_chunk), old_chunk))| {
@@ -131,10 +134,10 @@ impl Fft2 {
         rows: usize,
         pass: &P,
     ) -> Vec<Vec<P::Consumed>> {
-        let (n, m) = (self.n, self.m);
+        let (n, m) = (self.cols, self.m);
         spec.par_chunks_mut(m * rows)
             .zip(out.par_chunks_mut(n * rows))
-            .zip(side_chunks(side, n * rows, n.div_ceil(rows)))
+            .zip(side_chunks(side, n * rows, self.rows.div_ceil(rows)))
             .enumerate()
             .map(|(c, ((spec_chunk, out_chunk), side_chunk))| {
                 SCRATCH.with(|cell| {
@@ -168,7 +171,8 @@ fn side_chunks(side: Option<&mut [f64]>, len: usize, tasks: usize) -> Vec<&mut [
     }
 }
 
-/// Row `k` (of `n` values) of a task's chunk of `side`; empty without one.
+/// Row `k` (of `n` values, the grid's columns) of a task's chunk of `side`; empty without
+/// one.
 #[inline(always)]
 fn side_row(chunk: &mut [f64], k: usize, n: usize) -> &mut [f64] {
     if chunk.is_empty() {
@@ -236,40 +240,60 @@ mod tests {
     #[test]
     fn both_orders_of_the_column_pass_give_the_same_bits() {
         let mut rng = ChaCha8Rng::seed_from_u64(11);
-        for n in [6usize, 16, 33, 64] {
-            let grid = Grid::new(n, 1.0).unwrap();
+        for (rows, cols) in [
+            (6usize, 6usize),
+            (16, 16),
+            (33, 33),
+            (64, 64),
+            (12, 20),
+            (33, 8),
+        ] {
+            let grid = Grid::rectangle(rows, cols, 1.0).unwrap();
             let by_column = Fft2::new(&grid);
             let mut by_row = Fft2::new(&grid);
             by_row.by_column = false;
             assert!(
                 by_column.by_column,
-                "n = {n}: small grids go column by column"
+                "{rows} x {cols}: small grids go column by column"
             );
-            let field: Vec<f64> = (0..n * n).map(|_| rng.random::<f64>() - 0.5).collect();
+            let points = rows * cols;
+            let field: Vec<f64> = (0..points).map(|_| rng.random::<f64>() - 0.5).collect();
             let mut specs = [by_column.new_spectrum(), by_row.new_spectrum()];
             by_column.forward(&field, &mut specs[0]);
             by_row.forward(&field, &mut specs[1]);
-            assert_eq!(specs[0], specs[1], "n = {n}: forward");
+            assert_eq!(specs[0], specs[1], "{rows} x {cols}: forward");
             let table: Vec<f64> = (0..by_row.spectrum_len()).map(|i| i as f64).collect();
             let kernel = by_row.kernel(&table);
-            let mut outs = [vec![0.0; n * n], vec![0.0; n * n]];
+            let mut outs = [vec![0.0; points], vec![0.0; points]];
             for (fft, (spec, out)) in [&by_column, &by_row]
                 .into_iter()
                 .zip(specs.iter_mut().zip(outs.iter_mut()))
             {
-                fft.convolve(&kernel, spec, None, &Copy { field: &field, n }, out);
+                let copy = Copy {
+                    field: &field,
+                    n: cols,
+                };
+                fft.convolve(&kernel, spec, None, &copy, out);
             }
-            assert_eq!(outs[0], outs[1], "n = {n}: convolution");
+            assert_eq!(outs[0], outs[1], "{rows} x {cols}: convolution");
         }
     }
 
     #[test]
     fn fused_convolution_equals_transform_multiply_transform() {
-        for n in [8usize, 9, 16, 30] {
-            let grid = Grid::new(n, 1.0).unwrap();
+        for (rows, cols) in [
+            (8usize, 8usize),
+            (9, 9),
+            (16, 16),
+            (30, 30),
+            (10, 6),
+            (7, 12),
+        ] {
+            let grid = Grid::rectangle(rows, cols, 1.0).unwrap();
             let fft = Fft2::new(&grid);
-            let mut rng = ChaCha8Rng::seed_from_u64(n as u64);
-            let x: Vec<f64> = (0..n * n).map(|_| rng.random::<f64>() - 0.5).collect();
+            let points = rows * cols;
+            let mut rng = ChaCha8Rng::seed_from_u64((rows * 100 + cols) as u64);
+            let x: Vec<f64> = (0..points).map(|_| rng.random::<f64>() - 0.5).collect();
             let kernel: Vec<f64> = (0..grid.modes()).map(|s| 1.0 + grid.q(s)).collect();
             // Reference: forward, multiply, inverse.
             let mut spec = fft.new_spectrum();
@@ -277,26 +301,26 @@ mod tests {
             for (c, k) in spec.iter_mut().zip(&kernel) {
                 *c *= *k;
             }
-            let mut want = vec![0.0; n * n];
+            let mut want = vec![0.0; points];
             fft.inverse_in_place(&mut spec, &mut want);
             // Fused, with the input kept in `side` and row sums returned.
-            let mut side = vec![0.0; n * n];
-            let mut got = vec![0.0; n * n];
+            let mut side = vec![0.0; points];
+            let mut got = vec![0.0; points];
             let (ins, outs) = fft.convolve(
                 &fft.kernel(&kernel),
                 &mut spec,
                 Some(&mut side),
-                &Kept { x: &x, n },
+                &Kept { x: &x, n: cols },
                 &mut got,
             );
             assert_eq!(side, x);
-            assert_eq!(ins, (0..n).collect::<Vec<_>>());
+            assert_eq!(ins, (0..rows).collect::<Vec<_>>());
             for (a, b) in got.iter().zip(&want) {
-                assert!((a - b).abs() < 1e-13, "n = {n}");
+                assert!((a - b).abs() < 1e-13, "{rows} x {cols}");
             }
             for (i, (k, s)) in outs.iter().enumerate() {
                 assert_eq!(*k, i);
-                let direct: f64 = got[i * n..(i + 1) * n].iter().sum();
+                let direct: f64 = got[i * cols..(i + 1) * cols].iter().sum();
                 assert_eq!(*s, direct);
             }
         }
@@ -306,22 +330,24 @@ mod tests {
     fn inverse_kernel_undoes_the_kernel_in_place() {
         // x -> k x -> (1/k) (k x) returns x minus its mean (k = 0 at q = 0), with the
         // second convolution reading its input from the buffer it writes.
-        for n in [8usize, 15, 32] {
-            let grid = Grid::new(n, 1.0).unwrap();
+        for (rows, cols) in [(8usize, 8usize), (15, 15), (32, 32), (15, 8), (8, 22)] {
+            let grid = Grid::rectangle(rows, cols, 1.0).unwrap();
             let fft = Fft2::new(&grid);
-            let mut rng = ChaCha8Rng::seed_from_u64(7 + n as u64);
-            let x: Vec<f64> = (0..n * n).map(|_| rng.random::<f64>() - 0.5).collect();
-            let mean = x.iter().sum::<f64>() / (n * n) as f64;
+            let points = rows * cols;
+            let mut rng = ChaCha8Rng::seed_from_u64(7 + (rows * 100 + cols) as u64);
+            let x: Vec<f64> = (0..points).map(|_| rng.random::<f64>() - 0.5).collect();
+            let mean = x.iter().sum::<f64>() / points as f64;
             let table: Vec<f64> = (0..grid.modes()).map(|s| grid.q(s)).collect();
             let k = fft.kernel(&table);
             let mut spec = fft.new_spectrum();
-            let mut y = vec![0.0; n * n];
-            fft.convolve(&k, &mut spec, None, &Copy { field: &x, n }, &mut y);
+            let mut y = vec![0.0; points];
+            let copy = Copy { field: &x, n: cols };
+            fft.convolve(&k, &mut spec, None, &copy, &mut y);
             fft.convolve(&k.inverse(), &mut spec, None, &InPlace, &mut y);
             for (a, b) in y.iter().zip(&x) {
                 assert!(
                     (a - (b - mean)).abs() < 1e-13,
-                    "n = {n}: {a} vs {}",
+                    "{rows} x {cols}: {a} vs {}",
                     b - mean
                 );
             }

@@ -1,7 +1,8 @@
 //! Real two-dimensional FFTs on the half spectrum, parallel over rows and columns.
 //!
 //! Convention ([`crate::conventions`], section 2): `f~(q) = N^-2 sum_r f(r) exp(-i q.r)` and
-//! `f(r) = sum_q f~(q) exp(i q.r)`, so that `mean(f^2) = sum_q |f~(q)|^2`. The forward
+//! `f(r) = sum_q f~(q) exp(i q.r)`, so that `mean(f^2) = sum_q |f~(q)|^2`, where
+//! `N^2 = rows cols` is the number of points (`n^2` on a square grid). The forward
 //! transform carries the whole `1/N^2`; the inverse carries none.
 //!
 //! Layout: see [`crate::engine::grid`]. The transform is done in two passes over the data, without
@@ -39,13 +40,17 @@ pub use fused::{FusedPass, PassValues};
 
 use blocks::COLUMN_ORDER_MAX_N;
 
-/// Precomputed plans for real 2D transforms on one grid size.
+/// Precomputed plans for real 2D transforms on one grid shape, `rows x cols`: real
+/// transforms of length `cols` along the rows, complex ones of length `rows` along the
+/// columns of the half spectrum.
 ///
 /// The plans are shared, immutable tables; per-thread scratch (a row or a block of
 /// columns) is kept between calls. Every 2D transform is counted ([`Fft2::transforms`]),
 /// so that the cost of a solver can be stated in FFT pairs.
 pub struct Fft2 {
-    n: usize,
+    rows: usize,
+    cols: usize,
+    /// Columns of the half spectrum, `cols/2 + 1`.
     m: usize,
     r2c: Arc<dyn RealToComplex<f64>>,
     c2r: Arc<dyn ComplexToReal<f64>>,
@@ -60,7 +65,10 @@ pub struct Fft2 {
 
 impl std::fmt::Debug for Fft2 {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Fft2").field("n", &self.n).finish()
+        f.debug_struct("Fft2")
+            .field("rows", &self.rows)
+            .field("cols", &self.cols)
+            .finish()
     }
 }
 
@@ -73,7 +81,8 @@ impl std::fmt::Debug for Fft2 {
 /// inverse divides as it reads, which costs little next to the transforms.
 #[derive(Debug, Clone)]
 pub struct Kernel {
-    n: usize,
+    /// The planned grid's shape, `(rows, cols)`.
+    shape: (usize, usize),
     values: Arc<[f64]>,
     /// `1/N^2`, folded into `values`.
     norm: f64,
@@ -120,19 +129,20 @@ fn at_least<T: Clone + Default>(v: &mut Vec<T>, len: usize) -> &mut [T] {
 impl Fft2 {
     /// Plans for `grid`.
     pub fn new(grid: &Grid) -> Self {
-        let n = grid.n();
+        let (rows, cols) = (grid.rows(), grid.cols());
         let mut real_planner = RealFftPlanner::<f64>::new();
         let mut planner = FftPlanner::<f64>::new();
-        let block = columns::block_width(n);
+        let block = columns::block_width(rows);
         Self {
-            n,
+            rows,
+            cols,
             m: grid.half_cols(),
-            r2c: real_planner.plan_fft_forward(n),
-            c2r: real_planner.plan_fft_inverse(n),
-            col_fwd: planner.plan_fft_forward(n),
-            col_inv: planner.plan_fft_inverse(n),
+            r2c: real_planner.plan_fft_forward(cols),
+            c2r: real_planner.plan_fft_inverse(cols),
+            col_fwd: planner.plan_fft_forward(rows),
+            col_inv: planner.plan_fft_inverse(rows),
             block,
-            by_column: n <= COLUMN_ORDER_MAX_N,
+            by_column: rows.max(cols) <= COLUMN_ORDER_MAX_N,
             transforms: AtomicU64::new(0),
         }
     }
@@ -148,32 +158,43 @@ impl Fft2 {
     ///
     /// # Panics
     ///
-    /// If `table` is not a half spectrum of the planned grid (length `n (n/2 + 1)`).
+    /// If `table` is not a half spectrum of the planned grid (length
+    /// `rows (cols/2 + 1)`).
     pub fn kernel(&self, table: &[f64]) -> Kernel {
-        let (n, m) = (self.n, self.m);
-        assert_eq!(table.len(), n * m, "kernel table length");
-        let norm = 1.0 / (n as f64 * n as f64);
-        let mut values = vec![0.0; n * m];
+        let (rows, m) = (self.rows, self.m);
+        assert_eq!(table.len(), rows * m, "kernel table length");
+        let norm = self.norm();
+        let mut values = vec![0.0; rows * m];
         for (ky, row) in table.chunks_exact(m).enumerate() {
             for (kx, &v) in row.iter().enumerate() {
-                values[kx * n + ky] = v * norm;
+                values[kx * rows + ky] = v * norm;
             }
         }
         Kernel {
-            n,
+            shape: (rows, self.cols),
             values: values.into(),
             norm,
             inverse: false,
         }
     }
 
+    /// The forward transform's normalisation, `1/N^2 = 1/(rows cols)`.
+    fn norm(&self) -> f64 {
+        1.0 / (self.rows as f64 * self.cols as f64)
+    }
+
     fn count(&self, k: u64) {
         self.transforms.fetch_add(k, Ordering::Relaxed);
     }
 
-    /// Length of a half spectrum, `n (n/2 + 1)`.
+    /// Length of a half spectrum, `rows (cols/2 + 1)`.
     pub fn spectrum_len(&self) -> usize {
-        self.n * self.m
+        self.rows * self.m
+    }
+
+    /// Length of a real field, `rows cols`.
+    pub fn field_len(&self) -> usize {
+        self.rows * self.cols
     }
 
     /// A zeroed half spectrum.
@@ -185,13 +206,14 @@ impl Fft2 {
     ///
     /// # Panics
     ///
-    /// If `field` is not `n x n` or `spec` not a half spectrum ([`Fft2::spectrum_len`]).
+    /// If `field` is not `rows x cols` or `spec` not a half spectrum
+    /// ([`Fft2::spectrum_len`]).
     pub fn forward(&self, field: &[f64], spec: &mut [Complex64]) {
-        let (n, m) = (self.n, self.m);
-        assert_eq!(field.len(), n * n, "field length");
-        assert_eq!(spec.len(), n * m, "spectrum length");
+        let (n, m) = (self.cols, self.m);
+        assert_eq!(field.len(), self.field_len(), "field length");
+        assert_eq!(spec.len(), self.spectrum_len(), "spectrum length");
         self.count(1);
-        let rows = rows_per_task(n);
+        let rows = rows_per_task(self.rows);
         spec.par_chunks_mut(m * rows)
             .zip(field.par_chunks(n * rows))
             .for_each(|(out, input)| {
@@ -206,26 +228,26 @@ impl Fft2 {
                     }
                 })
             });
-        let scale = 1.0 / (n as f64 * n as f64);
-        self.columns(spec, &self.col_fwd, scale);
+        self.columns(spec, &self.col_fwd, self.norm());
     }
 
     /// `field = F^-1[spec]`. The spectrum is used as scratch and left holding garbage.
     ///
     /// `spec` must be the half spectrum of a real field (Hermitian on the columns
-    /// `kx = 0` and, for even `n`, `kx = n/2`); the imaginary parts that a real field
-    /// cannot have are ignored.
+    /// `kx = 0` and, for even `cols`, `kx = cols/2`); the imaginary parts that a real
+    /// field cannot have are ignored.
     ///
     /// # Panics
     ///
-    /// If `field` is not `n x n` or `spec` not a half spectrum ([`Fft2::spectrum_len`]).
+    /// If `field` is not `rows x cols` or `spec` not a half spectrum
+    /// ([`Fft2::spectrum_len`]).
     pub fn inverse_in_place(&self, spec: &mut [Complex64], field: &mut [f64]) {
-        let (n, m) = (self.n, self.m);
-        assert_eq!(field.len(), n * n, "field length");
-        assert_eq!(spec.len(), n * m, "spectrum length");
+        let (n, m) = (self.cols, self.m);
+        assert_eq!(field.len(), self.field_len(), "field length");
+        assert_eq!(spec.len(), self.spectrum_len(), "spectrum length");
         self.count(1);
         self.columns(spec, &self.col_inv, 1.0);
-        let rows = rows_per_task(n);
+        let rows = rows_per_task(self.rows);
         spec.par_chunks_mut(m * rows)
             .zip(field.par_chunks_mut(n * rows))
             .for_each(|(input, out)| {
@@ -250,12 +272,12 @@ impl Fft2 {
 
     /// The complex-to-real transform of one row of the half spectrum, `row` (left holding
     /// garbage), into `out`; the imaginary parts that a real row cannot have (at `kx = 0`
-    /// and, for even `n`, `kx = n/2`) are ignored.
+    /// and, for even `cols`, `kx = cols/2`) are ignored.
     #[inline]
     fn row_inverse(&self, row: &mut [Complex64], out: &mut [f64], scratch: &mut [Complex64]) {
         let m = self.m;
         row[0].im = 0.0;
-        if self.n % 2 == 0 {
+        if self.cols % 2 == 0 {
             row[m - 1].im = 0.0;
         }
         self.c2r
@@ -267,8 +289,8 @@ impl Fft2 {
     ///
     /// # Panics
     ///
-    /// As [`Fft2::inverse_in_place`]: if `field` is not `n x n` or `spec` not a half
-    /// spectrum.
+    /// As [`Fft2::inverse_in_place`]: if `field` is not `rows x cols` or `spec` not a
+    /// half spectrum.
     pub fn inverse(&self, spec: &[Complex64], field: &mut [f64], work: &mut Vec<Complex64>) {
         work.clear();
         work.extend_from_slice(spec);
@@ -276,10 +298,11 @@ impl Fft2 {
     }
 }
 
-/// Rows handed to one rayon task: a few tasks per thread for load balance.
-fn rows_per_task(n: usize) -> usize {
+/// Rows (of a grid of `rows` rows) handed to one rayon task: a few tasks per thread for
+/// load balance.
+fn rows_per_task(rows: usize) -> usize {
     let tasks = TASKS_PER_THREAD * rayon::current_num_threads().max(1);
-    n.div_ceil(tasks).max(1)
+    rows.div_ceil(tasks).max(1)
 }
 
 #[cfg(test)]
@@ -288,62 +311,69 @@ mod tests {
     use rand::{RngExt, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 
-    /// Direct O(N^4) transform with the crate's convention, the independent control.
-    fn naive_forward(grid: &Grid, field: &[f64]) -> Vec<Complex64> {
-        let n = grid.n();
-        let mut out = vec![Complex64::new(0.0, 0.0); grid.modes()];
-        for (s, o) in out.iter_mut().enumerate() {
-            let (mx, my) = grid.wavevector(s);
-            let mut acc = Complex64::new(0.0, 0.0);
-            for i in 0..n {
-                for j in 0..n {
-                    let phase =
-                        -2.0 * std::f64::consts::PI * (mx as f64 * j as f64 + my as f64 * i as f64)
-                            / n as f64;
-                    acc += Complex64::from_polar(field[i * n + j], phase);
-                }
-            }
-            *o = acc / (n * n) as f64;
-        }
-        out
-    }
+    /// Square grids, and rectangles of even and odd sides either way round.
+    const SHAPES: [(usize, usize); 17] = [
+        (4, 4),
+        (5, 5),
+        (6, 6),
+        (7, 7),
+        (8, 8),
+        (12, 12),
+        (15, 15),
+        (16, 16),
+        (31, 31),
+        (32, 32),
+        (6, 10),
+        (12, 8),
+        (5, 9),
+        (9, 4),
+        (7, 12),
+        (16, 5),
+        (20, 33),
+    ];
 
     #[test]
     fn forward_matches_direct_sum_and_inverse_round_trips() {
         let mut rng = ChaCha8Rng::seed_from_u64(7);
-        for n in [4usize, 5, 6, 7, 8, 12, 15, 16, 31, 32] {
-            let grid = Grid::new(n, 1.0).unwrap();
+        for (rows, cols) in SHAPES {
+            let grid = Grid::rectangle(rows, cols, 1.0).unwrap();
             let fft = Fft2::new(&grid);
-            let field: Vec<f64> = (0..n * n).map(|_| rng.random::<f64>() - 0.5).collect();
+            let field: Vec<f64> = (0..rows * cols)
+                .map(|_| rng.random::<f64>() - 0.5)
+                .collect();
             let mut spec = fft.new_spectrum();
             fft.forward(&field, &mut spec);
-            let control = naive_forward(&grid, &field);
+            let control = crate::engine::testing::naive_dft(&grid, &field);
             for (a, b) in spec.iter().zip(&control) {
-                assert!((a - b).norm() < 1e-14, "n = {n}: {a} vs {b}");
+                assert!((a - b).norm() < 1e-14, "{rows} x {cols}: {a} vs {b}");
             }
-            let mut back = vec![0.0; n * n];
+            let mut back = vec![0.0; rows * cols];
             fft.inverse_in_place(&mut spec, &mut back);
             for (a, b) in back.iter().zip(&field) {
-                assert!((a - b).abs() < 1e-14, "n = {n}: round trip");
+                assert!((a - b).abs() < 1e-14, "{rows} x {cols}: round trip");
             }
         }
     }
 
     #[test]
     fn parseval_holds_with_half_spectrum_weights() {
-        let n = 24;
-        let grid = Grid::new(n, 1.0).unwrap();
-        let fft = Fft2::new(&grid);
-        let mut rng = ChaCha8Rng::seed_from_u64(3);
-        let field: Vec<f64> = (0..n * n).map(|_| rng.random::<f64>()).collect();
-        let mut spec = fft.new_spectrum();
-        fft.forward(&field, &mut spec);
-        let real: f64 = field.iter().map(|x| x * x).sum::<f64>() / (n * n) as f64;
-        let fourier: f64 = spec
-            .iter()
-            .enumerate()
-            .map(|(s, c)| grid.weight_of(s) * c.norm_sqr())
-            .sum();
-        assert!((real - fourier).abs() < 1e-14 * real);
+        for (rows, cols) in [(24usize, 24usize), (24, 15), (15, 24), (10, 6)] {
+            let grid = Grid::rectangle(rows, cols, 1.0).unwrap();
+            let fft = Fft2::new(&grid);
+            let mut rng = ChaCha8Rng::seed_from_u64(3);
+            let field: Vec<f64> = (0..rows * cols).map(|_| rng.random::<f64>()).collect();
+            let mut spec = fft.new_spectrum();
+            fft.forward(&field, &mut spec);
+            let real: f64 = field.iter().map(|x| x * x).sum::<f64>() / (rows * cols) as f64;
+            let fourier: f64 = spec
+                .iter()
+                .enumerate()
+                .map(|(s, c)| grid.weight_of(s) * c.norm_sqr())
+                .sum();
+            assert!(
+                (real - fourier).abs() < 1e-14 * real,
+                "{rows} x {cols}: {real} vs {fourier}"
+            );
+        }
     }
 }

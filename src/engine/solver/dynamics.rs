@@ -321,7 +321,7 @@ impl<'a> LookAhead<'a> {
             v,
             h: problem.heights,
             beta,
-            n: problem.model.grid.n(),
+            n: problem.model.grid.cols(),
         }
     }
 

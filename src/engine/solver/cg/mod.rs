@@ -320,7 +320,7 @@ impl<'a> Solve<'a> {
         }
         let problem = self.problem;
         let model = problem.model;
-        let n = model.grid.n();
+        let n = model.grid.cols();
         let view = View::new(&self.p[..], &self.u[..], problem.heights, self.frame);
         let (sums, sz, rho) = if self.precond {
             // z shares r's memory: it is read while t is generated, before r is written
@@ -358,7 +358,7 @@ impl<'a> Solve<'a> {
     fn direction(&mut self, gap: &Gap) -> Direction {
         let problem = self.problem;
         let model = problem.model;
-        let n = model.grid.n();
+        let n = model.grid.cols();
         let precond = self.precond;
         let zbar = if precond { gap.sz / self.n_c } else { 0.0 };
         let beta = if self.conjugate {

@@ -32,7 +32,7 @@ impl Solve<'_> {
     fn update_fused(&mut self, step: Step) -> Update {
         let problem = self.problem;
         let model = problem.model;
-        let n = model.grid.n();
+        let n = model.grid.cols();
         let h = problem.heights;
         let pass = passes::Update {
             step,
@@ -123,7 +123,7 @@ impl Solve<'_> {
     pub(super) fn exact_displacement(&mut self) {
         let problem = self.problem;
         let model = problem.model;
-        let n = model.grid.n();
+        let n = model.grid.cols();
         let h = problem.heights;
         let s = self.frame.scale;
         let pass = passes::Rescale { scale: s, h, n };
