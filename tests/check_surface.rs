@@ -381,3 +381,115 @@ fn the_check_surface_guide_names_every_warning() {
         );
     }
 }
+
+/// Row `row` of a generated `n x n` surface (H = 0.8), heights times `scale`.
+fn profile(n: usize, row: usize, scale: f64) -> Vec<f64> {
+    use persson_check::engine::fft::Fft2;
+    use persson_check::engine::surface::{Surface, SurfaceParams};
+    let s = Surface::generate(&SurfaceParams::new(n, 0.8, n as f64 / 2.0, 4.0, 9)).unwrap();
+    let h = s.heights_at(f64::INFINITY, &Fft2::new(s.grid()));
+    h[row * n..(row + 1) * n]
+        .iter()
+        .map(|v| v * scale)
+        .collect()
+}
+
+#[test]
+fn a_line_scan_is_checked_on_synthesized_surfaces_end_to_end() {
+    // One stylus profile of 1024 points, one height per line of a text file, in um with a
+    // pixel of 0.5 um: a line scan by the rule (one-dimensional), no --line needed.
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let text: Vec<String> = profile(1024, 3, 0.5)
+        .iter()
+        .map(|v| format!("{v}"))
+        .collect();
+    std::fs::write(d.join("trace.txt"), text.join("\n")).unwrap();
+    let out = run_ok(bin().current_dir(d).args([
+        "check-surface",
+        "--heights",
+        "trace.txt",
+        "--pixel-size",
+        "0.5",
+        "--unit",
+        "um",
+        "--loads",
+        "0.01,0.05",
+        "--line-side",
+        "64",
+        "--line-seeds",
+        "3",
+        "--no-reentry",
+        "--out",
+        "o",
+    ]));
+    assert!(
+        out.contains("line scans: 1 profile(s) of 1024 points") && out.contains("3 synthesized"),
+        "{out}"
+    );
+    let j = json(&d.join("o/surface.json"));
+    let line = &j["line"];
+    assert_eq!(line["points"], 1024);
+    assert_eq!(line["synthesized_side"], 64);
+    assert_eq!(j["scans"].as_array().unwrap().len(), 3);
+    let converted = line["converted"].as_array().unwrap();
+    assert!(converted.len() > 10);
+    assert!(converted.iter().any(|b| b["uncertain"].is_null()));
+    assert_eq!(converted.last().unwrap()["uncertain"], "cutoff");
+    let curve = j["curve"].as_array().unwrap();
+    assert_eq!(curve.len(), 2);
+    let a = |i: usize, k: &str| curve[i][k].as_f64().unwrap();
+    assert!(a(1, "a_r") > a(0, "a_r") && a(0, "a_r") > 0.0);
+    assert!(curve[0]["a_r_std_error"].as_f64().is_some());
+    assert_eq!(line["persson"].as_array().unwrap().len(), 2);
+    // Under isotropy the surface's rms slope is sqrt 2 times the profile's.
+    let (g2, g1) = (
+        line["slope_rms_converted"].as_f64().unwrap(),
+        line["slope_rms_spectral"].as_f64().unwrap(),
+    );
+    assert!(
+        (g2 / (std::f64::consts::SQRT_2 * g1) - 1.0).abs() < 0.2,
+        "{g2} vs {g1}"
+    );
+    let md = std::fs::read_to_string(d.join("o/surface.md")).unwrap();
+    assert!(md.contains("not on the measured profiles"), "{md}");
+    assert!(md.contains("near the cutoff"), "{md}");
+    assert!(d.join("o/figures/line_psd.png").exists());
+    assert!(d.join("o/solves.jsonl").exists());
+}
+
+#[test]
+fn bad_line_scans_are_refused_with_a_word_about_line_scans() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::write(d.join("short.txt"), "1\n2\n3\n4\n5\n").unwrap();
+    let row: Vec<String> = profile(128, 0, 1.0).iter().map(|v| v.to_string()).collect();
+    std::fs::write(d.join("a.txt"), row.join(" ")).unwrap();
+    std::fs::write(d.join("b.txt"), row[..100].join(" ")).unwrap();
+    let check = |args: &[&str]| {
+        let mut cmd = bin();
+        cmd.current_dir(d)
+            .arg("check-surface")
+            .args(args)
+            .args(["--out", "o"]);
+        run_err(&mut cmd)
+    };
+    let e = check(&["--heights", "short.txt", "--pixel-size", "1"]);
+    assert!(
+        e.contains("short.txt") && e.contains("line scan of 5 points"),
+        "{e}"
+    );
+    assert!(!e.contains("pixel"), "{e}");
+    let e = check(&["--heights", "a.txt", "b.txt", "--pixel-size", "1"]);
+    assert!(e.contains("share their length"), "{e}");
+    let e = check(&[
+        "--heights",
+        "a.txt",
+        "--pixel-size",
+        "1",
+        "--line-seeds",
+        "1",
+    ]);
+    assert!(e.contains("--line-seeds"), "{e}");
+    assert!(!d.join("o").exists(), "a refused check wrote output");
+}

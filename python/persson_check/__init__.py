@@ -189,12 +189,17 @@ def _scan(value, i):
         return _heights(value), None, None
     heights = value.heights()
     sizes = _np.atleast_1d(_np.asarray(value.physical_sizes, dtype=float))
+    unit = getattr(value, "unit", None)
+    unit = unit if isinstance(unit, str) else None
+    if _np.ndim(heights) == 1 and sizes.size == 1 and _np.size(heights) > 0:
+        # A line scan: its spacing is its length over its points.
+        pixel = float(sizes[0]) / _np.size(heights)
+        return _heights(heights), (pixel, pixel), unit
     if _np.ndim(heights) != 2 or sizes.size != 2:
         # The library names the shape (a line scan is refused there, with its reason).
         return _heights(heights), None, None
     pixels = tuple(float(p) for p in sizes / _np.asarray(_np.shape(heights), dtype=float))
-    unit = getattr(value, "unit", None)
-    return _heights(heights), pixels, unit if isinstance(unit, str) else None
+    return _heights(heights), pixels, unit
 
 
 def _same(a, b):
@@ -216,6 +221,13 @@ def _scans(heights, pixel_size, unit):
         if scan_unit is not None:
             units.append((i, scan_unit))
     if pixel_size is None:
+        profile = next((i for i, a in enumerate(scans) if a.ndim == 1), None)
+        if not pixels and profile is not None:
+            raise ValueError(
+                f"pixel_size: heights[{profile}] is a line scan (a profile of "
+                f"{scans[profile].size} heights): give the spacing of its points, in the "
+                "heights' unit (a 1D topography brings its own)"
+            )
         if not pixels:
             raise ValueError(
                 "pixel_size: required for plain arrays (a positive length, in the heights' "
@@ -258,6 +270,9 @@ def check_surface(
     reentry=True,
     verbose=True,
     cross_check_all=False,
+    line=False,
+    line_side=256,
+    line_seeds=4,
 ):
     scans, sides, unit = _scans(heights, pixel_size, unit)
     return _native.check_surface(
@@ -277,6 +292,9 @@ def check_surface(
         threads,
         progress,
         verbose,
+        line,
+        int(line_side),
+        int(line_seeds),
     )
 
 
@@ -303,7 +321,15 @@ and the highest load (every load with ``cross_check_all``), within a time budget
 load; a failed solve is listed under ``failures``, never raised. ``reentry`` measures the
 re-entry share over magnification. ``out`` writes ``surface.json``, ``surface.md``,
 ``solves.jsonl`` and the figures there; ``verbose`` writes one line per load to
-``sys.stderr`` as it ends. The result's ``curve`` holds, per load, ``p0``, ``a_r`` and
+``sys.stderr`` as it ends.
+
+Line scans: a 1D array (or a 1D topography) is a profile, and ``line=True`` reads 2D arrays
+as rows of profiles (the columns then test isotropy). Their averaged 1D spectrum is
+converted to the isotropic 2D spectrum by the inverse Abel transform, Persson's theory is
+evaluated on it, and the contact is simulated on ``line_seeds`` surfaces of
+``line_side`` points synthesized with it (random phases), not on the profiles; the
+result's ``line`` holds the profiles' spectrum, the converted one with the bins where it is
+uncertain, and Persson on the whole converted band. The result's ``curve`` holds, per load, ``p0``, ``a_r`` and
 Persson's ``a_r_persson`` and ``a_r_persson_corrected`` with the elastic energies;
 ``warnings`` where the scan lies outside what the theory assumes; ``comparisons`` the
 verdicts. The GIL is released; Ctrl-C stops it.

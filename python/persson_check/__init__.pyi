@@ -209,5 +209,9 @@ def check_surface(
     reentry: bool = True,
     verbose: bool = True,
     cross_check_all: bool = False,
+    line: bool = False,
+    line_side: int = 256,
+    line_seeds: int = 4,
 ) -> dict[str, Any]:
-    """Persson's theory checked on measured height maps (surface.json as a dict)."""
+    """Persson's theory checked on measured height maps or line scans (surface.json as a
+    dict)."""

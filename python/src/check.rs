@@ -1,6 +1,6 @@
-//! `check_surface`: Persson's theory checked on the user's own height maps, as
-//! `persson-check check-surface` checks them (the same library task, the same numbers and
-//! the same `surface.json`).
+//! `check_surface`: Persson's theory checked on the user's own height maps, or line
+//! scans, as `persson-check check-surface` checks them (the same library tasks, the same
+//! numbers and the same `surface.json`).
 
 use std::path::PathBuf;
 
@@ -10,6 +10,8 @@ use pyo3::prelude::*;
 
 use persson_check::measured::check::{CheckOptions, Event};
 use persson_check::measured::fill::Fill;
+use persson_check::measured::line::check::LineOptions;
+use persson_check::measured::line::profiles::Profiles;
 use persson_check::measured::psd::Boundary;
 use persson_check::measured::scan::Scan;
 use persson_check::tasks::check as task;
@@ -35,6 +37,23 @@ fn scans(heights: &[PyReadonlyArrayDyn<'_, f64>]) -> PyResult<Vec<Scan>> {
         .collect()
 }
 
+/// The line scans of `heights` (a 1D array is a profile; a 2D one, rows of profiles),
+/// each named `heights[i]` in messages.
+fn profiles(heights: &[PyReadonlyArrayDyn<'_, f64>]) -> PyResult<Profiles> {
+    let parts = heights
+        .iter()
+        .enumerate()
+        .map(|(i, h)| {
+            let values = h
+                .as_slice()
+                .map_err(|_| PyValueError::new_err("heights must be C-contiguous arrays"))?;
+            let name = PathBuf::from(format!("heights[{i}]"));
+            Profiles::from_values(&name, h.shape(), values.to_vec(), true).or_raise()
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    Profiles::pool(parts).or_raise()
+}
+
 /// The fill named `name` (`"none"`, `"interpolate"`).
 fn fill(name: &str) -> PyResult<Fill> {
     Fill::ALL
@@ -53,11 +72,13 @@ fn fill(name: &str) -> PyResult<Fill> {
 /// Checks Persson's theory on the surface of `heights` (a list of 2D float64 arrays, the
 /// scans of one surface, NaN where a point is missing) with pixel sides `pixel_size`
 /// (between rows, between columns), as `persson-check check-surface` does, and returns
-/// the dict of `surface.json`. `out` also writes the page and its files there; `verbose`
+/// the dict of `surface.json`. With `line` (or any 1D array) the arrays are line scans
+/// (a 1D array a profile, a 2D one rows of profiles), checked on `line_seeds` surfaces of
+/// side `line_side` synthesized with the spectrum they imply. `out` also writes the page and its files there; `verbose`
 /// writes one line per load to `sys.stderr` as it ends. The GIL is released; Ctrl-C
 /// stops the solve under way.
 #[pyfunction]
-#[pyo3(signature = (heights, pixel_size, unit, periodic, loads, solver, cross_check, cross_check_all, tol, fill, modulus, reentry, out, threads, progress, verbose))]
+#[pyo3(signature = (heights, pixel_size, unit, periodic, loads, solver, cross_check, cross_check_all, tol, fill, modulus, reentry, out, threads, progress, verbose, line, line_side, line_seeds))]
 #[allow(clippy::too_many_arguments)]
 pub fn check_surface<'py>(
     py: Python<'py>,
@@ -77,6 +98,9 @@ pub fn check_surface<'py>(
     threads: Option<i64>,
     progress: Option<Bound<'py, PyAny>>,
     verbose: bool,
+    line: bool,
+    line_side: usize,
+    line_seeds: u64,
 ) -> PyResult<Bound<'py, PyAny>> {
     let solver = parse::solver(solver).or_raise()?;
     let opts = CheckOptions {
@@ -96,6 +120,33 @@ pub fn check_surface<'py>(
         modulus,
         reentry,
     };
+    if line || heights.iter().any(|h| h.ndim() == 1) {
+        let profiles = profiles(&heights)?;
+        let line = LineOptions {
+            side: line_side,
+            seeds: line_seeds,
+        };
+        let count = usize::try_from(line_seeds).unwrap_or(usize::MAX);
+        let checked = run_logged(py, threads, progress.as_ref(), verbose, |hook| {
+            let mut events = |e: Event| match e {
+                Event::Iteration { progress, .. } => hook.iteration(progress),
+                Event::Load { .. } => {
+                    if let Some(line) = task::load_line(count, &e) {
+                        hook.line(format!("check_surface: {line}"));
+                    }
+                }
+            };
+            task::check_line(
+                &profiles,
+                &opts,
+                &line,
+                out.as_deref(),
+                &Keywords,
+                &mut events,
+            )
+        })?;
+        return record(py, &checked);
+    }
     let scans = scans(&heights)?;
     let count = scans.len();
     let checked = run_logged(py, threads, progress.as_ref(), verbose, |hook| {

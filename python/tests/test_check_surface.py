@@ -115,7 +115,8 @@ def test_bad_scans_are_refused_by_name():
     holed[7, 1] = np.inf
     with pytest.raises(ValueError, match=r"2 of 2304 heights .*undefined.*row 3, column 5"):
         persson_check.check_surface(holed, pixel_size=0.5)
-    with pytest.raises(ValueError, match="one-dimensional"):
+    # A row is a line scan: 48 points are too few to convert its spectrum.
+    with pytest.raises(ValueError, match="line scan of 48 points"):
         persson_check.check_surface(scan[0], pixel_size=0.5)
     with pytest.raises(ValueError, match="pixel_size"):
         persson_check.check_surface(scan, pixel_size=-1.0)
@@ -149,3 +150,36 @@ def test_a_640_by_480_window_gives_a_rising_curve():
     r = persson_check.check_surface(h, pixel_size=1.0, **QUICK)
     _rising(r)
     assert (r["rows"], r["cols"]) == (480, 640)
+
+
+def test_a_line_scan_is_checked_on_surfaces_synthesized_with_its_spectrum():
+    # One profile (a 1D array) of a generated surface, pixel 0.5: a line scan by the rule.
+    full = persson_check.surface(512, 0.8, 256.0, 4.0, 3)
+    profile = 0.5 * full[7].copy()
+    loads = [0.01, 0.05]
+    r = persson_check.check_surface(
+        profile, pixel_size=0.5, loads=loads, line_side=64, line_seeds=2, **QUICK
+    )
+    assert (r["line"]["profiles"], r["line"]["points"]) == (1, 512)
+    assert r["line"]["synthesized_side"] == 64 and len(r["scans"]) == 2
+    areas = [p["a_r"] for p in r["curve"]]
+    assert len(areas) == 2 and areas[1] > areas[0] > 0, areas
+    assert [p["p0"] for p in r["line"]["persson"]] == loads
+    assert r["line"]["converted"][-1]["uncertain"] == "cutoff"
+    # The rows of a 2D array with line=True: 64 profiles, and the columns across them.
+    rows = persson_check.check_surface(
+        0.5 * full[:64, :], pixel_size=0.5, line=True, loads=[0.05],
+        line_side=64, line_seeds=2, **QUICK
+    )
+    assert rows["line"]["profiles"] == 64
+    assert rows["line"]["spectrum_across"] is not None
+
+
+def test_a_line_scan_that_cannot_be_checked_is_refused_with_a_word_about_line_scans():
+    profile = persson_check.surface(128, 0.8, 64.0, 4.0, 1)[0].copy()
+    with pytest.raises(ValueError, match="heights\\[0\\] is a line scan"):
+        persson_check.check_surface(profile, **QUICK)
+    with pytest.raises(ValueError, match="a profile must hold 64"):
+        persson_check.check_surface(profile[:10], pixel_size=1.0, **QUICK)
+    with pytest.raises(ValueError, match="line_seeds"):
+        persson_check.check_surface(profile, pixel_size=1.0, line_seeds=1, **QUICK)

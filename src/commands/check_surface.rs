@@ -1,4 +1,5 @@
-//! `check-surface`: Persson's theory checked on measured height maps.
+//! `check-surface`: Persson's theory checked on measured height maps, or on line scans
+//! (a 1D input, or 2D inputs with `--line`: [`persson_check::measured::line`]).
 
 use std::io::IsTerminal;
 use std::path::PathBuf;
@@ -7,10 +8,11 @@ use clap::Args as ClapArgs;
 use indicatif::{ProgressBar, ProgressStyle};
 use persson_check::engine::solver::SolverKind;
 use persson_check::error::{Error, Result};
-use persson_check::measured::check::{CheckOptions, Event};
+use persson_check::measured::check::{CheckOptions, Event, SurfaceCheck};
 use persson_check::measured::fill::Fill;
+use persson_check::measured::line::check::{LineOptions, DEFAULT_SEEDS, DEFAULT_SIDE};
 use persson_check::measured::psd::Boundary;
-use persson_check::tasks::check::{check_surface, load_line, read_scans};
+use persson_check::tasks::check::{check_line, check_surface, load_line, read_input, Input};
 
 use super::FLAGS;
 
@@ -18,9 +20,21 @@ use super::FLAGS;
 #[derive(ClapArgs, Debug)]
 pub struct Args {
     /// Height maps (.npy, 2D float, or a plain-text matrix), square or rectangular; several
-    /// files are several scans of one surface (the error bars come from them).
+    /// files are several scans of one surface (the error bars come from them). A 1D input
+    /// (a .npy vector, one row or one column of text) is a line scan, a profile.
     #[arg(long, num_args = 1.., required = true)]
     heights: Vec<PathBuf>,
+    /// Read 2D inputs as line scans: each row a profile of one surface (its columns are the
+    /// profiles across, for the isotropy check). The contact is then simulated on isotropic
+    /// surfaces synthesized with the spectrum the profiles imply.
+    #[arg(long)]
+    line: bool,
+    /// Line scans: side of the synthesized surfaces, points (at most the profile's length).
+    #[arg(long = "line-side", default_value_t = DEFAULT_SIDE)]
+    line_side: usize,
+    /// Line scans: synthesized surfaces, one per seed (the error bars come from them).
+    #[arg(long = "line-seeds", default_value_t = DEFAULT_SEEDS)]
+    line_seeds: u64,
     /// Pixel size, in the heights' length unit: one value, or two (between rows, between
     /// columns) that differ by at most 0.1%.
     #[arg(
@@ -69,7 +83,7 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> Result<()> {
-    let scans = read_scans(&args.heights, &FLAGS)?;
+    let input = read_input(&args.heights, args.line, &FLAGS)?;
     let pixel_size = match args.pixel_size[..] {
         [p] => [p, p],
         [a, b] => [a, b],
@@ -98,7 +112,23 @@ pub fn run(args: Args) -> Result<()> {
         modulus: args.modulus,
         reentry: !args.no_reentry,
     };
-    let count = scans.len();
+    let line = LineOptions {
+        side: args.line_side,
+        seeds: args.line_seeds,
+    };
+    let count = match &input {
+        Input::Surface(scans) => scans.len(),
+        Input::Line(_) => usize::try_from(line.seeds).unwrap_or(usize::MAX),
+    };
+    let out = args.out.as_path();
+    let run = |events: &mut dyn FnMut(Event)| -> Result<SurfaceCheck> {
+        match &input {
+            Input::Surface(scans) => check_surface(scans, &opts, Some(out), &FLAGS, events),
+            Input::Line(profiles) => {
+                check_line(profiles, &opts, &line, Some(out), &FLAGS, events).map(|c| c.surface)
+            }
+        }
+    };
     let result = if std::io::stderr().is_terminal() {
         let solves = count * if opts.cross_check { 2 } else { 1 };
         let bar = ProgressBar::new(solves as u64);
@@ -128,7 +158,7 @@ pub fn run(args: Args) -> Result<()> {
                 }
             }
         };
-        let result = check_surface(&scans, &opts, Some(&args.out), &FLAGS, &mut events);
+        let result = run(&mut events);
         bar.finish_and_clear();
         result?
     } else {
@@ -138,8 +168,17 @@ pub fn run(args: Args) -> Result<()> {
                 eprintln!("check-surface: {line}");
             }
         };
-        check_surface(&scans, &opts, Some(&args.out), &FLAGS, &mut events)?
+        run(&mut events)?
     };
+    if let Input::Line(p) = &input {
+        outln!(
+            "line scans: {} profile(s) of {} points; contact simulated on {} synthesized \
+             surfaces",
+            p.count(),
+            p.points,
+            line.seeds
+        );
+    }
     for c in &result.comparisons {
         outln!("{:24} {} : {}", c.name, c.statistic, c.verdict);
     }

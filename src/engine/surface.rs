@@ -85,26 +85,9 @@ impl Surface {
         let grid = Grid::new(params.n, 1.0)?;
         params.spectrum.validate(&grid)?;
         check_positive("rms_gradient", params.rms_gradient)?;
-        let m = grid.half_cols();
-        let mut modes = vec![Complex64::new(0.0, 0.0); grid.modes()];
-        let mut rng = ChaCha8Rng::seed_from_u64(params.seed);
-        for (s, h) in modes.iter_mut().enumerate() {
-            let (mx, my) = grid.wavevector(s);
-            // The half plane mx > 0, or mx = 0 and my > 0; the other half follows by symmetry.
-            if grid.is_nyquist(s) || (mx == 0 && my <= 0) {
-                continue;
-            }
-            let c = params.spectrum.shape_on_shell(&grid, grid.k2(s));
-            if c == 0.0 {
-                continue;
-            }
-            *h = c.sqrt() * draw(&mut rng, mode_id(mx, my), params.amplitudes);
-        }
-        // Column kx = 0: h~(0, -my) = conj h~(0, my).
-        let n = grid.n();
-        for ky in (n / 2 + 1)..n {
-            modes[ky * m] = modes[(n - ky) * m].conj();
-        }
+        let modes = draw_modes(&grid, params.seed, params.amplitudes, |k2| {
+            params.spectrum.shape_on_shell(&grid, k2)
+        });
         let mut surface = Self {
             grid,
             lambda_l: params.spectrum.lambda_l,
@@ -116,6 +99,46 @@ impl Surface {
             surface.modes.iter_mut().for_each(|h| *h *= f);
         }
         Ok(surface)
+    }
+
+    /// A realization of a tabulated isotropic spectrum on an `n x n` grid (grid units):
+    /// `power(q)` is the expected `|h~(q)|^2` of one mode at `|q| = 2 pi |k| / n` (zero
+    /// where the spectrum is empty), drawn as [`Surface::generate`] draws (the same seed,
+    /// the same `xi` per wavevector) but with no rescaling of the rms gradient;
+    /// `lambda_l = n`.
+    ///
+    /// # Errors
+    /// `n` outside the grid's range, or a `power` that is negative or not finite.
+    pub fn generate_tabulated(
+        n: usize,
+        power: &dyn Fn(f64) -> f64,
+        seed: u64,
+        amplitudes: Amplitudes,
+    ) -> Result<Self> {
+        let grid = Grid::new(n, 1.0)?;
+        let dq = grid.dq();
+        let mut bad = None;
+        let modes = draw_modes(&grid, seed, amplitudes, |k2| {
+            let q = dq * f64::from(k2).sqrt();
+            let c = power(q);
+            if !(c.is_finite() && c >= 0.0) {
+                bad.get_or_insert((q, c));
+                return 0.0;
+            }
+            c
+        });
+        if let Some((q, c)) = bad {
+            return Err(Error::invalid(
+                "power",
+                format!("{c} at q = {q}"),
+                "a finite power >= 0 at every wavevector",
+            ));
+        }
+        Ok(Self {
+            lambda_l: grid.length(),
+            grid,
+            modes,
+        })
     }
 
     /// A surface from measured heights on `grid` (row-major, `n x n`). `lambda_l` sets the
@@ -271,6 +294,37 @@ impl Surface {
     }
 }
 
+/// The half spectrum of one realization on `grid`: `h~(q) = sqrt(shape(k2)) xi(q)` on the
+/// half plane (Nyquist rows and `q = 0` empty), the column `kx = 0` made Hermitian.
+fn draw_modes(
+    grid: &Grid,
+    seed: u64,
+    amplitudes: Amplitudes,
+    mut shape: impl FnMut(u32) -> f64,
+) -> Vec<Complex64> {
+    let m = grid.half_cols();
+    let mut modes = vec![Complex64::new(0.0, 0.0); grid.modes()];
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    for (s, h) in modes.iter_mut().enumerate() {
+        let (mx, my) = grid.wavevector(s);
+        // The half plane mx > 0, or mx = 0 and my > 0; the other half follows by symmetry.
+        if grid.is_nyquist(s) || (mx == 0 && my <= 0) {
+            continue;
+        }
+        let c = shape(grid.k2(s));
+        if c == 0.0 {
+            continue;
+        }
+        *h = c.sqrt() * draw(&mut rng, mode_id(mx, my), amplitudes);
+    }
+    // Column kx = 0: h~(0, -my) = conj h~(0, my).
+    let n = grid.n();
+    for ky in (n / 2 + 1)..n {
+        modes[ky * m] = modes[(n - ky) * m].conj();
+    }
+    modes
+}
+
 /// A unique index of the half-plane wavevector `(mx, my)`, independent of the grid size:
 /// Cantor pairing of `mx` with the zig-zag code of `my`.
 fn mode_id(mx: i64, my: i64) -> u64 {
@@ -336,6 +390,38 @@ mod tests {
         }
         let g = (g2 / (n * n) as f64).sqrt();
         assert!(g > 0.6 && g < 1.0, "finite-difference gradient {g}");
+    }
+
+    #[test]
+    fn a_tabulated_spectrum_draws_the_modes_of_the_model_one() {
+        // The self-affine shape given as a table of |q| draws the same realization as the
+        // model, up to the overall factor that sets g_bar; with random phases every mode's
+        // |h~|^2 is the table's value exactly.
+        let mut p = params(32, 7);
+        p.amplitudes = Amplitudes::RandomPhase;
+        let model = Surface::generate(&p).unwrap();
+        let grid = Grid::new(32, 1.0).unwrap();
+        let (q_l, q_s) = (p.spectrum.q_l(), p.spectrum.q_s());
+        let power = |q: f64| {
+            if q >= q_l * (1.0 - 1e-9) && q <= q_s * (1.0 + 1e-9) {
+                3.0 * (q / q_l).powf(-2.0 * (1.0 + p.spectrum.hurst))
+            } else {
+                0.0
+            }
+        };
+        let table = Surface::generate_tabulated(32, &power, 7, Amplitudes::RandomPhase).unwrap();
+        let first = table.modes().iter().position(|h| h.norm() > 0.0).unwrap();
+        let f = model.modes()[first].norm() / table.modes()[first].norm();
+        for (s, (a, b)) in model.modes().iter().zip(table.modes()).enumerate() {
+            assert!((a - b * f).norm() < 1e-12, "mode {s}: {a} vs {b}");
+            if b.norm() > 0.0 {
+                assert!((b.norm_sqr() / power(grid.q(s)) - 1.0).abs() < 1e-12);
+            }
+        }
+        let e = Surface::generate_tabulated(32, &|_| f64::NAN, 7, Amplitudes::RandomPhase)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("power"), "{e}");
     }
 
     #[test]

@@ -5,7 +5,7 @@
 //! ([`reentry`]), the words where the theory does not apply ([`warnings`]), the check
 //! ([`check`]: its [`options`], its [`curves`], its [`findings`] and how they are drawn from
 //! the measurements, `conclude`) and its page
-//! ([`page`]).
+//! ([`page`]); line scans, by way of the isotropic surface they imply ([`line`]).
 
 pub mod body;
 pub mod check;
@@ -13,6 +13,7 @@ mod conclude;
 pub mod curves;
 pub mod fill;
 pub mod findings;
+pub mod line;
 pub mod options;
 pub mod page;
 pub mod psd;

@@ -54,8 +54,8 @@ impl Scan {
                 return Err(Error::bad_file(
                     source,
                     format!(
-                        "a one-dimensional profile ({len} values): a 2D height map is needed \
-                         (a contact area needs a surface, not a line scan)"
+                        "a one-dimensional profile ({len} values): a line scan, checked as one \
+                         (measured::line), not as a height map"
                     ),
                 ))
             }
@@ -71,16 +71,8 @@ impl Scan {
 
     /// Reads a scan from `path`: `.npy` by its extension or magic bytes, else a text matrix.
     pub fn read(path: &Path) -> Result<Self> {
-        let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
-        let raw = if bytes.starts_with(b"\x93NUMPY") {
-            parse_npy(&bytes)
-        } else if path.extension().is_some_and(|e| e == "npy") {
-            Err("not a valid .npy file (no NUMPY magic bytes)".to_string())
-        } else {
-            parse_text(&bytes)
-        }
-        .map_err(|m| Error::bad_file(path, m))?;
-        Self::check(path, raw)
+        let (rows, cols, values) = read_matrix(path)?;
+        Self::check(path, Raw { rows, cols, values })
     }
 
     fn check(source: &Path, raw: Raw) -> Result<Self> {
@@ -92,8 +84,8 @@ impl Scan {
             return Err(Error::bad_file(
                 source,
                 format!(
-                    "a one-dimensional profile ({rows} x {cols}): a 2D height map is needed \
-                     (a contact area needs a surface, not a line scan)"
+                    "a one-dimensional profile ({rows} x {cols}): a line scan, checked as one \
+                     (measured::line), not as a height map"
                 ),
             ));
         }
@@ -133,6 +125,22 @@ impl Scan {
         }
         missing
     }
+}
+
+/// The values of `path` (`.npy` by its extension or magic bytes, else a text matrix) as
+/// `(rows, columns, row-major values)`, before any check of their shape: a 1D `.npy`
+/// array is one row, a text file of one value per line one column.
+pub fn read_matrix(path: &Path) -> Result<(usize, usize, Vec<f64>)> {
+    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    let raw = if bytes.starts_with(b"\x93NUMPY") {
+        parse_npy(&bytes)
+    } else if path.extension().is_some_and(|e| e == "npy") {
+        Err("not a valid .npy file (no NUMPY magic bytes)".to_string())
+    } else {
+        parse_text(&bytes)
+    }
+    .map_err(|m| Error::bad_file(path, m))?;
+    Ok((raw.rows, raw.cols, raw.values))
 }
 
 /// A 2D float array from the bytes of a `.npy` file, whatever its shape (checked later).

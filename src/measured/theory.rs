@@ -75,6 +75,12 @@ impl Theory {
         })
     }
 
+    /// The original theory's contact area at load `p0` with the modes up to
+    /// magnification `zeta` resolved, `erf(p0 / (sqrt2 Dp_tot(zeta)))`.
+    pub fn contact_area_at(&self, p0: f64, zeta: f64) -> Result<f64> {
+        Ok(Prediction::original(&self.broadening, p0)?.contact_area(zeta))
+    }
+
     /// The load at which the original theory predicts contact area `a_r`,
     /// `p0 = sqrt2 Dp_tot erf^-1(a_r)`.
     pub fn load_for_area(&self, a_r: f64) -> f64 {

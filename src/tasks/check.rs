@@ -2,7 +2,8 @@
 //! missing points, solve their load curves, compare with Persson's predictions and write
 //! `surface.json`, `surface.md` and the figures ([`crate::measured`]), with every solve's
 //! outcome appended to `solves.jsonl` as it ends. The command line's `check-surface` and
-//! Python's `check_surface` both call [`check_surface`].
+//! Python's `check_surface` both call [`check_surface`], or [`check_line`] for line scans
+//! (which inputs are line scans: [`crate::measured::line::profiles`]; [`read_input`]).
 
 use std::io::Write as _;
 use std::path::Path;
@@ -11,8 +12,10 @@ use super::Spelling;
 use crate::error::{Error, Result};
 use crate::measured::check::{check, CheckOptions, Event, SurfaceCheck};
 use crate::measured::fill::{fill, Fill};
+use crate::measured::line::check::{LineCheck, LineOptions};
+use crate::measured::line::profiles::{is_one_dimensional, Profiles};
 use crate::measured::page;
-use crate::measured::scan::Scan;
+use crate::measured::scan::{read_matrix, Scan};
 use crate::measured::units::eng;
 
 /// The file of every solve's outcome, one JSON line each, written as it ends.
@@ -28,6 +31,44 @@ pub fn read_scans(paths: &[impl AsRef<Path>], s: &dyn Spelling) -> Result<Vec<Sc
         )));
     }
     paths.iter().map(|p| Scan::read(p.as_ref())).collect()
+}
+
+/// What the inputs of a check are: height maps of one surface, or line scans of one.
+#[derive(Debug, Clone)]
+pub enum Input {
+    /// Height maps (scans) of one surface.
+    Surface(Vec<Scan>),
+    /// Line scans of one surface.
+    Line(Profiles),
+}
+
+/// Reads `paths`: line scans when `line` (2D inputs read as rows of profiles) or when any
+/// input is one-dimensional, else height maps.
+pub fn read_input(paths: &[impl AsRef<Path>], line: bool, s: &dyn Spelling) -> Result<Input> {
+    if paths.is_empty() {
+        return Err(s.rename(Error::invalid(
+            "heights",
+            "no file",
+            "at least one height map or line scan (.npy or text)",
+        )));
+    }
+    let read = paths
+        .iter()
+        .map(|p| read_matrix(p.as_ref()).map(|m| (p.as_ref(), m)))
+        .collect::<Result<Vec<_>>>()?;
+    let line = line || read.iter().any(|(_, m)| is_one_dimensional(m.0, m.1));
+    if line {
+        let parts = read
+            .into_iter()
+            .map(|(p, (rows, cols, values))| Profiles::from_values(p, &[rows, cols], values, true))
+            .collect::<Result<Vec<_>>>()?;
+        Ok(Input::Line(Profiles::pool(parts)?))
+    } else {
+        read.into_iter()
+            .map(|(p, (rows, cols, values))| Scan::from_values(p, &[rows, cols], values))
+            .collect::<Result<Vec<_>>>()
+            .map(Input::Surface)
+    }
 }
 
 /// `scans` with their missing points filled as `how` says, or the refusal that names
@@ -65,24 +106,69 @@ pub fn check_surface(
         .iter()
         .map(|s| s.source.display().to_string())
         .collect();
+    let result = logged(&names, out, events, &mut |events| {
+        check(&scans, opts, events).map_err(|e| s.rename(e))
+    })?;
+    if let Some(dir) = out {
+        page::write(&result, dir)?;
+    }
+    Ok(result)
+}
+
+/// Checks the surface of line scans `profiles` with `opts` and `line`
+/// ([`crate::measured::line::check`]): the contact simulated on surfaces synthesized with
+/// the spectrum the profiles imply. Writes the page into `out` when given, as
+/// [`check_surface`] does.
+pub fn check_line(
+    profiles: &Profiles,
+    opts: &CheckOptions,
+    line: &LineOptions,
+    out: Option<&Path>,
+    s: &dyn Spelling,
+    events: &mut dyn FnMut(Event),
+) -> Result<LineCheck> {
+    if let Some(dir) = out {
+        super::check_out_dir(dir, s)?;
+    }
+    crate::measured::line::check::validate(opts, line).map_err(|e| s.rename(e))?;
+    let names: Vec<String> = (1..=line.seeds)
+        .map(|k| format!("synthesized, seed {k}"))
+        .collect();
+    let result = logged(&names, out, events, &mut |events| {
+        crate::measured::line::check::check_line(profiles, opts, line, events)
+            .map_err(|e| s.rename(e))
+    })?;
+    if let Some(dir) = out {
+        crate::measured::line::page::write(&result, dir)?;
+    }
+    Ok(result)
+}
+
+/// A check run with the events it reports.
+type Run<'a, T> = &'a mut dyn FnMut(&mut dyn FnMut(Event)) -> Result<T>;
+
+/// `run` with every load's end appended to `solves.jsonl` in `out` (the scans named
+/// `names`) and passed on to `events`.
+fn logged<T>(
+    names: &[String],
+    out: Option<&Path>,
+    events: &mut dyn FnMut(Event),
+    run: Run<'_, T>,
+) -> Result<T> {
     let mut log = match out {
         Some(dir) => Some(SolveLog::create(dir)?),
         None => None,
     };
-    let mut logged = Ok(());
-    let result = check(&scans, opts, &mut |e| {
+    let mut appended = Ok(());
+    let result = run(&mut |e| {
         if let (Some(log), Event::Load { .. }) = (log.as_mut(), &e) {
-            if logged.is_ok() {
-                logged = log.append(&names, &e);
+            if appended.is_ok() {
+                appended = log.append(names, &e);
             }
         }
         events(e);
-    })
-    .map_err(|e| s.rename(e))?;
-    logged?;
-    if let Some(dir) = out {
-        page::write(&result, dir)?;
-    }
+    })?;
+    appended?;
     Ok(result)
 }
 
