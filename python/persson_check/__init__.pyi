@@ -209,5 +209,7 @@ def check_surface(
     reentry: bool = True,
     verbose: bool = True,
     cross_check_all: bool = False,
+    max_iterations: int = 1000,
+    despike: Optional[float] = None,
 ) -> dict[str, Any]:
     """Persson's theory checked on measured height maps (surface.json as a dict)."""

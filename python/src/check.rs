@@ -57,7 +57,7 @@ fn fill(name: &str) -> PyResult<Fill> {
 /// writes one line per load to `sys.stderr` as it ends. The GIL is released; Ctrl-C
 /// stops the solve under way.
 #[pyfunction]
-#[pyo3(signature = (heights, pixel_size, unit, periodic, loads, solver, cross_check, cross_check_all, tol, fill, modulus, reentry, out, threads, progress, verbose))]
+#[pyo3(signature = (heights, pixel_size, unit, periodic, loads, solver, cross_check, cross_check_all, tol, fill, modulus, reentry, out, threads, progress, verbose, max_iterations, despike))]
 #[allow(clippy::too_many_arguments)]
 pub fn check_surface<'py>(
     py: Python<'py>,
@@ -77,6 +77,8 @@ pub fn check_surface<'py>(
     threads: Option<i64>,
     progress: Option<Bound<'py, PyAny>>,
     verbose: bool,
+    max_iterations: usize,
+    despike: Option<f64>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let solver = parse::solver(solver).or_raise()?;
     let opts = CheckOptions {
@@ -95,13 +97,15 @@ pub fn check_surface<'py>(
         fill: self::fill(fill)?,
         modulus,
         reentry,
+        max_iterations,
+        despike,
     };
     let scans = scans(&heights)?;
     let count = scans.len();
     let checked = run_logged(py, threads, progress.as_ref(), verbose, |hook| {
         let mut events = |e: Event| match e {
             Event::Iteration { progress, .. } => hook.iteration(progress),
-            Event::Load { .. } => {
+            Event::Load { .. } | Event::Outliers { .. } => {
                 if let Some(line) = task::load_line(count, &e) {
                     hook.line(format!("check_surface: {line}"));
                 }

@@ -9,6 +9,7 @@ use persson_check::engine::solver::SolverKind;
 use persson_check::error::{Error, Result};
 use persson_check::measured::check::{CheckOptions, Event};
 use persson_check::measured::fill::Fill;
+use persson_check::measured::options::MAX_ITERATIONS;
 use persson_check::measured::psd::Boundary;
 use persson_check::tasks::check::{check_surface, load_line, read_scans};
 
@@ -63,6 +64,19 @@ pub struct Args {
     /// Residual tolerance of every solve.
     #[arg(long, default_value_t = 1e-6, allow_negative_numbers = true)]
     tol: f64,
+    /// Iteration budget of every solve: a load whose solve has not reached the tolerance
+    /// after this many iterations is reported as failed, with the solver's state
+    /// (iterations, residual against the tolerance, points in contact), and the check
+    /// goes on with the other loads.
+    #[arg(long = "max-iterations", default_value_t = MAX_ITERATIONS)]
+    max_iterations: usize,
+    /// Replace spikes before the check (off by default): a point whose height differs
+    /// from the median of its eight neighbours by more than K robust deviations (1.4826
+    /// times the median absolute deviation of those differences over the scan) is
+    /// removed and filled by harmonic interpolation, as missing points are; K >= 3. The
+    /// page says how many points were replaced.
+    #[arg(long, value_name = "K", allow_negative_numbers = true)]
+    despike: Option<f64>,
     /// Output folder: surface.json, surface.md, solves.jsonl, figures/.
     #[arg(long)]
     out: PathBuf,
@@ -97,6 +111,8 @@ pub fn run(args: Args) -> Result<()> {
         fill: args.fill,
         modulus: args.modulus,
         reentry: !args.no_reentry,
+        max_iterations: args.max_iterations,
+        despike: args.despike,
     };
     let count = scans.len();
     let result = if std::io::stderr().is_terminal() {
@@ -118,6 +134,11 @@ pub fn run(args: Args) -> Result<()> {
                 solver.name(),
                 load + 1
             )),
+            Event::Outliers { .. } => {
+                if let Some(line) = load_line(count, &e) {
+                    bar.println(line);
+                }
+            }
             Event::Load { load, loads, .. } => {
                 if let Some(line) = load_line(count, &e) {
                     bar.println(line);
