@@ -46,6 +46,9 @@ pub enum Error {
         residual: f64,
         /// Requested tolerance.
         tol: f64,
+        /// Points in contact (`p > 0`) in the state the residual was taken from, for a
+        /// contact solver (`None` elsewhere).
+        contact_points: Option<usize>,
     },
     /// A NaN or infinity appeared in a solver's state.
     #[error("{solver}: non-finite value in {what} at iteration {iteration}")]
@@ -226,6 +229,7 @@ mod tests {
             iterations: 12,
             residual: 3e-13,
             tol: 1e-14,
+            contact_points: Some(3),
         };
         assert_eq!(e.termination(), Some(Termination::Stalled));
         assert!(

@@ -492,4 +492,157 @@ fn bad_line_scans_are_refused_with_a_word_about_line_scans() {
     ]);
     assert!(e.contains("--line-seeds"), "{e}");
     assert!(!d.join("o").exists(), "a refused check wrote output");
+
+/// A smooth generated window with three single-point spikes of 40 rms heights, written as
+/// a text matrix to `dir/spiky.txt`: at the lowest default load the spikes carry the
+/// contact.
+fn spiky(dir: &Path, n: usize) -> std::path::PathBuf {
+    surface(dir, "smooth.npy", n, 5);
+    let scan = persson_check::measured::scan::Scan::read(&dir.join("smooth.npy")).unwrap();
+    let mut h = scan.heights;
+    let mean = h.iter().sum::<f64>() / h.len() as f64;
+    let rms = (h.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / h.len() as f64).sqrt();
+    for k in [
+        n * n / 3 + n / 4,
+        n * n / 2 + n / 2,
+        3 * n * n / 4 + 2 * n / 3,
+    ] {
+        h[k] += 40.0 * rms;
+    }
+    let text: String = h
+        .chunks(n)
+        .map(|row| {
+            let cells: Vec<String> = row.iter().map(|x| format!("{x:e}")).collect();
+            cells.join(" ") + "\n"
+        })
+        .collect();
+    let path = dir.join("spiky.txt");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+#[test]
+fn a_spiky_window_finishes_with_every_load_converged_or_failed_with_its_state() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let path = spiky(d, 48);
+    let started = std::time::Instant::now();
+    let out = bin()
+        .current_dir(d)
+        .args(["check-surface", "--heights", path.to_str().unwrap()])
+        .args(["--pixel-size", "1", "--no-reentry", "--out", "checked"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(
+        started.elapsed().as_secs_f64() < 120.0,
+        "a 48 x 48 spiky window took {:?}",
+        started.elapsed()
+    );
+    // The spikes are reported before the first solve ends.
+    let said = stderr.find("beyond 6 rms").expect("the outliers line");
+    let first_load = stderr.find("load 1/").expect("a line per load");
+    assert!(said < first_load, "{stderr}");
+    let c = json(&d.join("checked/surface.json"));
+    let o = &c["outliers"][0];
+    assert_eq!(o["count"], 3, "three spikes beyond 6 rms: {o}");
+    assert!(o["max_rms"].as_f64().unwrap() > 20.0, "{o}");
+    let loads = c["loads"].as_array().unwrap().len();
+    assert_eq!(o["contact_share"].as_array().unwrap().len(), loads);
+    // Every headline load is on the curve (converged) or failed with the solver's state.
+    let solved = c["curve"].as_array().unwrap().len();
+    let failed: Vec<&serde_json::Value> = c["failures"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|f| f["headline"] == true)
+        .collect();
+    assert_eq!(solved + failed.len(), loads, "{}", c["failures"]);
+    for f in &failed {
+        let state = &f["state"];
+        assert!(
+            state["iterations"].as_u64().unwrap() <= 1000
+                && state["residual"].as_f64().unwrap() > state["tol"].as_f64().unwrap(),
+            "{f}"
+        );
+    }
+    // At the lowest load, if solved, the spikes carry part of the contact, and the page
+    // says so.
+    if let Some(share) = o["contact_share"][0].as_f64() {
+        assert!(share > 0.0, "{o}");
+        let page = std::fs::read_to_string(d.join("checked/surface.md")).unwrap();
+        assert!(page.contains("## Spikes and outliers"), "{page}");
+        assert!(page.contains("of the contact at p0 ="), "{page}");
+    }
+}
+
+#[test]
+fn a_spent_iteration_budget_fails_the_load_with_its_state_and_the_check_goes_on() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let path = spiky(d, 32);
+    run_ok(bin().current_dir(d).args([
+        "check-surface",
+        "--heights",
+        path.to_str().unwrap(),
+        "--pixel-size",
+        "1",
+        "--no-reentry",
+        "--no-cross-check",
+        "--max-iterations",
+        "3",
+        "--out",
+        "checked",
+    ]));
+    let c = json(&d.join("checked/surface.json"));
+    assert_eq!(c["max_iterations"], 3);
+    let failures = c["failures"].as_array().unwrap();
+    assert!(!failures.is_empty(), "3 iterations converge nothing cold");
+    for f in failures {
+        assert_eq!(f["state"]["iterations"], 3, "{f}");
+        assert!(f["state"]["contact_points"].as_u64().unwrap() > 0, "{f}");
+        assert!(f["message"].as_str().unwrap().contains("(budget 3)"), "{f}");
+    }
+    let page = std::fs::read_to_string(d.join("checked/surface.md")).unwrap();
+    assert!(page.contains("a budget of 3 iterations"), "{page}");
+}
+
+#[test]
+fn despiking_replaces_the_spikes_and_says_how_many() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let path = spiky(d, 32);
+    run_ok(bin().current_dir(d).args([
+        "check-surface",
+        "--heights",
+        path.to_str().unwrap(),
+        "--pixel-size",
+        "1",
+        "--no-reentry",
+        "--no-cross-check",
+        "--loads",
+        "0.05",
+        "--despike",
+        "8",
+        "--out",
+        "checked",
+    ]));
+    let c = json(&d.join("checked/surface.json"));
+    let o = &c["outliers"][0];
+    assert_eq!(o["despiked"], 3, "{o}");
+    assert_eq!(o["count"], 0, "no outlier is left: {o}");
+    assert_eq!(c["despike"], 8.0);
+    let err = run_err(bin().current_dir(d).args([
+        "check-surface",
+        "--heights",
+        path.to_str().unwrap(),
+        "--pixel-size",
+        "1",
+        "--despike",
+        "1",
+        "--out",
+        "refused",
+    ]));
+    assert!(err.contains("despike") && err.contains(">= 3"), "{err}");
 }

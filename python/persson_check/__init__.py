@@ -273,6 +273,8 @@ def check_surface(
     line=False,
     line_side=256,
     line_seeds=4,
+    max_iterations=1000,
+    despike=None,
 ):
     scans, sides, unit = _scans(heights, pixel_size, unit)
     return _native.check_surface(
@@ -295,6 +297,8 @@ def check_surface(
         line,
         int(line_side),
         int(line_seeds),
+        max_iterations,
+        None if despike is None else float(despike),
     )
 
 
@@ -318,7 +322,14 @@ periodic kernel, as :func:`solve` does. ``loads`` are nominal pressures ``p0 / E
 comparison, and ``cross_check`` also solves with a second solver (CG for GFMD, GFMD for
 any other) at the lowest, the middle
 and the highest load (every load with ``cross_check_all``), within a time budget per
-load; a failed solve is listed under ``failures``, never raised. ``reentry`` measures the
+load; every solve has a budget of ``max_iterations`` iterations (default 1000), and a
+failed solve is listed under ``failures`` with the solver's ``state`` (iterations, residual
+against the tolerance, points in contact), never raised. Spikes and outliers are reported
+before the solves under ``outliers`` (points beyond 6 rms heights, the largest in rms, and
+per load the share of the contact on them); ``despike=K`` (off by default, K >= 3) first
+replaces every point farther than K robust deviations (1.4826 times the median absolute
+deviation) from the median of its eight neighbours by harmonic interpolation, and says how
+many it replaced. ``reentry`` measures the
 re-entry share over magnification. ``out`` writes ``surface.json``, ``surface.md``,
 ``solves.jsonl`` and the figures there; ``verbose`` writes one line per load to
 ``sys.stderr`` as it ends.

@@ -212,6 +212,8 @@ def check_surface(
     line: bool = False,
     line_side: int = 256,
     line_seeds: int = 4,
+    max_iterations: int = 1000,
+    despike: Optional[float] = None,
 ) -> dict[str, Any]:
     """Persson's theory checked on measured height maps or line scans (surface.json as a
     dict)."""

@@ -78,7 +78,7 @@ fn fill(name: &str) -> PyResult<Fill> {
 /// writes one line per load to `sys.stderr` as it ends. The GIL is released; Ctrl-C
 /// stops the solve under way.
 #[pyfunction]
-#[pyo3(signature = (heights, pixel_size, unit, periodic, loads, solver, cross_check, cross_check_all, tol, fill, modulus, reentry, out, threads, progress, verbose, line, line_side, line_seeds))]
+#[pyo3(signature = (heights, pixel_size, unit, periodic, loads, solver, cross_check, cross_check_all, tol, fill, modulus, reentry, out, threads, progress, verbose, line, line_side, line_seeds, max_iterations, despike))]
 #[allow(clippy::too_many_arguments)]
 pub fn check_surface<'py>(
     py: Python<'py>,
@@ -101,6 +101,8 @@ pub fn check_surface<'py>(
     line: bool,
     line_side: usize,
     line_seeds: u64,
+    max_iterations: usize,
+    despike: Option<f64>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let solver = parse::solver(solver).or_raise()?;
     let opts = CheckOptions {
@@ -119,6 +121,8 @@ pub fn check_surface<'py>(
         fill: self::fill(fill)?,
         modulus,
         reentry,
+        max_iterations,
+        despike,
     };
     if line || heights.iter().any(|h| h.ndim() == 1) {
         let profiles = profiles(&heights)?;
@@ -152,7 +156,7 @@ pub fn check_surface<'py>(
     let checked = run_logged(py, threads, progress.as_ref(), verbose, |hook| {
         let mut events = |e: Event| match e {
             Event::Iteration { progress, .. } => hook.iteration(progress),
-            Event::Load { .. } => {
+            Event::Load { .. } | Event::Outliers { .. } => {
                 if let Some(line) = task::load_line(count, &e) {
                     hook.line(format!("check_surface: {line}"));
                 }

@@ -183,3 +183,31 @@ def test_a_line_scan_that_cannot_be_checked_is_refused_with_a_word_about_line_sc
         persson_check.check_surface(profile[:10], pixel_size=1.0, **QUICK)
     with pytest.raises(ValueError, match="line_seeds"):
         persson_check.check_surface(profile, pixel_size=1.0, line_seeds=1, **QUICK)
+
+
+def _spiky():
+    """A 32 x 32 window of a generated surface with two spikes of 40 rms heights."""
+    h = persson_check.surface(64, 0.8, 32.0, 4.0, 5)[:32, :32].copy()
+    rms = h.std()
+    h[10, 7] += 40 * rms
+    h[20, 25] += 40 * rms
+    return h
+
+
+def test_spikes_are_reported_and_a_spent_budget_fails_with_the_solver_state():
+    result = persson_check.check_surface(_spiky(), 1.0, max_iterations=3, **QUICK)
+    assert result["max_iterations"] == 3
+    outliers = result["outliers"][0]
+    assert outliers["count"] == 2 and outliers["max_rms"] > 20, outliers
+    assert result["failures"], "3 iterations converge nothing cold"
+    for f in result["failures"]:
+        assert f["state"]["iterations"] == 3, f
+        assert f["state"]["residual"] > f["state"]["tol"], f
+
+
+def test_despike_replaces_the_spikes_and_says_how_many():
+    result = persson_check.check_surface(_spiky(), 1.0, loads=[0.05], despike=8, **QUICK)
+    outliers = result["outliers"][0]
+    assert outliers["despiked"] == 2 and outliers["count"] == 0, outliers
+    with pytest.raises(ValueError, match="despike"):
+        persson_check.check_surface(_spiky(), 1.0, despike=1, **QUICK)

@@ -11,6 +11,7 @@ use persson_check::error::{Error, Result};
 use persson_check::measured::check::{CheckOptions, Event, SurfaceCheck};
 use persson_check::measured::fill::Fill;
 use persson_check::measured::line::check::{LineOptions, DEFAULT_SEEDS, DEFAULT_SIDE};
+use persson_check::measured::options::MAX_ITERATIONS;
 use persson_check::measured::psd::Boundary;
 use persson_check::tasks::check::{check_line, check_surface, load_line, read_input, Input};
 
@@ -77,6 +78,19 @@ pub struct Args {
     /// Residual tolerance of every solve.
     #[arg(long, default_value_t = 1e-6, allow_negative_numbers = true)]
     tol: f64,
+    /// Iteration budget of every solve: a load whose solve has not reached the tolerance
+    /// after this many iterations is reported as failed, with the solver's state
+    /// (iterations, residual against the tolerance, points in contact), and the check
+    /// goes on with the other loads.
+    #[arg(long = "max-iterations", default_value_t = MAX_ITERATIONS)]
+    max_iterations: usize,
+    /// Replace spikes before the check (off by default): a point whose height differs
+    /// from the median of its eight neighbours by more than K robust deviations (1.4826
+    /// times the median absolute deviation of those differences over the scan) is
+    /// removed and filled by harmonic interpolation, as missing points are; K >= 3. The
+    /// page says how many points were replaced.
+    #[arg(long, value_name = "K", allow_negative_numbers = true)]
+    despike: Option<f64>,
     /// Output folder: surface.json, surface.md, solves.jsonl, figures/.
     #[arg(long)]
     out: PathBuf,
@@ -111,6 +125,8 @@ pub fn run(args: Args) -> Result<()> {
         fill: args.fill,
         modulus: args.modulus,
         reentry: !args.no_reentry,
+        max_iterations: args.max_iterations,
+        despike: args.despike,
     };
     let line = LineOptions {
         side: args.line_side,
@@ -148,6 +164,11 @@ pub fn run(args: Args) -> Result<()> {
                 solver.name(),
                 load + 1
             )),
+            Event::Outliers { .. } => {
+                if let Some(line) = load_line(count, &e) {
+                    bar.println(line);
+                }
+            }
             Event::Load { load, loads, .. } => {
                 if let Some(line) = load_line(count, &e) {
                     bar.println(line);

@@ -191,6 +191,24 @@ pub struct Failed {
     pub message: String,
     /// Wall time spent on it, seconds.
     pub wall_s: f64,
+    /// The solver's state where it stopped, when it said: its iterations, the residual
+    /// reached (against [`SolveOptions::tol`]) and the points in contact.
+    #[serde(default)]
+    pub state: Option<SolveState>,
+}
+
+/// Where a solve that did not converge stopped.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct SolveState {
+    /// Iterations done.
+    pub iterations: usize,
+    /// The residual reached (the smallest evaluated, or the estimate when stopped over
+    /// time).
+    pub residual: f64,
+    /// The tolerance asked for.
+    pub tol: f64,
+    /// Points in contact (`p > 0`) in the state stopped, when known.
+    pub contact_points: Option<usize>,
 }
 
 /// A load of a curve: solved, or failed.
@@ -272,20 +290,21 @@ fn ends_the_solve(e: &Error) -> bool {
     )
 }
 
-/// Solves `body` at `loads` (increasing) with `solver` to `tol`, each load warm-started
-/// from the last that converged; `budget[i]` bounds the time of load `i` (`None`: no
-/// bound). `on_load` sees every load's outcome as it ends, `monitor` every iteration.
+/// Solves `body` at `loads` (increasing) with `solver` to `opts.tol` within
+/// `opts.max_iter` iterations a load, each load warm-started from the last that
+/// converged; `budget[i]` bounds the time of load `i` (`None`: no bound). `on_load` sees
+/// every load's outcome as it ends, `monitor` every iteration.
 pub fn solve_curve(
     body: &Body,
     loads: &[f64],
     solver: SolverKind,
-    tol: f64,
+    opts: SolveOptions,
     budget: &[Option<Duration>],
     on_load: &mut dyn FnMut(usize, &Outcome),
     monitor: &mut dyn FnMut(usize, Progress),
 ) -> Result<Curve> {
     let timer = Instant::now();
-    let opts = SolveOptions::with_tol(tol);
+    let tol = opts.tol;
     let mut engine: Box<dyn Solver + Send> = solver.build();
     let mut last: Option<ContactSolution> = None;
     let mut points = Vec::with_capacity(loads.len());
@@ -304,11 +323,12 @@ pub fn solve_curve(
             deadline,
             &mut |p| monitor(i, p),
         );
-        let fail = |message: String| Failed {
+        let fail = |message: String, state: Option<SolveState>| Failed {
             solver,
             p0,
             message,
             wall_s: began.elapsed().as_secs_f64(),
+            state,
         };
         let at = format!(
             "{} at p0 = {p0:.3e} E* (load {} of {})",
@@ -322,9 +342,10 @@ pub fn solve_curve(
                     .filter(|&k| !body.model.under_wall(k))
                     .any(|k| solution.pressure[k] > 0.0);
                 if touched {
-                    Err(fail(format!(
-                        "{at}: the surface touched the floor outside the scan"
-                    )))
+                    Err(fail(
+                        format!("{at}: the surface touched the floor outside the scan"),
+                        None,
+                    ))
                 } else {
                     let window = body.window(&solution.pressure);
                     let contact = window.iter().filter(|&&p| p > 0.0).count();
@@ -341,15 +362,48 @@ pub fn solve_curve(
                     Ok(solved)
                 }
             }
-            Err(SolveEnd::Error(e)) if ends_the_solve(&e) => Err(fail(format!("{at}: {e}"))),
+            Err(SolveEnd::Error(Error::NotConverged {
+                solver: name,
+                reason,
+                iterations,
+                residual,
+                tol,
+                contact_points,
+            })) => {
+                let contact = contact_points
+                    .map(|c| format!(", {c} points in contact"))
+                    .unwrap_or_default();
+                Err(fail(
+                    format!(
+                        "{at}: {name} did not converge ({reason}): residual {residual:.3e} > \
+                         tolerance {tol:.1e} after {iterations} iterations (budget {}){contact}",
+                        opts.max_iter
+                    ),
+                    Some(SolveState {
+                        iterations,
+                        residual,
+                        tol,
+                        contact_points,
+                    }),
+                ))
+            }
+            Err(SolveEnd::Error(e)) if ends_the_solve(&e) => Err(fail(format!("{at}: {e}"), None)),
             Err(SolveEnd::Error(e)) => return Err(e),
-            Err(SolveEnd::OutOfTime(p)) => Err(fail(format!(
-                "{at}: stopped over its time budget of {:.1} s, after {} iterations, \
-                 residual estimate {:.3e} > tolerance {tol:.1e}",
-                allowed.map_or(0.0, |d| d.as_secs_f64()),
-                p.iteration,
-                p.residual
-            ))),
+            Err(SolveEnd::OutOfTime(p)) => Err(fail(
+                format!(
+                    "{at}: stopped over its time budget of {:.1} s, after {} iterations, \
+                     residual estimate {:.3e} > tolerance {tol:.1e}",
+                    allowed.map_or(0.0, |d| d.as_secs_f64()),
+                    p.iteration,
+                    p.residual
+                ),
+                Some(SolveState {
+                    iterations: p.iteration,
+                    residual: p.residual,
+                    tol,
+                    contact_points: None,
+                }),
+            )),
         };
         if outcome.is_err() {
             pressures.push(None);
@@ -475,7 +529,7 @@ mod tests {
                 &body,
                 &[0.02, 0.05, 0.1],
                 SolverKind::Cg,
-                1e-8,
+                SolveOptions::with_tol(1e-8),
                 &[],
                 &mut |i, o| seen.push((i, o.is_ok())),
                 &mut |_, _| {},
@@ -507,7 +561,7 @@ mod tests {
             &body,
             &[0.02, 0.05],
             SolverKind::Gfmd,
-            1e-8,
+            SolveOptions::with_tol(1e-8),
             &budget,
             &mut |_, _| {},
             &mut |_, _| {},
@@ -527,5 +581,38 @@ mod tests {
         // The second load starts cold and converges.
         let solved = curve.solved(1).unwrap();
         assert!(solved.contact_area > 0.0 && solved.residual <= 1e-8);
+    }
+
+    #[test]
+    fn a_load_over_its_iteration_budget_reports_the_solver_state() {
+        let body = Body::new(&scan(32, Boundary::Free)).unwrap();
+        let opts = SolveOptions {
+            tol: 1e-8,
+            max_iter: 2,
+        };
+        let curve = solve_curve(
+            &body,
+            &[0.02],
+            SolverKind::Cg,
+            opts,
+            &[],
+            &mut |_, _| {},
+            &mut |_, _| {},
+        )
+        .unwrap();
+        let failed = curve.points[0].as_ref().unwrap_err();
+        let state = failed.state.expect("the solver's state");
+        assert_eq!((state.iterations, state.tol), (2, 1e-8));
+        assert!(state.residual > 1e-8, "{state:?}");
+        let contact = state.contact_points.expect("the points in contact");
+        assert!(contact > 0 && contact <= 64 * 64, "{state:?}");
+        assert!(
+            failed.message.contains("after 2 iterations (budget 2)")
+                && failed
+                    .message
+                    .contains(&format!("{contact} points in contact")),
+            "{}",
+            failed.message
+        );
     }
 }

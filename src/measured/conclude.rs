@@ -38,6 +38,7 @@ use crate::validation::Verdict;
 
 /// What one scan gave.
 pub(super) struct Measured {
+    pub(super) outliers: super::spikes::Outliers,
     pub(super) spectrum: ScanSpectrum,
     pub(super) predicted: Vec<Predicted>,
     pub(super) curves: Vec<Curve>,
@@ -130,6 +131,7 @@ pub(super) fn conclude(
                         p0: f.p0,
                         message: f.message.clone(),
                         wall_s: f.wall_s,
+                        state: f.state,
                     })
                 })
             })
@@ -166,6 +168,9 @@ pub(super) fn conclude(
         comparisons,
         solvers,
         tol: opts.tol,
+        max_iterations: opts.max_iterations,
+        despike: opts.despike,
+        outliers: measured.iter().map(|m| m.outliers.clone()).collect(),
         wall_s,
     }
 }
@@ -413,7 +418,7 @@ mod tests {
                 &body,
                 &loads,
                 solver,
-                1e-6,
+                crate::engine::solver::SolveOptions::with_tol(1e-6),
                 budget,
                 &mut |_, _| {},
                 &mut |_, _| {},
@@ -423,6 +428,7 @@ mod tests {
         let head = curve(SolverKind::Cg, &[None, zero, None]);
         let cross = curve(SolverKind::Gfmd, &[zero, None, None]);
         let measured = [Measured {
+            outliers: crate::measured::spikes::Outliers::of(&spectrum.heights),
             spectrum,
             predicted,
             curves: vec![head, cross],

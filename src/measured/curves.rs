@@ -4,10 +4,15 @@
 //! the headline reached ([`super::reentry`]); the scans' measurements then go to
 //! [`super::findings`].
 //!
+//! Before any solve, each scan's spikes and outliers are found ([`super::spikes`]),
+//! replaced first when despiking is asked, and reported ([`Event::Outliers`]).
+//!
 //! A solve that fails is a finding, not the end of the check: the curve goes on with the
-//! next load, and a cross-check solve gets a time budget of [`CROSS_CHECK_TIME`] times the
-//! headline's time at its load (at least [`CROSS_CHECK_MIN_S`]), beyond which it is
-//! stopped and recorded as failed.
+//! next load. Every solve has the iteration budget of the options
+//! ([`super::options::MAX_ITERATIONS`] by default), and a cross-check solve also a time
+//! budget of [`CROSS_CHECK_TIME`] times the headline's time at its load (at least
+//! [`CROSS_CHECK_MIN_S`]; only the headline's time where the headline failed), beyond
+//! which it is stopped and recorded as failed.
 
 use std::time::Duration;
 
@@ -18,8 +23,9 @@ use super::options::{other, validate, CheckOptions};
 use super::psd::ScanSpectrum;
 use super::reentry::reentry_share;
 use super::scan::Scan;
+use super::spikes::{despike, Outliers};
 use super::theory::{loads, Theory};
-use crate::engine::solver::{Progress, SolverKind};
+use crate::engine::solver::{Progress, SolveOptions, SolverKind};
 use crate::error::Result;
 
 /// The cross-check's time budget at a load, in multiples of the headline solve's time
@@ -38,6 +44,13 @@ pub const CROSS_CHECKED_LOADS: usize = 3;
 /// What the check reports while it runs.
 #[derive(Debug, Clone, Copy)]
 pub enum Event<'a> {
+    /// A scan's spikes and outliers, found before its solves.
+    Outliers {
+        /// The scan (index).
+        scan: usize,
+        /// What was found.
+        outliers: &'a Outliers,
+    },
     /// An iteration of a solve.
     Iteration {
         /// The scan (index).
@@ -76,16 +89,30 @@ pub fn check(
     let timer = std::time::Instant::now();
     let pixel = validate(scans, opts)?;
     let shape = scans[0].shape;
-    let spectra: Vec<ScanSpectrum> = scans
-        .iter()
-        .map(|s| ScanSpectrum::new(&s.heights, shape, pixel, opts.boundary))
-        .collect::<Result<_>>()?;
+    let mut outliers = Vec::with_capacity(scans.len());
+    let mut spectra = Vec::with_capacity(scans.len());
+    for (k, s) in scans.iter().enumerate() {
+        let (heights, despiked) = match opts.despike {
+            Some(threshold) => despike(&s.heights, shape, threshold),
+            None => (s.heights.clone(), 0),
+        };
+        let spectrum = ScanSpectrum::new(&heights, shape, pixel, opts.boundary)?;
+        let mut found = Outliers::of(&spectrum.heights);
+        found.despiked = despiked;
+        events(Event::Outliers {
+            scan: k,
+            outliers: &found,
+        });
+        outliers.push(found);
+        spectra.push(spectrum);
+    }
+    let spectra: Vec<ScanSpectrum> = spectra;
     // The loads come from the first scan's spectrum: common to every scan.
     let loads = loads(&Theory::new(&spectra[0].shells)?, opts.loads.as_deref())?;
     let mut measured = Vec::with_capacity(scans.len());
     // One body for every scan: its half-space depends on the shape alone.
     let mut body: Option<Body> = None;
-    for (k, spectrum) in spectra.into_iter().enumerate() {
+    for (k, (spectrum, mut outliers)) in spectra.into_iter().zip(outliers).enumerate() {
         let theory = Theory::new(&spectrum.shells)?;
         let predicted = loads.iter().map(|&p| theory.at(p)).collect::<Result<_>>()?;
         let body = match body.as_mut() {
@@ -121,6 +148,13 @@ pub fn check(
             cross.index = index;
             curves.push(cross);
         }
+        outliers.contact_share = (0..loads.len())
+            .map(|i| {
+                curves[0].pressures[i]
+                    .as_deref()
+                    .and_then(|p| super::spikes::spike_contact_share(&outliers.points, p))
+            })
+            .collect();
         let reentry = if opts.reentry {
             middle_solved(&curves[0])
                 .map(|i| reentry_share(&spectrum, loads[i], SolverKind::Cg, opts.tol))
@@ -129,6 +163,7 @@ pub fn check(
             None
         };
         measured.push(Measured {
+            outliers,
             spectrum,
             predicted,
             curves,
@@ -179,7 +214,10 @@ fn run_curve(
         body,
         loads,
         solver,
-        opts.tol,
+        SolveOptions {
+            tol: opts.tol,
+            max_iter: opts.max_iterations,
+        },
         budget,
         &mut |load, outcome| {
             (events.borrow_mut())(Event::Load {
@@ -203,18 +241,17 @@ fn run_curve(
 }
 
 /// The cross-check's time at each of the loads `index`: [`CROSS_CHECK_TIME`] times the
-/// headline's time there, at least [`CROSS_CHECK_MIN_S`].
+/// headline's time there, at least [`CROSS_CHECK_MIN_S`]; where the headline failed, its
+/// own time (a failed headline has already spent its budget).
 fn cross_check_budget(head: &Curve, index: &[usize]) -> Vec<Option<Duration>> {
     index
         .iter()
         .map(|&i| {
-            let spent = match &head.points[i] {
-                Ok(s) => s.wall_s,
+            let allowed = match &head.points[i] {
+                Ok(s) => CROSS_CHECK_TIME * s.wall_s,
                 Err(f) => f.wall_s,
             };
-            Some(Duration::from_secs_f64(
-                (CROSS_CHECK_TIME * spent).max(CROSS_CHECK_MIN_S),
-            ))
+            Some(Duration::from_secs_f64(allowed.max(CROSS_CHECK_MIN_S)))
         })
         .collect()
 }

@@ -119,6 +119,10 @@ pub struct Failure {
     pub message: String,
     /// Wall time spent on it, seconds.
     pub wall_s: f64,
+    /// Where the solver stopped (iterations, residual against tol, points in contact),
+    /// when it said.
+    #[serde(default)]
+    pub state: Option<super::body::SolveState>,
 }
 
 /// The surface's statistics, means over the scans.
@@ -194,8 +198,22 @@ pub struct SurfaceCheck {
     pub solvers: Vec<SolverWork>,
     /// Residual tolerance.
     pub tol: f64,
+    /// The iteration budget of every solve.
+    #[serde(default = "default_max_iterations")]
+    pub max_iterations: usize,
+    /// The despiking threshold in robust deviations, when spikes were replaced.
+    #[serde(default)]
+    pub despike: Option<f64>,
+    /// Each scan's spikes and outliers, and the share of the contact they carry at each
+    /// load.
+    #[serde(default)]
+    pub outliers: Vec<super::spikes::Outliers>,
     /// Wall time of the check, seconds.
     pub wall_s: f64,
+}
+
+fn default_max_iterations() -> usize {
+    super::options::MAX_ITERATIONS
 }
 
 /// The shape of the scans, for callers that hold only the result.

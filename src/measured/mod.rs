@@ -2,7 +2,8 @@
 //! checked ([`scan`]), their missing points refused or filled ([`fill`]), their units
 //! ([`units`]), statistics and spectrum ([`psd`]), the contact problem along a load curve
 //! ([`body`]), Persson's predictions ([`theory`]), the re-entry share over magnification
-//! ([`reentry`]), the words where the theory does not apply ([`warnings`]), the check
+//! ([`reentry`]), spikes and outliers found before the solves ([`spikes`]), the words
+//! where the theory does not apply ([`warnings`]), the check
 //! ([`check`]: its [`options`], its [`curves`], its [`findings`] and how they are drawn from
 //! the measurements, `conclude`) and its page
 //! ([`page`]); line scans, by way of the isotropic surface they imply ([`line`]).
@@ -19,6 +20,7 @@ pub mod page;
 pub mod psd;
 pub mod reentry;
 pub mod scan;
+pub mod spikes;
 pub mod theory;
 pub mod units;
 pub mod warnings;

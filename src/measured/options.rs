@@ -1,7 +1,8 @@
 //! How a surface is checked ([`CheckOptions`]), and the check of the options and the
 //! scans before any work ([`validate`]): square pixels, a tolerance the solvers accept,
-//! loads, unit and modulus in range, periodic scans square, every scan of one shape and
-//! every point measured or filled.
+//! loads, unit and modulus in range, an iteration budget of at least one, a despiking
+//! threshold in range, periodic scans square, every scan of one shape and every point
+//! measured or filled.
 
 use serde::{Deserialize, Serialize};
 
@@ -11,6 +12,12 @@ use super::scan::Scan;
 use super::units::{check_unit, square_pixel};
 use crate::engine::solver::SolverKind;
 use crate::error::{check_positive, Error, Result};
+
+/// The iteration budget of every solve unless one is given: a cold CG solve of a measured
+/// scan takes some tens to a few hundred iterations, and its stagnation safeguards act
+/// after 200 iterations without progress; a solve still short of its
+/// tolerance after this many is recorded as failed, with its state, and the check goes on.
+pub const MAX_ITERATIONS: usize = 1000;
 
 /// How a surface is checked.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -39,6 +46,17 @@ pub struct CheckOptions {
     /// Whether the re-entry share over magnification is measured
     /// ([`super::reentry`]).
     pub reentry: bool,
+    /// The iteration budget of every solve ([`MAX_ITERATIONS`] by default).
+    #[serde(default = "default_max_iterations")]
+    pub max_iterations: usize,
+    /// Replace the spikes beyond this many robust deviations before solving
+    /// ([`super::spikes::despike`]; `None`: keep every point).
+    #[serde(default)]
+    pub despike: Option<f64>,
+}
+
+fn default_max_iterations() -> usize {
+    MAX_ITERATIONS
 }
 
 impl Default for CheckOptions {
@@ -55,6 +73,8 @@ impl Default for CheckOptions {
             fill: Fill::None,
             modulus: None,
             reentry: true,
+            max_iterations: MAX_ITERATIONS,
+            despike: None,
         }
     }
 }
@@ -72,6 +92,16 @@ pub(super) fn other(solver: SolverKind) -> SolverKind {
 pub fn validate(scans: &[Scan], opts: &CheckOptions) -> Result<f64> {
     let pixel = square_pixel(opts.pixel_size)?;
     crate::engine::solver::SolveOptions::with_tol(opts.tol).validate()?;
+    if opts.max_iterations == 0 {
+        return Err(Error::invalid(
+            "max_iterations",
+            0,
+            "at least 1 iteration per solve",
+        ));
+    }
+    if let Some(k) = opts.despike {
+        super::spikes::check_threshold(k)?;
+    }
     if let Some(given) = &opts.loads {
         super::theory::check_loads(given)?;
     }

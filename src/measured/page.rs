@@ -16,6 +16,7 @@ use super::check::{
 };
 use super::fill::{Fill, MAX_FILLED_SHARE};
 use super::psd::Boundary;
+use super::spikes::SPIKE_RMS;
 use super::units::{eng, length, metres, percent, SQUARE_PIXEL_TOLERANCE};
 use super::warnings::{CONTACT_PRESSURE, LIMITS};
 use crate::error::Result;
@@ -60,6 +61,7 @@ pub fn markdown(c: &SurfaceCheck) -> String {
     header(&mut s, c);
     missing(&mut s, c);
     warnings(&mut s, c);
+    spikes(&mut s, c);
     failures(&mut s, c);
     verdicts(&mut s, c);
     surface(&mut s, c);
@@ -176,6 +178,53 @@ fn warnings(s: &mut String, c: &SurfaceCheck) {
     let _ = writeln!(s, "Thresholds: {}.\n", thresholds.join("; "));
 }
 
+/// The scans' spikes and outliers, and at each load the share of the contact points on
+/// them: a contact carried by spikes is the spikes' tips, not the surface's.
+fn spikes(s: &mut String, c: &SurfaceCheck) {
+    if c.outliers.iter().all(|o| o.count == 0 && o.despiked == 0) {
+        return;
+    }
+    let _ = writeln!(
+        s,
+        "## Spikes and outliers\n\nFound before the solves: points farther than {} rms \
+         heights from the mean height (none is expected of Gaussian heights). {}\n",
+        SPIKE_RMS,
+        match c.despike {
+            Some(k) => format!(
+                "Despiking was asked: points farther than {k} robust deviations from the \
+                 median of their eight neighbours were replaced by harmonic interpolation \
+                 before the check."
+            ),
+            None => "Despiking (off by default) would replace them before the check.".into(),
+        }
+    );
+    for (scan, o) in c.scans.iter().zip(&c.outliers) {
+        let _ = writeln!(s, "- `{scan}`: {}.", o.summary());
+        let carried: Vec<String> = c
+            .loads
+            .iter()
+            .zip(&o.contact_share)
+            .filter_map(|(p0, share)| {
+                share
+                    .filter(|&x| x > 0.0)
+                    .map(|x| format!("{} of the contact at p0 = {} E*", percent(x), eng(*p0)))
+            })
+            .collect();
+        if o.count > 0 {
+            let _ = writeln!(
+                s,
+                "  Contact points on them: {}.",
+                if carried.is_empty() {
+                    "none at any load solved".to_string()
+                } else {
+                    carried.join("; ")
+                }
+            );
+        }
+    }
+    s.push('\n');
+}
+
 fn failures(s: &mut String, c: &SurfaceCheck) {
     if c.failures.is_empty() {
         return;
@@ -183,9 +232,10 @@ fn failures(s: &mut String, c: &SurfaceCheck) {
     let _ = writeln!(
         s,
         "## Solves that failed\n\nThe curve keeps the loads that every scan's {} solve \
-         reached; a cross-check solve gets {} times the headline solve's time at its load \
-         (at least {} s).\n",
+         reached. Every solve has a budget of {} iterations; a cross-check solve also gets \
+         {} times the headline solve's time at its load (at least {} s).\n",
         c.solver.name(),
+        c.max_iterations,
         CROSS_CHECK_TIME,
         CROSS_CHECK_MIN_S
     );

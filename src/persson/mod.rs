@@ -404,6 +404,7 @@ fn trapezoidal_step(c: &Correction, p0: f64, v_prev: f64, s_prev: f64, b: f64) -
         iterations: MAX_FIXED_POINT,
         residual: change,
         tol: FIXED_POINT_TOL,
+        contact_points: None,
     })
 }
 

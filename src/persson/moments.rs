@@ -166,6 +166,7 @@ pub fn width_from_moments(p_mean: f64, second_moment: f64) -> Result<f64> {
         iterations,
         residual: (excess_and_slope(t).0 - sigma2).abs() / sigma2,
         tol: 2.0 * f64::EPSILON,
+        contact_points: None,
     })
 }
 

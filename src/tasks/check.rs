@@ -214,20 +214,23 @@ impl SolveLog {
     }
 }
 
-/// One line for a load's end (`None` for other events), for logs and progress where no
-/// progress bar is drawn: `scan 1/2, gfmd, load 3/8, p0 = 1.23e-3 E*: a_r = 45.6e-3, 123
-/// iterations, 456e-3 s`.
+/// One line for a load's end, or a scan's outliers found before its solves (`None` for
+/// iterations), for logs and progress where no progress bar is drawn: `scan 1/2, gfmd,
+/// load 3/8, p0 = 1.23e-3 E*: a_r = 45.6e-3, 123 iterations, 456e-3 s`.
 pub fn load_line(scans: usize, e: &Event) -> Option<String> {
-    let Event::Load {
-        scan,
-        solver,
-        load,
-        loads,
-        outcome,
-        ..
-    } = *e
-    else {
-        return None;
+    let (scan, solver, load, loads, outcome) = match *e {
+        Event::Load {
+            scan,
+            solver,
+            load,
+            loads,
+            outcome,
+            ..
+        } => (scan, solver, load, loads, outcome),
+        Event::Outliers { scan, outliers } => {
+            return Some(format!("scan {}/{scans}: {}", scan + 1, outliers.summary()));
+        }
+        Event::Iteration { .. } => return None,
     };
     let at = format!(
         "scan {}/{scans}, {}, load {}/{loads}",

@@ -130,11 +130,15 @@ impl SolveRecord {
         if residual <= tol {
             return Ok(solution);
         }
-        Err(self.not_converged(
+        let mut error = self.not_converged(
             (iterations, reason),
             earlier.map_or(residual, |r| residual.min(r)),
             tol,
-        ))
+        );
+        if let Error::NotConverged { contact_points, .. } = &mut error {
+            *contact_points = Some(solution.pressure.iter().filter(|&&p| p > 0.0).count());
+        }
+        Err(error)
     }
 
     /// The error of a solve stopped for `reason` after `iterations` iterations with
@@ -151,6 +155,7 @@ impl SolveRecord {
             iterations,
             residual,
             tol,
+            contact_points: None,
         }
     }
 

@@ -193,6 +193,15 @@ pub fn validate(opts: &CheckOptions, line: &LineOptions) -> Result<f64> {
     if let Some(modulus) = opts.modulus {
         crate::error::check_positive("modulus", modulus)?;
     }
+    if let Some(k) = opts.despike {
+        // The contact is simulated on synthesized surfaces, which have no instrument
+        // spikes to remove; despiking them would only cut their Gaussian tails.
+        return Err(Error::invalid(
+            "despike",
+            k,
+            "not given for line scans (their contact is simulated on synthesized surfaces)",
+        ));
+    }
     Ok(pixel)
 }
 

@@ -58,7 +58,9 @@ impl Stopping {
 impl Solve<'_> {
     /// The safeguards of "Stopping", when the estimate stops improving: first, if the
     /// estimate has never met the tolerance (a cycle, not the rounding floor), the step
-    /// length is damped ([`DAMPING`]: the full step may cycle); then a preconditioned
+    /// length is damped ([`DAMPING`]: the full step may cycle); if it stagnates again
+    /// without meeting it, the load is restored by projection from then on
+    /// ([`Solve::project_load`]: the rescaling may cycle); then a preconditioned
     /// solve goes on with plain Polonsky-Keer, which always converges (slowly); an
     /// unpreconditioned one whose full residual has already failed has stalled (true).
     pub(super) fn safeguard(&mut self, it: usize, estimate: f64) -> bool {
@@ -67,6 +69,11 @@ impl Solve<'_> {
         }
         if self.damping == 1.0 && self.stopping.target == self.stopping.tol {
             self.damping = DAMPING;
+            self.conjugate = false;
+            self.stopping.best_at = it;
+            false
+        } else if !self.project && self.stopping.target == self.stopping.tol {
+            self.project = true;
             self.conjugate = false;
             self.stopping.best_at = it;
             false
