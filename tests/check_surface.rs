@@ -492,6 +492,7 @@ fn bad_line_scans_are_refused_with_a_word_about_line_scans() {
     ]);
     assert!(e.contains("--line-seeds"), "{e}");
     assert!(!d.join("o").exists(), "a refused check wrote output");
+}
 
 /// A smooth generated window with three single-point spikes of 40 rms heights, written as
 /// a text matrix to `dir/spiky.txt`: at the lowest default load the spikes carry the

@@ -134,7 +134,7 @@ pub fn check_surface<'py>(
         let checked = run_logged(py, threads, progress.as_ref(), verbose, |hook| {
             let mut events = |e: Event| match e {
                 Event::Iteration { progress, .. } => hook.iteration(progress),
-                Event::Load { .. } => {
+                Event::Load { .. } | Event::Outliers { .. } => {
                     if let Some(line) = task::load_line(count, &e) {
                         hook.line(format!("check_surface: {line}"));
                     }
