@@ -21,9 +21,11 @@ use crate::conversions::record;
 use crate::errors::OrRaise;
 use crate::worker::run_logged;
 
-/// The scans as the library's, checked as a file would be (2D, each side in range; NaN
-/// where a point is missing), each named `heights[i]` in messages.
-fn scans(heights: &[PyReadonlyArrayDyn<'_, f64>]) -> PyResult<Vec<Scan>> {
+/// An array's name in messages (`heights[i]`), its shape and its values.
+type Named = (PathBuf, Vec<usize>, Vec<f64>);
+
+/// Each array's name, shape and values.
+fn named(heights: &[PyReadonlyArrayDyn<'_, f64>]) -> PyResult<Vec<Named>> {
     heights
         .iter()
         .enumerate()
@@ -31,25 +33,30 @@ fn scans(heights: &[PyReadonlyArrayDyn<'_, f64>]) -> PyResult<Vec<Scan>> {
             let values = h
                 .as_slice()
                 .map_err(|_| PyValueError::new_err("heights must be C-contiguous arrays"))?;
-            let name = PathBuf::from(format!("heights[{i}]"));
-            Scan::from_values(&name, h.shape(), values.to_vec()).or_raise()
+            Ok((
+                PathBuf::from(format!("heights[{i}]")),
+                h.shape().to_vec(),
+                values.to_vec(),
+            ))
         })
+        .collect()
+}
+
+/// The scans as the library's, checked as a file would be (2D, each side in range; NaN
+/// where a point is missing), each named `heights[i]` in messages.
+fn scans(heights: &[PyReadonlyArrayDyn<'_, f64>]) -> PyResult<Vec<Scan>> {
+    named(heights)?
+        .into_iter()
+        .map(|(name, shape, values)| Scan::from_values(&name, &shape, values).or_raise())
         .collect()
 }
 
 /// The line scans of `heights` (a 1D array is a profile; a 2D one, rows of profiles),
 /// each named `heights[i]` in messages.
 fn profiles(heights: &[PyReadonlyArrayDyn<'_, f64>]) -> PyResult<Profiles> {
-    let parts = heights
-        .iter()
-        .enumerate()
-        .map(|(i, h)| {
-            let values = h
-                .as_slice()
-                .map_err(|_| PyValueError::new_err("heights must be C-contiguous arrays"))?;
-            let name = PathBuf::from(format!("heights[{i}]"));
-            Profiles::from_values(&name, h.shape(), values.to_vec(), true).or_raise()
-        })
+    let parts = named(heights)?
+        .into_iter()
+        .map(|(name, shape, values)| Profiles::from_values(&name, &shape, values, true).or_raise())
         .collect::<PyResult<Vec<_>>>()?;
     Profiles::pool(parts).or_raise()
 }
