@@ -134,8 +134,11 @@ def test_one_line_per_load_goes_to_stderr(capsys):
     lines = [
         line for line in capsys.readouterr().err.splitlines() if line.startswith("check_surface:")
     ]
-    assert len(lines) == len(r["curve"]) == 3, lines
-    assert "load 3/3" in lines[-1] and "a_r =" in lines[-1]
+    # The scan's outliers first (before any solve), then one line per load.
+    assert "beyond 6 rms" in lines[0], lines
+    loads = lines[1:]
+    assert len(loads) == len(r["curve"]) == 3, lines
+    assert "load 3/3" in loads[-1] and "a_r =" in loads[-1]
 
 
 def _rectangle(rows, cols, seed=7):
@@ -198,7 +201,9 @@ def test_spikes_are_reported_and_a_spent_budget_fails_with_the_solver_state():
     result = persson_check.check_surface(_spiky(), 1.0, max_iterations=3, **QUICK)
     assert result["max_iterations"] == 3
     outliers = result["outliers"][0]
-    assert outliers["count"] == 2 and outliers["max_rms"] > 20, outliers
+    # In units of the spiky scan's own rms: two 40-rms spikes in 1024 points double it
+    # (sqrt(1 + 2 * 40^2 / 1024) = 2.0), so the largest reads about 20.
+    assert outliers["count"] == 2 and outliers["max_rms"] > 15, outliers
     assert result["failures"], "3 iterations converge nothing cold"
     for f in result["failures"]:
         assert f["state"]["iterations"] == 3, f
