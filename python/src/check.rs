@@ -19,7 +19,20 @@ use persson_check::tasks::{parse, Keywords};
 
 use crate::conversions::record;
 use crate::errors::OrRaise;
-use crate::worker::run_logged;
+use crate::worker::{run_logged, Hook};
+
+/// What a check's event tells Python: the progress of a solve, and a line per load (and
+/// per scan's outliers) among `count` scans.
+fn log_event(hook: &Hook, count: usize, e: Event) {
+    match e {
+        Event::Iteration { progress, .. } => hook.iteration(progress),
+        Event::Load { .. } | Event::Outliers { .. } => {
+            if let Some(line) = task::load_line(count, &e) {
+                hook.line(format!("check_surface: {line}"));
+            }
+        }
+    }
+}
 
 /// An array's name in messages (`heights[i]`), its shape and its values.
 type Named = (PathBuf, Vec<usize>, Vec<f64>);
@@ -139,14 +152,7 @@ pub fn check_surface<'py>(
         };
         let count = usize::try_from(line_seeds).unwrap_or(usize::MAX);
         let checked = run_logged(py, threads, progress.as_ref(), verbose, |hook| {
-            let mut events = |e: Event| match e {
-                Event::Iteration { progress, .. } => hook.iteration(progress),
-                Event::Load { .. } | Event::Outliers { .. } => {
-                    if let Some(line) = task::load_line(count, &e) {
-                        hook.line(format!("check_surface: {line}"));
-                    }
-                }
-            };
+            let mut events = |e: Event| log_event(hook, count, e);
             task::check_line(
                 &profiles,
                 &opts,
@@ -161,14 +167,7 @@ pub fn check_surface<'py>(
     let scans = scans(&heights)?;
     let count = scans.len();
     let checked = run_logged(py, threads, progress.as_ref(), verbose, |hook| {
-        let mut events = |e: Event| match e {
-            Event::Iteration { progress, .. } => hook.iteration(progress),
-            Event::Load { .. } | Event::Outliers { .. } => {
-                if let Some(line) = task::load_line(count, &e) {
-                    hook.line(format!("check_surface: {line}"));
-                }
-            }
-        };
+        let mut events = |e: Event| log_event(hook, count, e);
         task::check_surface(&scans, &opts, out.as_deref(), &Keywords, &mut events)
     })?;
     record(py, &checked)
