@@ -82,19 +82,10 @@ impl Resolution {
     /// size-scaled, loads among the headline's; errors name the field.
     pub fn validate(&self, headline: &EnergyScene) -> Result<()> {
         check_key_name("resolutions.name", &self.name)?;
-        let job = self.jobs().into_iter().next();
-        let scene = scene_on(
-            headline,
-            job.as_ref().unwrap_or(&ResolutionJob {
-                n: self.n,
-                lambda_l: self.lambda_l,
-                lambda_s: self.lambda_s,
-                seed: 1,
-                contact_area: headline.headline_contact_area,
-            }),
-        );
         // Its grid's ranges (n, lambda_l, lambda_s), under the headline's own names.
-        scene.base().validate()?;
+        let mut grid = headline.base();
+        (grid.n, grid.lambda_l, grid.lambda_s) = (self.n, self.lambda_l, self.lambda_s);
+        grid.validate()?;
         check_seeds(&self.seeds).map_err(|e| e.with_field("resolutions.seeds"))?;
         check_contact_areas(&self.contact_areas)
             .map_err(|e| e.with_field("resolutions.contact_areas"))?;
