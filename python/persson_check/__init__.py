@@ -23,6 +23,7 @@ Paths may be given as strings or as :class:`os.PathLike` objects (``pathlib.Path
 from __future__ import annotations
 
 import os as _os
+import warnings as _warnings
 
 import numpy as _np
 
@@ -191,6 +192,13 @@ def _scan(value, i):
     sizes = _np.atleast_1d(_np.asarray(value.physical_sizes, dtype=float))
     unit = getattr(value, "unit", None)
     unit = unit if isinstance(unit, str) else None
+    if getattr(value, "is_uniform", True) is False and callable(
+        getattr(value, "positions_and_heights", None)
+    ):
+        # A line scan at non-uniform positions (stylus profilometers, x-y text files).
+        x, h = value.positions_and_heights()
+        profile, pixels = _uniform_profile(x, h, i)
+        return profile, pixels, unit
     if _np.ndim(heights) == 1 and sizes.size == 1 and _np.size(heights) > 0:
         # A line scan: its spacing is its length over its points.
         pixel = float(sizes[0]) / _np.size(heights)
@@ -200,6 +208,39 @@ def _scan(value, i):
         return _heights(heights), None, None
     pixels = tuple(float(p) for p in sizes / _np.asarray(_np.shape(heights), dtype=float))
     return _heights(heights), pixels, unit
+
+
+def _uniform_profile(x, h, i):
+    """A profile at increasing positions ``x`` resampled onto as many evenly spaced points
+    from its first to its last position, by linear interpolation, with a warning that
+    names the spacings it had; returns ``(heights, (pixel, pixel))``. The spectrum of a
+    profile is defined on even spacing (the conversion to 2D and the synthesis assume
+    it); linear interpolation damps the modes near the new spacing's cutoff, which the
+    page marks as uncertain anyway."""
+    x = _np.asarray(x, dtype=float)
+    h = _np.asarray(h, dtype=float)
+    if x.ndim != 1 or x.size < 2 or x.shape != h.shape:
+        raise ValueError(
+            f"heights[{i}]: a non-uniform line scan needs positions and heights of one "
+            f"length, at least 2"
+        )
+    steps = _np.diff(x)
+    if not (_np.all(_np.isfinite(steps)) and _np.all(steps > 0)):
+        raise ValueError(
+            f"heights[{i}]: a non-uniform line scan's positions must increase strictly "
+            f"(finite, no repeats); give it sorted, or resample it with to_uniform()"
+        )
+    pixel = (x[-1] - x[0]) / (x.size - 1)
+    grid = x[0] + pixel * _np.arange(x.size)
+    grid[-1] = x[-1]
+    resampled = _np.interp(grid, x, h)
+    _warnings.warn(
+        f"heights[{i}]: a line scan at non-uniform positions (spacings {steps.min():.4g} "
+        f"to {steps.max():.4g}) resampled onto {x.size} evenly spaced points "
+        f"{pixel:.6g} apart by linear interpolation",
+        stacklevel=5,
+    )
+    return _heights(resampled), (float(pixel), float(pixel))
 
 
 def _same(a, b):

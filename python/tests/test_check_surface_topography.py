@@ -81,3 +81,23 @@ def test_a_rectangular_scan_in_m_gives_a_rising_curve_with_pascals(tmp_path):
     assert r["statistics"]["h_rms"]["value"] > 0 and r["reentry"]["shells"] > 10
     # The cross-check ran and agrees.
     assert r["solvers_agree"] is True and not r["failures"]
+
+
+def test_a_line_scan_at_non_uniform_positions_is_resampled_with_a_warning():
+    # A profile whose positions alternate 0.4 and 0.6 apart (as a stylus file's rounded
+    # positions come), as SurfaceTopography reads an x-y text file.
+    full = persson_check.surface(512, 0.8, 256.0, 4.0, 3)
+    h = 0.5 * full[7].copy()
+    x = np.cumsum(np.where(np.arange(h.size) % 2 == 0, 0.4, 0.6))
+    x -= x[0]
+    t = st.NonuniformLineScan(x, h, unit="µm")
+    kw = dict(loads=[0.01, 0.05], line_side=64, line_seeds=2, **QUICK)
+    with pytest.warns(UserWarning, match=r"non-uniform positions \(spacings 0\.4 to 0\.6\)"):
+        r = persson_check.check_surface(t, **kw)
+    pixel = x[-1] / (h.size - 1)
+    assert r["pixel_size"] == pytest.approx(pixel, rel=1e-12) and r["unit"] == "µm"
+    even = np.interp(pixel * np.arange(h.size), x, h)
+    assert r["curve"] == persson_check.check_surface(even, pixel_size=pixel, **kw)["curve"]
+    # Positions that do not increase cannot be resampled: refused by name.
+    with pytest.raises(ValueError, match="increase strictly"):
+        persson_check.check_surface(st.NonuniformLineScan(x[::-1].copy(), h), **kw)
