@@ -33,7 +33,8 @@ pub struct CheckOptions {
     pub loads: Option<Vec<f64>>,
     /// The headline solver.
     pub solver: SolverKind,
-    /// Also solve with the other solver.
+    /// Also solve with a second solver: the first of [`SolverKind::ALL`] other than the
+    /// headline one.
     pub cross_check: bool,
     /// Cross-check every load (else [`super::curves::CROSS_CHECKED_LOADS`] of them).
     pub cross_check_all: bool,
@@ -79,13 +80,15 @@ impl Default for CheckOptions {
     }
 }
 
-/// The other solver: CG for GFMD, GFMD for any other.
+/// The solver that cross-checks `solver`: the first of [`SolverKind::ALL`] other than it.
+/// The list starts with the paper's method, so every other headline is checked against
+/// it, and the paper's method against the next solver of the list (GFMD and CG check each
+/// other; a solver added to the list is checked against GFMD).
 pub(super) fn other(solver: SolverKind) -> SolverKind {
-    if solver == SolverKind::Gfmd {
-        SolverKind::Cg
-    } else {
-        SolverKind::Gfmd
-    }
+    SolverKind::ALL
+        .into_iter()
+        .find(|&s| s != solver)
+        .expect("the list holds more than one solver")
 }
 
 /// Checks the options and the scans (before any work); returns the pixel size.
@@ -153,4 +156,20 @@ pub fn validate(scans: &[Scan], opts: &CheckOptions) -> Result<f64> {
         }
     }
     Ok(pixel)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// GFMD and CG check each other, as they always have; every solver of the list is
+    /// checked by another one.
+    #[test]
+    fn every_solver_is_cross_checked_by_another() {
+        assert_eq!(other(SolverKind::Gfmd), SolverKind::Cg);
+        assert_eq!(other(SolverKind::Cg), SolverKind::Gfmd);
+        for kind in SolverKind::ALL {
+            assert_ne!(other(kind), kind, "{}", kind.name());
+        }
+    }
 }
