@@ -50,6 +50,10 @@ pub struct Model {
 
 impl Model {
     /// A periodic model on `grid` with modulus `e_star`.
+    ///
+    /// # Errors
+    ///
+    /// If `e_star` is not positive and finite.
     pub fn new(grid: Grid, e_star: f64) -> Result<Self> {
         let halfspace = HalfSpace::new(&grid, e_star)?;
         let fft = Fft2::new(&grid);
@@ -59,6 +63,10 @@ impl Model {
     /// A free-boundary model for a `window x window` surface: the doubled, zero-padded grid
     /// of [`crate::engine::boussinesq`], the wall over the window only. Heights for it come
     /// from [`Model::pad_heights`].
+    ///
+    /// # Errors
+    ///
+    /// As [`Model::free_window`].
     pub fn free_boundary(window: usize, e_star: f64) -> Result<Self> {
         Self::free_window(window, window, e_star)
     }
@@ -129,6 +137,10 @@ impl Model {
     /// that no displacement under a load `p0/E* < 10` reaches it (the window's height
     /// range plus a thousand times its longer side). A periodic model takes the heights as
     /// they are.
+    ///
+    /// # Errors
+    ///
+    /// If a free-boundary model is given other than `rows x cols` heights.
     pub fn pad_heights(&self, heights: &[f64]) -> Result<Vec<f64>> {
         let Some((rows, cols)) = self.window else {
             return Ok(heights.to_vec());

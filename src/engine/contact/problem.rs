@@ -32,6 +32,11 @@ pub struct ContactProblem<'a> {
 
 impl<'a> ContactProblem<'a> {
     /// Checks the inputs and prepares the problem.
+    ///
+    /// # Errors
+    ///
+    /// If `p0` is not positive and finite, the heights are not one per grid point, a height
+    /// is not finite, or their spread overflows.
     pub fn new(model: &'a Model, heights: &'a [f64], p0: f64) -> Result<Self> {
         check_positive("p0", p0)?;
         if heights.len() != model.grid.points() {
