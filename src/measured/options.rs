@@ -1,8 +1,8 @@
 //! How a surface is checked ([`CheckOptions`]), and the check of the options and the
 //! scans before any work ([`validate`]): square pixels, a tolerance the solvers accept,
-//! loads, unit and modulus in range, an iteration budget of at least one, a despiking
-//! threshold in range, periodic scans square, every scan of one shape and every point
-//! measured or filled.
+//! loads in range and each once, unit and modulus in range, an iteration budget of at
+//! least one, a despiking threshold in range, periodic scans square, every scan of one
+//! shape and every point measured or filled.
 
 use serde::{Deserialize, Serialize};
 
@@ -107,6 +107,7 @@ pub fn validate(scans: &[Scan], opts: &CheckOptions) -> Result<f64> {
     }
     if let Some(given) = &opts.loads {
         super::theory::check_loads(given)?;
+        crate::error::check_once("loads", given)?;
     }
     if let Some(unit) = &opts.unit {
         check_unit(unit)?;
