@@ -1,11 +1,11 @@
-//! Numerically hard scenes (the hard cases every solver must survive) for both solvers.
+//! Numerically hard scenes: the hard cases every solver of the list must survive.
 //!
 //! Every solve here must either converge, with fields that satisfy the hard-wall
 //! conditions to the requested tolerance ([`check_solution`]), or fail with
 //! [`Error::NotConverged`] carrying a finite residual ([`run`]): never a NaN, never a
-//! silently wrong answer. Where both solvers converge they must agree to what the tolerance
-//! implies ([`assert_agree`]), and warm starts across loads and magnifications must reach
-//! the cold solution ([`assert_warm_reaches_cold`]).
+//! silently wrong answer. Where several solvers converge they must agree to what the
+//! tolerance implies ([`assert_agree`]), and warm starts across loads and magnifications
+//! must reach the cold solution ([`assert_warm_reaches_cold`]).
 //!
 //! Grids are as small as each scene's physics allows (each test says why), so that the
 //! file runs in well under a minute in the dev profile. Run with `--nocapture` to see one
@@ -78,7 +78,7 @@ fn run(
     }
 }
 
-/// A solve to [`TOL`] that must converge (every scene here does, for both solvers).
+/// A solve to [`TOL`] that must converge (every scene here does, for every solver).
 fn converge(
     scene: &str,
     kind: SolverKind,
