@@ -1,5 +1,5 @@
-//! Hard-wall solves with CG and GFMD ([`SolverKind::Cg`], [`SolverKind::Gfmd`]; FIRE is
-//! not timed here) on the standard scene of the speed study (`src/speed/`): H = 0.8,
+//! Hard-wall solves with every solver of [`SolverKind::ALL`], in its order, on the
+//! standard scene of the speed study (`src/speed/`): H = 0.8,
 //! `lambda_l = N/2`, `lambda_s = 8`, seed 1, `p0 = 0.1` in units of `E* g_bar` (surfaces
 //! have unit rms gradient), `tol = 1e-8`.
 //!
@@ -30,8 +30,6 @@ use persson_check::engine::solver::{SolveOptions, Solver, Start};
 use persson_check::engine::surface::{Surface, SurfaceParams};
 use persson_check::engine::sweep::shell_steps;
 
-/// The solvers, in table order.
-const SOLVERS: [SolverKind; 2] = [SolverKind::Cg, SolverKind::Gfmd];
 /// Hurst exponent of the scene.
 const HURST: f64 = 0.8;
 /// Short-wavelength cutoff, grid spacings (`lambda_l = N/2`).
@@ -107,7 +105,7 @@ fn cold(c: &mut Criterion) {
             _ => 20,
         }));
         let scene: OnceCell<(Scene, Vec<f64>)> = OnceCell::new();
-        for kind in SOLVERS {
+        for kind in SolverKind::ALL {
             let mut solver = kind.build();
             group.bench_function(BenchmarkId::new(kind.name(), n), |b| {
                 let (scene, heights) = scene.get_or_init(|| {
@@ -164,7 +162,7 @@ fn warm_group(
     let opts = options();
     for n in [256, 512, 1024] {
         let scene: OnceCell<Scene> = OnceCell::new();
-        for kind in SOLVERS {
+        for kind in SolverKind::ALL {
             let mut solver = kind.build();
             let case: OnceCell<WarmCase> = OnceCell::new();
             group.bench_function(BenchmarkId::new(kind.name(), n), |b| {

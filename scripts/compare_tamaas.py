@@ -6,7 +6,7 @@ same heights at the same load. Each solution's pressure field is then judged the
 here in numpy, by two measures:
 
 * tamaas's error, sum p (g - min g) / (sum p std(h));
-* this project's residual (see src/contact.rs): the largest of penetration, gap under
+* this project's residual (see src/engine/contact/residual.rs): the largest of penetration, gap under
   pressure, tension and load imbalance, with the displacement recomputed from the pressure
   (so equilibrium holds by construction for both).
 

@@ -208,6 +208,23 @@ pub fn check_seeds(seeds: &[u64]) -> Result<()> {
     Ok(())
 }
 
+/// Checks that a list of values (loads, contact areas, parameters of a study) names each
+/// value once: a repeated one would be run and counted twice.
+///
+/// # Errors
+///
+/// If a value appears twice; the error names `field` and the value.
+pub fn check_once(field: &str, values: &[f64]) -> Result<()> {
+    match (1..values.len()).find(|&k| values[..k].contains(&values[k])) {
+        Some(k) => Err(Error::invalid(
+            field,
+            format!("{values:?}"),
+            format!("each value once ({} appears twice)", values[k]),
+        )),
+        None => Ok(()),
+    }
+}
+
 /// Checks `value > 0` and finite; names the field on failure.
 pub fn check_positive(field: &str, value: f64) -> Result<()> {
     if value.is_finite() && value > 0.0 {

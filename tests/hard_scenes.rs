@@ -1,17 +1,17 @@
-//! Numerically hard scenes (the hard cases every solver must survive) for both solvers.
+//! Numerically hard scenes: the hard cases every solver of the list must survive.
 //!
 //! Every solve here must either converge, with fields that satisfy the hard-wall
 //! conditions to the requested tolerance ([`check_solution`]), or fail with
 //! [`Error::NotConverged`] carrying a finite residual ([`run`]): never a NaN, never a
-//! silently wrong answer. Where both solvers converge they must agree to what the tolerance
-//! implies ([`assert_agree`]), and warm starts across loads and magnifications must reach
-//! the cold solution ([`assert_warm_reaches_cold`]).
+//! silently wrong answer. Where several solvers converge they must agree to what the
+//! tolerance implies ([`assert_agree`]), and warm starts across loads and magnifications
+//! must reach the cold solution ([`assert_warm_reaches_cold`]).
 //!
 //! Grids are as small as each scene's physics allows (each test says why), so that the
 //! file runs in well under a minute in the dev profile. Run with `--nocapture` to see one
 //! line per scene and solver: residual, iterations, contact area.
 
-use persson_check::engine::contact::{ContactProblem, ContactSolution, Model, Residual};
+use persson_check::engine::contact::{ContactProblem, ContactSolution, Model};
 use persson_check::engine::field;
 use persson_check::engine::grid::Grid;
 use persson_check::engine::load::{persson_load_guess, solve_for_area, AreaSearch, AreaTarget};
@@ -21,6 +21,8 @@ use persson_check::engine::solver::{SolveOptions, Solver, Start};
 use persson_check::engine::surface::{Surface, SurfaceParams};
 use persson_check::error::Termination;
 use persson_check::Error;
+
+use crate::common::contact::{assert_agree, check_solution, contact_differences, sinusoid};
 
 /// Every solver, in the order of the list.
 const ALL: [SolverKind; SolverKind::ALL.len()] = SolverKind::ALL;
@@ -76,7 +78,7 @@ fn run(
     }
 }
 
-/// A solve to [`TOL`] that must converge (every scene here does, for both solvers).
+/// A solve to [`TOL`] that must converge (every scene here does, for every solver).
 fn converge(
     scene: &str,
     kind: SolverKind,
@@ -122,106 +124,6 @@ fn agree_with_cg(scene: &str, found: &[ContactSolution], model: &Model, h: &[f64
         assert_agree(scene, cg, &same, TOL);
     }
     cg.p0
-}
-
-/// The hard-wall conditions on a converged solution, checked from its fields alone.
-fn check_solution(
-    scene: &str,
-    kind: SolverKind,
-    problem: &ContactProblem,
-    s: &ContactSolution,
-    tol: f64,
-) {
-    let name = kind.name();
-    let (p, u, h) = (&s.pressure, &s.displacement, problem.heights);
-    assert!(
-        field::all_finite(p) && field::all_finite(u),
-        "{scene}, {name}: non-finite field"
-    );
-    // The residual reported is that of the returned fields, and meets the tolerance.
-    let model = problem.model;
-    let mut spec = model.fft.new_spectrum();
-    let mut scratch = vec![0.0; model.grid.points()];
-    let again = Residual::evaluate(problem, p, u, &mut spec, &mut scratch);
-    let reported = s.stats.residual.value();
-    assert!(
-        reported <= tol && again.value() <= tol,
-        "{scene}, {name}: residual {reported:e} (re-evaluated {:e}) > {tol:e}",
-        again.value()
-    );
-    assert!(
-        (again.value() - reported).abs() <= 1e-6 * reported + 1e-15,
-        "{scene}, {name}: reported residual {reported:e}, fields' residual {:e}",
-        again.value()
-    );
-    assert!(
-        field::min(p) >= 0.0,
-        "{scene}, {name}: tensile pressure {}",
-        field::min(p)
-    );
-    // The load: CG rescales the pressure to it at every iteration, so it holds to
-    // rounding. A dynamics method's pressure (GFMD's, FIRE's) is the wall's reaction,
-    // whose mean differs from p0 by the stress the dynamics has not yet relaxed: that is
-    // the `load` part of its residual, bounded by the tolerance.
-    let load = (field::mean(p) - problem.p0).abs() / problem.p0;
-    let bound = if kind == SolverKind::Cg { 1e-12 } else { tol };
-    assert!(
-        load <= bound,
-        "{scene}, {name}: mean(p) off p0 by {load:e} (relative)"
-    );
-    let min_gap = u
-        .iter()
-        .zip(h)
-        .map(|(u, h)| u - h)
-        .fold(f64::INFINITY, f64::min);
-    assert!(
-        min_gap >= -tol * problem.length_scale,
-        "{scene}, {name}: penetration {min_gap:e} (length scale {:e})",
-        problem.length_scale
-    );
-}
-
-/// `rms(p) / p0`: the residual measures unbalanced stress relative to `rms(p)`, so a
-/// solution at residual `tol` fixes the stresses, and with them the energy relative to
-/// `p0 x (displacement)`, to about `tol rms(p) / p0`. Concentrated contact (one asperity,
-/// one spike) makes this factor large: `sqrt(1 / a_r)` for equal pressures.
-fn concentration(s: &ContactSolution) -> f64 {
-    (field::sum_map(&s.pressure, |_, p| p * p) / s.pressure.len() as f64).sqrt() / s.p0
-}
-
-/// Points in contact in one solution and not in the other.
-fn contact_differences(a: &ContactSolution, b: &ContactSolution) -> usize {
-    a.pressure
-        .iter()
-        .zip(&b.pressure)
-        .filter(|(x, y)| (**x > 0.0) != (**y > 0.0))
-        .count()
-}
-
-/// Two converged solutions of one problem agree to what the tolerance implies: contact
-/// sets up to two points at the contact edge (where the pressure is of the order of the
-/// tolerance), elastic energies to `10 tol k` and pressure fields to `100 tol k` in
-/// relative L2, with `k` the [`concentration`] (1 to 2 for spread-out contact).
-fn assert_agree(scene: &str, a: &ContactSolution, b: &ContactSolution, tol: f64) {
-    let k = concentration(a).max(1.0);
-    let differ = contact_differences(a, b);
-    let (ea, eb) = (a.elastic_energy(), b.elastic_energy());
-    let energy = (ea - eb).abs() / ea;
-    let diff = field::sum_zip(&a.pressure, &b.pressure, |x, y| (x - y) * (x - y)).sqrt();
-    let l2 = diff / field::sum_map(&a.pressure, |_, x| x * x).sqrt();
-    eprintln!(
-        "{scene:<34} {} vs {}: {differ} contact points differ, energy {energy:.1e}, pressure L2 {l2:.1e} (k = {k:.1})",
-        a.stats.solver, b.stats.solver
-    );
-    assert!(differ <= 2, "{scene}: {differ} contact points differ");
-    assert!(
-        energy <= 10.0 * tol * k,
-        "{scene}: energies {ea:e} vs {eb:e} (relative {energy:e}, k = {k})"
-    );
-    assert!(
-        l2 <= 100.0 * tol * k,
-        "{scene}: pressure fields differ by {l2:e} (relative L2, k = {k})"
-    );
 }
 
 /// Solves `h` at `p0` warm from `from` and cold with one solver of `kind`; both must
@@ -684,15 +586,6 @@ fn non_power_of_two_grids() {
         let gfmd = cold(&scene, SolverKind::Gfmd, &model, &h, 0.05);
         assert_agree(&scene, &cg, &gfmd, TOL);
     }
-}
-
-/// `h(x, y) = h0 cos(2 pi x / L)`: one wavelength across the box, constant along y.
-fn sinusoid(n: usize, h0: f64) -> (Model, Vec<f64>) {
-    let model = Model::new(Grid::new(n, 1.0).unwrap(), 1.0).unwrap();
-    let h = (0..n * n)
-        .map(|k| h0 * (2.0 * std::f64::consts::PI * (k % n) as f64 / n as f64).cos())
-        .collect();
-    (model, h)
 }
 
 /// Westergaard on grids that are not powers of two, side by side with power-of-two grids

@@ -9,6 +9,7 @@ mod check_surface;
 mod claims;
 mod common;
 mod compare;
+mod conformance;
 mod determinism;
 mod fire_bits;
 mod free_bits;

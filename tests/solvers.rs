@@ -5,12 +5,14 @@ use persson_check::engine::contact::{ContactProblem, ContactSolution, Model};
 use persson_check::engine::field;
 use persson_check::engine::grid::Grid;
 use persson_check::engine::load::{persson_load_guess, solve_for_area, AreaSearch, AreaTarget};
-use persson_check::engine::reference::Westergaard;
+use persson_check::engine::reference::{Hertz, Westergaard};
 use persson_check::engine::solver::SolverKind;
 use persson_check::engine::solver::{SolveOptions, Start};
 use persson_check::engine::surface::{Surface, SurfaceParams};
 use persson_check::error::Termination;
 use persson_check::Error;
+
+use crate::common::contact::{assert_hertz, sinusoid, sphere_on_free_window};
 
 fn solve(kind: SolverKind, model: &Model, h: &[f64], p0: f64, tol: f64) -> ContactSolution {
     let problem = ContactProblem::new(model, h, p0).unwrap();
@@ -18,15 +20,6 @@ fn solve(kind: SolverKind, model: &Model, h: &[f64], p0: f64, tol: f64) -> Conta
     solver
         .solve(&problem, Start::Cold, &SolveOptions::with_tol(tol))
         .unwrap_or_else(|e| panic!("{}: {e}", kind.name()))
-}
-
-/// `h(x, y) = h0 cos(2 pi x / L)`: one wavelength across the box, constant along y.
-fn sinusoid(n: usize, h0: f64) -> (Model, Vec<f64>) {
-    let model = Model::new(Grid::new(n, 1.0).unwrap(), 1.0).unwrap();
-    let h = (0..n * n)
-        .map(|k| h0 * (2.0 * std::f64::consts::PI * (k % n) as f64 / n as f64).cos())
-        .collect();
-    (model, h)
 }
 
 #[test]
@@ -85,30 +78,6 @@ fn westergaard_contact_area_and_peak_pressure_converge_with_resolution() {
             assert!(
                 peak_err[2] < 0.02,
                 "{}: peak errors {peak_err:?}",
-                kind.name()
-            );
-        }
-    }
-}
-
-#[test]
-fn westergaard_full_contact_is_exact() {
-    let (model, h) = sinusoid(64, 0.5);
-    let exact = Westergaard {
-        h0: 0.5,
-        lambda: 64.0,
-        e_star: 1.0,
-    };
-    let p0 = 1.5 * exact.full_contact_pressure();
-    for kind in SolverKind::ALL {
-        let s = solve(kind, &model, &h, p0, 1e-11);
-        assert_eq!(s.contact_area(), 1.0);
-        for (k, &p) in s.pressure.iter().enumerate() {
-            let x = (k % 64) as f64;
-            let e = exact.pressure(p0, x);
-            assert!(
-                (p - e).abs() < 1e-9 * p0,
-                "{}: x = {x}: {p} vs {e}",
                 kind.name()
             );
         }
@@ -444,40 +413,12 @@ fn heights_whose_spread_overflows_are_rejected() {
     assert!(ContactProblem::new(&model, &h, 0.1).is_ok());
 }
 
-/// A sphere of radius `radius` (a paraboloid) centred at `(row, column)` = `centre` of a
-/// `rows x cols` free-boundary window, pressed with `force`: the model, the padded heights
-/// and the padded grid's `p0`.
-fn sphere_on_free_window(
-    (rows, cols): (usize, usize),
-    centre: (f64, f64),
-    radius: f64,
-    force: f64,
-) -> (Model, Vec<f64>, f64) {
-    let model = Model::free_window(rows, cols, 1.0).unwrap();
-    let (cy, cx) = centre;
-    let window: Vec<f64> = (0..rows * cols)
-        .map(|k| {
-            let (x, y) = ((k % cols) as f64 + 0.5 - cx, (k / cols) as f64 + 0.5 - cy);
-            -(x * x + y * y) / (2.0 * radius)
-        })
-        .collect();
-    let heights = model.pad_heights(&window).unwrap();
-    let p0 = force / model.grid.points() as f64;
-    (model, heights, p0)
-}
-
-/// A sphere centred on a `n x n` free-boundary window (see [`sphere_on_free_window`]).
-fn sphere_on_free_boundary(n: usize, radius: f64, force: f64) -> (Model, Vec<f64>, f64) {
-    let c = 0.5 * n as f64;
-    sphere_on_free_window((n, n), (c, c), radius, force)
-}
-
 /// A rectangular window, the sphere off its centre along the long side: the padded grid
 /// is the rectangle of twice each side and the contact (radius 40) far from the edges.
-/// Every solver, with the square window's tolerances (force, area, peak pressure).
+/// Every solver, with the tolerances of the square window's (`conformance`): force, area
+/// and peak pressure ([`assert_hertz`]).
 #[test]
 fn a_sphere_on_a_rectangular_free_boundary_gives_hertz_contact_area() {
-    use persson_check::engine::reference::Hertz;
     let radius = 1000.0;
     let hertz = Hertz {
         radius,
@@ -489,31 +430,7 @@ fn a_sphere_on_a_rectangular_free_boundary_gives_hertz_contact_area() {
     assert_eq!((model.grid.rows(), model.grid.cols()), (240, 400));
     for kind in SolverKind::ALL {
         let s = solve(kind, &model, &h, p0, 1e-8);
-        let outside: f64 = (0..h.len())
-            .filter(|&k| !model.under_wall(k))
-            .map(|k| s.pressure[k].abs())
-            .sum();
-        assert_eq!(outside, 0.0, "{}: pressure off the window", kind.name());
-        let total: f64 = s.pressure.iter().sum();
-        assert!(
-            (total / force - 1.0).abs() < 1e-8,
-            "{}: force {total} vs {force}",
-            kind.name()
-        );
-        let area = s.pressure.iter().filter(|&&p| p > 0.0).count() as f64;
-        let exact = std::f64::consts::PI * a * a;
-        assert!(
-            (area / exact - 1.0).abs() < 0.03,
-            "{}: contact area {area} vs Hertz {exact:.1}",
-            kind.name()
-        );
-        let peak = s.pressure.iter().copied().fold(0.0, f64::max);
-        assert!(
-            (peak / hertz.peak_pressure(force) - 1.0).abs() < 0.03,
-            "{}: peak {peak} vs {}",
-            kind.name(),
-            hertz.peak_pressure(force)
-        );
+        assert_hertz(kind, &model, &s, &hertz, (a, force));
     }
 }
 
@@ -540,49 +457,6 @@ fn a_rectangular_free_boundary_turned_a_quarter_turn_gives_the_transposed_contac
         worst < 1e-6 * peak,
         "pressures differ by {worst:e} (peak {peak:e})"
     );
-}
-
-#[test]
-fn a_sphere_on_a_free_boundary_gives_hertz_contact_radius() {
-    use persson_check::engine::reference::Hertz;
-    let (n, radius) = (192usize, 1000.0);
-    let hertz = Hertz {
-        radius,
-        e_star: 1.0,
-    };
-    // A contact radius per solver, 40, 45, 50, ... grid spacings.
-    for (k, kind) in SolverKind::ALL.into_iter().enumerate() {
-        let a = 40.0 + 5.0 * k as f64;
-        let force = hertz.force_for_radius(a);
-        let (model, h, p0) = sphere_on_free_boundary(n, radius, force);
-        let s = solve(kind, &model, &h, p0, 1e-8);
-        // Pressure only under the wall, carrying the whole force.
-        let outside: f64 = (0..h.len())
-            .filter(|&k| !model.under_wall(k))
-            .map(|k| s.pressure[k].abs())
-            .sum();
-        assert_eq!(outside, 0.0, "{}: pressure off the window", kind.name());
-        let total: f64 = s.pressure.iter().sum();
-        assert!(
-            (total / force - 1.0).abs() < 1e-8,
-            "{}: force {total} vs {force}",
-            kind.name()
-        );
-        let area = s.pressure.iter().filter(|&&p| p > 0.0).count() as f64;
-        let exact = std::f64::consts::PI * a * a;
-        assert!(
-            (area / exact - 1.0).abs() < 0.03,
-            "{}: contact area {area} vs Hertz {exact}",
-            kind.name()
-        );
-        let peak = s.pressure.iter().copied().fold(0.0, f64::max);
-        assert!(
-            (peak / hertz.peak_pressure(force) - 1.0).abs() < 0.03,
-            "{}: peak {peak} vs {}",
-            kind.name(),
-            hertz.peak_pressure(force)
-        );
-    }
 }
 
 /// The conventions and the command line's synopsis list every solver where they list the

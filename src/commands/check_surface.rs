@@ -66,7 +66,8 @@ pub struct Args {
     /// The headline solver.
     #[arg(long, value_enum, default_value_t = SolverKind::Cg)]
     solver: SolverKind,
-    /// Skip the cross-check with a second solver (CG for GFMD, GFMD for any other).
+    /// Skip the cross-check with a second solver (the first of the list other than the
+    /// headline one: CG for GFMD, GFMD for any other).
     #[arg(long = "no-cross-check")]
     no_cross_check: bool,
     /// Cross-check every load (default: the lowest, the middle and the highest).

@@ -34,6 +34,10 @@ pub struct HalfSpace {
 
 impl HalfSpace {
     /// The half-space of modulus `e_star` on `grid`.
+    ///
+    /// # Errors
+    ///
+    /// If `e_star` is not positive and finite.
     pub fn new(grid: &Grid, e_star: f64) -> Result<Self> {
         check_positive("e_star", e_star)?;
         let stiffness = (0..grid.modes())
@@ -44,6 +48,10 @@ impl HalfSpace {
 
     /// A half-space of modulus `e_star` whose stiffness over the half spectrum is `table`
     /// (0 at `q = 0`), e.g. the free-boundary one of [`crate::engine::boussinesq`].
+    ///
+    /// # Errors
+    ///
+    /// If `e_star` is not positive and finite.
     pub fn with_stiffness(e_star: f64, table: Vec<f64>) -> Result<Self> {
         check_positive("e_star", e_star)?;
         Ok(Self {

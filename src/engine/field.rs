@@ -37,6 +37,10 @@ where
 }
 
 /// Deterministic parallel sum of `f(a_i, b_i)` over two slices of equal length.
+///
+/// # Panics
+///
+/// If `a` and `b` differ in length.
 pub fn sum_zip<F>(a: &[f64], b: &[f64], f: F) -> f64
 where
     F: Fn(f64, f64) -> f64 + Sync,
@@ -79,6 +83,10 @@ where
 /// Deterministic parallel pass over two fields of equal length that it may change: `f`
 /// maps each fixed chunk of indices, with the matching chunks of `a` and `b`, to a
 /// partial result; the partials come back in chunk order, to be combined in that order.
+///
+/// # Panics
+///
+/// If `a` and `b` differ in length.
 pub fn map_chunks_mut<T, F>(a: &mut [f64], b: &mut [f64], f: F) -> Vec<T>
 where
     T: Send,

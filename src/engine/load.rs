@@ -59,6 +59,12 @@ pub struct AreaSolution {
 
 /// Finds `p0` such that the contact area on `heights` is `target.contact_area`, starting
 /// from the load `target.p0_guess` (and from `start`'s fields).
+///
+/// # Errors
+///
+/// If the target area is outside (0, 1) or the first load is not positive
+/// ([`Error::InvalidInput`]), a solve fails (its error), or the search ends without
+/// bracketing the area or within its budget of solves ([`Error::LoadSearch`]).
 pub fn solve_for_area(
     solver: &mut dyn Solver,
     model: &Model,

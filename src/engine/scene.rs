@@ -80,6 +80,11 @@ impl SurfaceScene {
     }
 
     /// Checks every range (grid size, spectrum, normalisation).
+    ///
+    /// # Errors
+    ///
+    /// If the grid size, the spectrum or the rms gradient is out of range; the error names
+    /// the key.
     pub fn validate(&self) -> Result<()> {
         let grid = Grid::new(self.n, 1.0)?;
         self.params(0).spectrum.validate(&grid)?;
@@ -113,6 +118,11 @@ pub struct SolveScene {
 impl SolveScene {
     /// Checks every range given, with `zeta_max` the surface's largest magnification;
     /// errors name the key as `solve.KEY`.
+    ///
+    /// # Errors
+    ///
+    /// If a value given is out of range, or both `p0` and `contact_area` are given; the
+    /// error names the key as `solve.KEY`.
     pub fn validate(&self, zeta_max: f64) -> Result<()> {
         if let Some(zeta) = self.zeta {
             check_zeta(zeta, zeta_max).map_err(|e| e.with_field("solve.zeta"))?;
@@ -156,6 +166,10 @@ pub struct Scene {
 impl Scene {
     /// Checks every range: the surface's, then the solve's against the surface's
     /// `zeta_max`.
+    ///
+    /// # Errors
+    ///
+    /// As [`SurfaceScene::validate`] and [`SolveScene::validate`].
     pub fn validate(&self) -> Result<()> {
         self.surface.validate()?;
         self.solve.validate(self.surface.zeta_max())
@@ -163,12 +177,21 @@ impl Scene {
 }
 
 /// Reads and checks a scene file.
+///
+/// # Errors
+///
+/// If the file cannot be read ([`Error::Io`]), or as [`parse_scene`].
 pub fn read_scene(path: &Path) -> Result<Scene> {
     let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
     parse_scene(&text, path)
 }
 
 /// Parses and checks the text of a scene file; errors name `origin` (the file).
+///
+/// # Errors
+///
+/// If the text is not a scene's TOML or a value is out of range ([`Error::BadFile`],
+/// naming `origin`).
 pub fn parse_scene(text: &str, origin: &Path) -> Result<Scene> {
     let scene = parse_toml::<Scene>(origin, text)?;
     scene
@@ -178,6 +201,11 @@ pub fn parse_scene(text: &str, origin: &Path) -> Result<Scene> {
 }
 
 /// Parses TOML text into `T`, naming the file in the error.
+///
+/// # Errors
+///
+/// If the text is not TOML of `T`'s shape ([`Error::BadFile`], naming `path` and the
+/// line).
 pub fn parse_toml<T: serde::de::DeserializeOwned>(path: &Path, text: &str) -> Result<T> {
     toml::from_str(text).map_err(|e| Error::bad_file(path, toml_message(text, &e)))
 }
@@ -211,6 +239,10 @@ fn toml_message(text: &str, e: &toml::de::Error) -> String {
 }
 
 /// Checks a magnification against `[1, zeta_max]`.
+///
+/// # Errors
+///
+/// If `zeta` is not finite or outside `[1, zeta_max]`.
 pub fn check_zeta(zeta: f64, zeta_max: f64) -> Result<()> {
     if zeta.is_finite() && (1.0..=zeta_max * (1.0 + 1e-12)).contains(&zeta) {
         Ok(())

@@ -32,6 +32,12 @@ pub struct SelfAffine {
 
 impl SelfAffine {
     /// Checks the parameters against the grid ([`crate::conventions`], section 3).
+    ///
+    /// # Errors
+    ///
+    /// If `hurst` is outside (0, 1), `lambda_s` is below two grid spacings, `lambda_l` is
+    /// outside `(lambda_s, L]`, or `lambda_r` outside `(lambda_l, L]`; the error names the
+    /// parameter.
     pub fn validate(&self, grid: &Grid) -> Result<()> {
         check_open("hurst", self.hurst, 0.0, 1.0)?;
         let a = grid.spacing();

@@ -81,6 +81,11 @@ pub struct Surface {
 
 impl Surface {
     /// Generates the realization described by `params`.
+    ///
+    /// # Errors
+    ///
+    /// If the grid size, the spectrum ([`SelfAffine::validate`]) or the rms gradient is out
+    /// of range.
     pub fn generate(params: &SurfaceParams) -> Result<Self> {
         let grid = Grid::new(params.n, 1.0)?;
         params.spectrum.validate(&grid)?;

@@ -193,6 +193,10 @@ impl<'a> Sweep<'a> {
     /// (predicted for the change of magnification, see the module docs). When the
     /// magnification changed, the last solution becomes the prediction: if that solve
     /// fails, the sweep holds no solution and the next solve starts cold.
+    ///
+    /// # Errors
+    ///
+    /// If `p0` is not positive, or the solve fails (see [`Solver::solve`]).
     pub fn solve_at(&mut self, zeta: f64, p0: f64) -> Result<&ContactSolution> {
         self.set_zeta(zeta);
         let predicted = self.predicted();
@@ -209,6 +213,10 @@ impl<'a> Sweep<'a> {
 
     /// Finds the load that gives `contact_area` at magnification `zeta` and keeps that
     /// solution as the warm start; returns `p0`.
+    ///
+    /// # Errors
+    ///
+    /// As [`solve_for_area`].
     pub fn find_load(&mut self, zeta: f64, contact_area: f64) -> Result<f64> {
         self.set_zeta(zeta);
         let g_bar = self.surface.rms_gradient(zeta).max(f64::MIN_POSITIVE);

@@ -37,8 +37,9 @@
 //! Shared machinery: [`scene`] (the fields every scene repeats), [`ensemble`] (the
 //! seeds x contact areas job grid and the per-load ensemble statistics), [`climb`] (the
 //! fixed-load magnification climb with optional checkpoints), [`contact_change`] (which
-//! points entered or left contact in a step, and the maps' packing and colours) and
-//! [`history`] (every point's contact history over a climb, and the flux over an interval).
+//! points entered or left contact in a step, and the maps' packing and colours),
+//! [`history`] (every point's contact history over a climb, and the flux over an interval)
+//! and [`study`] (the generic table of rows an experiment adds beside its headline).
 //! No experiment imports another: what two share lives here.
 
 pub mod climb;

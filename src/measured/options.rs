@@ -1,8 +1,8 @@
 //! How a surface is checked ([`CheckOptions`]), and the check of the options and the
 //! scans before any work ([`validate`]): square pixels, a tolerance the solvers accept,
-//! loads, unit and modulus in range, an iteration budget of at least one, a despiking
-//! threshold in range, periodic scans square, every scan of one shape and every point
-//! measured or filled.
+//! loads in range and each once, unit and modulus in range, an iteration budget of at
+//! least one, a despiking threshold in range, periodic scans square, every scan of one
+//! shape and every point measured or filled.
 
 use serde::{Deserialize, Serialize};
 
@@ -33,7 +33,8 @@ pub struct CheckOptions {
     pub loads: Option<Vec<f64>>,
     /// The headline solver.
     pub solver: SolverKind,
-    /// Also solve with the other solver.
+    /// Also solve with a second solver: the first of [`SolverKind::ALL`] other than the
+    /// headline one.
     pub cross_check: bool,
     /// Cross-check every load (else [`super::curves::CROSS_CHECKED_LOADS`] of them).
     pub cross_check_all: bool,
@@ -79,13 +80,15 @@ impl Default for CheckOptions {
     }
 }
 
-/// The other solver: CG for GFMD, GFMD for any other.
+/// The solver that cross-checks `solver`: the first of [`SolverKind::ALL`] other than it.
+/// The list starts with the paper's method, so every other headline is checked against
+/// it, and the paper's method against the next solver of the list (GFMD and CG check each
+/// other; a solver added to the list is checked against GFMD).
 pub(super) fn other(solver: SolverKind) -> SolverKind {
-    if solver == SolverKind::Gfmd {
-        SolverKind::Cg
-    } else {
-        SolverKind::Gfmd
-    }
+    SolverKind::ALL
+        .into_iter()
+        .find(|&s| s != solver)
+        .expect("the list holds more than one solver")
 }
 
 /// Checks the options and the scans (before any work); returns the pixel size.
@@ -104,6 +107,7 @@ pub fn validate(scans: &[Scan], opts: &CheckOptions) -> Result<f64> {
     }
     if let Some(given) = &opts.loads {
         super::theory::check_loads(given)?;
+        crate::error::check_once("loads", given)?;
     }
     if let Some(unit) = &opts.unit {
         check_unit(unit)?;
@@ -153,4 +157,20 @@ pub fn validate(scans: &[Scan], opts: &CheckOptions) -> Result<f64> {
         }
     }
     Ok(pixel)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// GFMD and CG check each other, as they always have; every solver of the list is
+    /// checked by another one.
+    #[test]
+    fn every_solver_is_cross_checked_by_another() {
+        assert_eq!(other(SolverKind::Gfmd), SolverKind::Cg);
+        assert_eq!(other(SolverKind::Cg), SolverKind::Gfmd);
+        for kind in SolverKind::ALL {
+            assert_ne!(other(kind), kind, "{}", kind.name());
+        }
+    }
 }

@@ -22,6 +22,10 @@ use crate::measured::units::eng;
 pub const SOLVES_FILE: &str = "solves.jsonl";
 
 /// Reads the scans in `paths` (one surface, several scans).
+///
+/// # Errors
+///
+/// If `paths` is empty, or a file cannot be read or holds no height map.
 pub fn read_scans(paths: &[impl AsRef<Path>], s: &dyn Spelling) -> Result<Vec<Scan>> {
     if paths.is_empty() {
         return Err(s.rename(Error::invalid(
@@ -44,6 +48,11 @@ pub enum Input {
 
 /// Reads `paths`: line scans when `line` (2D inputs read as rows of profiles) or when any
 /// input is one-dimensional, else height maps.
+///
+/// # Errors
+///
+/// If `paths` is empty, or a file cannot be read or holds neither a height map nor line
+/// scans, or the line scans cannot be pooled.
 pub fn read_input(paths: &[impl AsRef<Path>], line: bool, s: &dyn Spelling) -> Result<Input> {
     if paths.is_empty() {
         return Err(s.rename(Error::invalid(
@@ -73,6 +82,10 @@ pub fn read_input(paths: &[impl AsRef<Path>], line: bool, s: &dyn Spelling) -> R
 
 /// `scans` with their missing points filled as `how` says, or the refusal that names
 /// the first scan with gaps, their count and first position, and how to fill them.
+///
+/// # Errors
+///
+/// If a scan has gaps that `how` does not fill ([`Error::BadFile`], naming the scan).
 pub fn fill_scans(scans: &[Scan], how: Fill, s: &dyn Spelling) -> Result<Vec<Scan>> {
     scans
         .iter()
@@ -90,6 +103,12 @@ pub fn fill_scans(scans: &[Scan], how: Fill, s: &dyn Spelling) -> Result<Vec<Sca
 /// Checks the surface of `scans` with `opts`; writes the page and its files into `out`
 /// when given (and `solves.jsonl` there as the solves end). `events` sees every
 /// iteration and every load's end.
+///
+/// # Errors
+///
+/// If `out` is not a folder, the scans or the options are out of range (checked before
+/// any solve), the check itself fails (a failed solve is recorded, not an error), or
+/// the page cannot be written.
 pub fn check_surface(
     scans: &[Scan],
     opts: &CheckOptions,
@@ -119,6 +138,10 @@ pub fn check_surface(
 /// ([`crate::measured::line::check`]): the contact simulated on surfaces synthesized with
 /// the spectrum the profiles imply. Writes the page into `out` when given, as
 /// [`check_surface`] does.
+///
+/// # Errors
+///
+/// As [`check_surface`], for the profiles and the line options.
 pub fn check_line(
     profiles: &Profiles,
     opts: &CheckOptions,

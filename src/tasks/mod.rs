@@ -95,6 +95,10 @@ impl Spelling for Flags<'_> {
 
 /// Checks, before any work, that `out` can become a folder (it is one, or does not exist
 /// yet).
+///
+/// # Errors
+///
+/// If `out` exists and is not a folder.
 pub fn check_out_dir(out: &Path, s: &dyn Spelling) -> Result<()> {
     if out.exists() && !out.is_dir() {
         return Err(Error::invalid(
@@ -108,6 +112,10 @@ pub fn check_out_dir(out: &Path, s: &dyn Spelling) -> Result<()> {
 
 /// Checks, before any work, that `out` can become a file (it is one, or does not exist
 /// yet).
+///
+/// # Errors
+///
+/// If `out` is a folder.
 pub fn check_out_file(out: &Path, s: &dyn Spelling) -> Result<()> {
     if out.is_dir() {
         return Err(Error::invalid(

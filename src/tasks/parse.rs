@@ -16,6 +16,10 @@ pub const MAX_THREADS: u64 = 1024;
 pub const MAX_SHARDS: u64 = 100_000;
 
 /// The solver named `name`, one of [`SolverKind::NAMES`].
+///
+/// # Errors
+///
+/// If `name` is none of [`SolverKind::NAMES`].
 pub fn solver(name: &str) -> Result<SolverKind> {
     SolverKind::from_name(name)
         .ok_or_else(|| Error::invalid("solver", format!("{name:?}"), SolverKind::listed()))
@@ -23,6 +27,10 @@ pub fn solver(name: &str) -> Result<SolverKind> {
 
 /// The variant of Persson's theory named `name`: `"original"` (no correction),
 /// `"yang_persson"` or `"corrected"` (gamma = 0.42), `"wang_mueser"` (gamma = 5/9).
+///
+/// # Errors
+///
+/// If `name` is none of the variants above.
 pub fn theory_variant(name: &str) -> Result<Option<Correction>> {
     match name {
         "original" => Ok(None),
@@ -46,6 +54,11 @@ pub enum Load {
 }
 
 /// Checks the ranges of the loads given: `p0 > 0`, `0 < contact_area < 1`.
+///
+/// # Errors
+///
+/// If `p0` is not positive and finite, or `contact_area` is outside (0, 1); the error
+/// names the parameter as `s` spells it.
 pub fn check_load(p0: Option<f64>, contact_area: Option<f64>, s: &dyn Spelling) -> Result<()> {
     if let Some(p0) = p0 {
         check_positive(&s.name("p0"), p0)?;
@@ -59,6 +72,11 @@ pub fn check_load(p0: Option<f64>, contact_area: Option<f64>, s: &dyn Spelling) 
 /// The load: `p0` or `contact_area`, exactly one of them; when neither is given, the
 /// scene's (`scene` is `Some` where a scene file may give the load, already checked when
 /// it was read). The values given are checked after the choice.
+///
+/// # Errors
+///
+/// If both loads are chosen, neither is, or the one given is out of range
+/// ([`check_load`]).
 pub fn load(
     p0: Option<f64>,
     contact_area: Option<f64>,
@@ -102,6 +120,10 @@ pub fn load(
 
 /// Checks a magnification given before the surface is known: finite and at least 1 (its
 /// upper bound, `zeta_max`, comes with the surface).
+///
+/// # Errors
+///
+/// If `zeta` is given and is not finite or below 1.
 pub fn check_zeta_floor(zeta: Option<f64>, s: &dyn Spelling) -> Result<()> {
     match zeta {
         Some(z) if !(z.is_finite() && z >= 1.0) => Err(Error::invalid(
@@ -115,6 +137,10 @@ pub fn check_zeta_floor(zeta: Option<f64>, s: &dyn Spelling) -> Result<()> {
 
 /// Checks the wavelength `lambda_l` that defines `zeta = |q| / q_l` for given heights:
 /// finite and positive (its upper bound, the box, comes with the heights).
+///
+/// # Errors
+///
+/// If `lambda_l` is given and is not positive and finite.
 pub fn check_lambda_l(lambda_l: Option<f64>, s: &dyn Spelling) -> Result<()> {
     match lambda_l {
         Some(l) => check_positive(&s.name("lambda_l"), l),
@@ -123,6 +149,11 @@ pub fn check_lambda_l(lambda_l: Option<f64>, s: &dyn Spelling) -> Result<()> {
 }
 
 /// The solver options, checked: `tol` in [1e-14, 1), `max_iter >= 1`.
+///
+/// # Errors
+///
+/// If `tol` or `max_iter` is out of range ([`SolveOptions::validate`]), named as `s`
+/// spells it.
 pub fn solve_options(tol: f64, max_iter: usize, s: &dyn Spelling) -> Result<SolveOptions> {
     let opts = SolveOptions { tol, max_iter };
     opts.validate().map_err(|e| s.rename(e))?;
@@ -130,6 +161,10 @@ pub fn solve_options(tol: f64, max_iter: usize, s: &dyn Spelling) -> Result<Solv
 }
 
 /// An integer given as a signed number, checked against `[lo, hi]`.
+///
+/// # Errors
+///
+/// If `value` is negative or outside `[lo, hi]`.
 pub fn integer(key: &str, value: i64, lo: u64, hi: u64, s: &dyn Spelling) -> Result<u64> {
     match u64::try_from(value) {
         Ok(v) if (lo..=hi).contains(&v) => Ok(v),

@@ -126,6 +126,10 @@ pub struct Solved {
 
 /// The magnification to solve `surface` at: `zeta`, checked against `[1, zeta_max]`, or
 /// by default full resolution, `zeta_max`.
+///
+/// # Errors
+///
+/// If `zeta` is outside `[1, zeta_max]`.
 pub fn magnification(surface: &Surface, zeta: Option<f64>, s: &dyn Spelling) -> Result<f64> {
     let zeta_max = surface.zeta_max().max(1.0);
     let zeta = zeta.unwrap_or(zeta_max);
@@ -135,6 +139,11 @@ pub fn magnification(surface: &Surface, zeta: Option<f64>, s: &dyn Spelling) -> 
 
 /// Solves `surface` as `request` asks with `solver` (a fresh one, or one wrapped to show
 /// progress or to be cancelled), from `start`.
+///
+/// # Errors
+///
+/// If the modulus or the load is out of range, a contact area is asked of a flat surface,
+/// or the solve or the load search fails.
 pub fn solve(
     surface: &Surface,
     request: &SolveRequest,

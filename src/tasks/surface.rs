@@ -16,6 +16,10 @@ use super::Spelling;
 
 /// The heights of realization `seed` of `scene` at magnification `zeta` (default: every
 /// mode, `zeta = lambda_l / lambda_s`), after checking the scene's ranges and `zeta`.
+///
+/// # Errors
+///
+/// If the scene's ranges ([`SurfaceScene::validate`]) or `zeta` are out of range.
 pub fn generate(
     scene: &SurfaceScene,
     seed: u64,
@@ -33,6 +37,11 @@ pub fn generate(
 
 /// The surface of an `n x n` field of heights (grid spacing 1); `lambda_l` is the
 /// wavelength that defines `zeta = |q| / q_l` (default: the box size).
+///
+/// # Errors
+///
+/// If `n` is outside the grid's range, the heights are not `n x n` finite values, or
+/// `lambda_l` is out of range.
 pub fn from_heights(n: usize, heights: &[f64], lambda_l: Option<f64>) -> Result<Surface> {
     let grid = Grid::new(n, 1.0)?;
     Surface::from_heights(grid, heights, lambda_l)

@@ -17,6 +17,10 @@ use super::Spelling;
 /// The magnifications of a sweep of `surface`: `zetas` as given (each in
 /// `[1, zeta_max]`), or else every shell with `zeta_from < zeta <= zeta_to` (default:
 /// `zeta_max`), one step per shell.
+///
+/// # Errors
+///
+/// If `zetas` is given empty, or a magnification is outside `[1, zeta_max]`.
 pub fn steps(
     surface: &Surface,
     zetas: Option<Vec<f64>>,
@@ -117,6 +121,11 @@ impl<'a> SweepRun<'a> {
     }
 
     /// Solves at magnification `zeta`, starting from the previous step.
+    ///
+    /// # Errors
+    ///
+    /// If the solve or, for a contact area, the load search fails (see
+    /// [`crate::engine::sweep::Sweep::solve_at`] and [`crate::engine::sweep::Sweep::find_load`]).
     pub fn step(&mut self, zeta: f64) -> Result<SweepStep> {
         match (self.p0, self.load) {
             (Some(p0), _) => {

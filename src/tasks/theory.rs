@@ -18,6 +18,10 @@ pub struct Theory {
 
 /// The theory at mean pressure `p0` on the spectrum of `surface`, original (`correction`
 /// `None`) or corrected, for the effective modulus `e_star`.
+///
+/// # Errors
+///
+/// If `e_star` or `p0` is out of range for the theory.
 pub fn theory(
     surface: &Surface,
     p0: f64,

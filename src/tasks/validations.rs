@@ -16,6 +16,11 @@ use super::Spelling;
 
 /// The definitions named (all when `names` is empty), from the folder `dir` (at least one
 /// `*.toml` there) or the built-in copies of `validations/`.
+///
+/// # Errors
+///
+/// If `dir` cannot be read or holds no `*.toml` file, a definition cannot be read, or a
+/// name in `names` is none of the definitions'.
 pub fn definitions(dir: Option<&Path>, names: &[String], s: &dyn Spelling) -> Result<Vec<Source>> {
     let sources = match dir {
         Some(dir) => {
@@ -36,6 +41,10 @@ pub fn definitions(dir: Option<&Path>, names: &[String], s: &dyn Spelling) -> Re
 
 /// Checks every definition (header, experiment, both scenes' ranges) before any runs:
 /// bad input writes nothing.
+///
+/// # Errors
+///
+/// The first definition's error: its header, experiment or a scene's range.
 pub fn check(registry: &Registry, sources: &[Source]) -> Result<()> {
     sources.iter().try_for_each(|source| registry.check(source))
 }
@@ -67,6 +76,10 @@ pub fn run_options(
 
 /// The jobs of `sources` run with `opts`, with their estimated costs, split into `shards`
 /// shares when given.
+///
+/// # Errors
+///
+/// If a definition's jobs cannot be made (its scene is out of range).
 pub fn plan(
     registry: &Registry,
     sources: &[Source],
@@ -83,6 +96,11 @@ pub fn plan(
 /// Sets `opts` to merge the job results the shares stored under `opts.out`, once every
 /// job of `plan` has a result there under its job key (computed by this commit, unless
 /// `accept_other_commit`: see [`Plan::check_merge`]); nothing is written otherwise.
+///
+/// # Errors
+///
+/// If a job of `plan` has no result under `opts.out`, or one computed by another commit
+/// unless `accept_other_commit` ([`Plan::check_merge`]).
 pub fn merge(plan: &Plan, accept_other_commit: bool, opts: &mut RunOptions) -> Result<()> {
     plan.check_merge(accept_other_commit)?;
     opts.mode = Mode::Merge {

@@ -252,3 +252,36 @@ fn flag_solve_scene_and_heights() {
         &["--heights", "cannot be used with"],
     );
 }
+
+/// `check-surface` refuses a load given twice (`--loads 0.01,0.02,0.01`), as a definition
+/// refuses a contact area given twice: it would be solved twice and its curve's point
+/// counted twice. The message names the flag, the value and "once".
+#[test]
+fn flag_loads_repeated() {
+    let dir = tempdir();
+    let heights: String = (0..8)
+        .map(|i| {
+            (0..8)
+                .map(|j| format!("{}", ((i * 8 + j) as f64 * 0.7).sin()))
+                .collect::<Vec<_>>()
+                .join(" ")
+                + "\n"
+        })
+        .collect();
+    std::fs::write(dir.path().join("h.txt"), heights).unwrap();
+    rejected(
+        dir.path(),
+        &[
+            "check-surface",
+            "--heights",
+            "h.txt",
+            "--pixel-size",
+            "1",
+            "--loads",
+            "0.01,0.02,0.01",
+            "--out",
+            "checked",
+        ],
+        &["--loads", "once", "0.01 appears twice"],
+    );
+}

@@ -1,6 +1,8 @@
 //! Helpers shared by the test modules: definition folders with a spliced scene, and
 //! outcomes and tables without what depends on the clock or the machine.
 
+pub mod contact;
+
 use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};

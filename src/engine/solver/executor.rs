@@ -82,6 +82,11 @@ pub trait Iteration: Sized {
 }
 
 /// Runs `solve` for at most `max_iter` iterations; `monitor` sees every estimate.
+///
+/// # Errors
+///
+/// The errors of the iteration's steps, and of [`Iteration::terminate`] when the solve
+/// stops or the budget ends short of the tolerance.
 pub fn run<S: Iteration>(
     mut solve: S,
     max_iter: usize,

@@ -179,6 +179,10 @@ impl SolveOptions {
     }
 
     /// Checks the ranges.
+    ///
+    /// # Errors
+    ///
+    /// If `tol` is outside `[1e-14, 1)` or `max_iter` is 0.
     pub fn validate(&self) -> Result<()> {
         if !(self.tol.is_finite() && self.tol >= 1e-14 && self.tol < 1.0) {
             return Err(Error::invalid("tol", self.tol, "in [1e-14, 1)"));
@@ -216,6 +220,13 @@ pub trait Solver {
 
     /// Solves `problem` from `start` to `opts.tol`, or fails with the residual reached;
     /// `monitor` sees every iteration.
+    ///
+    /// # Errors
+    ///
+    /// If the start does not fit the problem ([`Error::InvalidInput`]), or the solve ends
+    /// short of the tolerance ([`Error::NotConverged`], with the residual reached), meets a
+    /// non-finite value ([`Error::NonFinite`]) or loses every contact point
+    /// ([`Error::LostContact`]).
     fn solve_monitored(
         &mut self,
         problem: &ContactProblem,
@@ -225,6 +236,10 @@ pub trait Solver {
     ) -> Result<ContactSolution>;
 
     /// Solves `problem` from `start` to `opts.tol`, or fails with the residual reached.
+    ///
+    /// # Errors
+    ///
+    /// As [`Solver::solve_monitored`].
     fn solve(
         &mut self,
         problem: &ContactProblem,

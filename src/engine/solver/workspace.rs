@@ -50,6 +50,10 @@ fn ensure_len<T: Clone + Default>(v: &mut Vec<T>, len: usize) {
 
 /// The previous solution of a warm start (`None` for a cold one), checked to lie on
 /// `grid`.
+///
+/// # Errors
+///
+/// If the previous solution's fields are not one value per point of `grid`.
 pub fn warm_start<'s>(start: Start<'s>, grid: &Grid) -> Result<Option<&'s ContactSolution>> {
     let Start::Warm(prev) = start else {
         return Ok(None);
@@ -119,6 +123,11 @@ impl SolveRecord {
     /// if its residual meets `tol`, and otherwise the error, which reports the smaller of
     /// its residual and `earlier`, the smallest residual an earlier check reached (for a
     /// method that keeps one).
+    ///
+    /// # Errors
+    ///
+    /// If the residual of `solution` is above `tol` ([`Error::NotConverged`], with the
+    /// points in contact).
     pub fn accept(
         &self,
         solution: ContactSolution,

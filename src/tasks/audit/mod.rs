@@ -195,6 +195,10 @@ pub struct Audit {
 }
 
 /// Parses a duration: a number with `s`, `m` (or `min`) or `h`, e.g. `20m`, `2h`, `90s`.
+///
+/// # Errors
+///
+/// If `text` is not a positive number followed by one of the units.
 pub fn parse_budget(text: &str) -> Result<f64> {
     let bad = || {
         Error::invalid(
@@ -296,6 +300,12 @@ fn chosen(registry: &Registry, sources: &[Source], opts: &AuditOptions) -> Resul
 
 /// Audits `opts.from`: draws the sample, recomputes each job in turn (telling `event`),
 /// writes `audit.md` and `audit.json` into `opts.out`.
+///
+/// # Errors
+///
+/// If the budget is not positive, `opts.out` is not a folder, `opts.from` holds no
+/// stored job results, a validation or job named is unknown, a stored result cannot be
+/// read, or the audit's files cannot be written.
 pub fn audit(
     registry: &Registry,
     opts: &AuditOptions,

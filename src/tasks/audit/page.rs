@@ -253,6 +253,10 @@ impl Audit {
     }
 
     /// Writes `audit.md` and `audit.json` into `out`.
+    ///
+    /// # Errors
+    ///
+    /// If a file cannot be written ([`crate::Error::Io`]).
     pub fn write(&self, out: &Path) -> Result<()> {
         crate::io::write_atomic(&out.join("audit.md"), self.markdown().as_bytes())?;
         let json = serde_json::to_vec_pretty(self).expect("audits serialise");

@@ -39,7 +39,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::engine::solver::SolverKind;
 use crate::engine::spectrum::ShellSpectrum;
-use crate::error::{check_open, check_positive, Error, Result};
+use crate::error::{check_once, check_open, check_positive, Error, Result};
 use crate::experiments::contact_change::{categories, net_over_gross};
 use crate::experiments::flux::net_flow_residual;
 use crate::experiments::scene::Base;
@@ -242,18 +242,6 @@ pub struct SensitivityRow {
     /// Modes the step adds (mean over realizations; equal for all of them).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub modes_added: Option<f64>,
-}
-
-/// Refuses a list that names a value twice: its row would be run and counted twice.
-fn check_once(field: &str, values: &[f64]) -> Result<()> {
-    match (1..values.len()).find(|&k| values[..k].contains(&values[k])) {
-        Some(k) => Err(Error::invalid(
-            field,
-            format!("{values:?}"),
-            format!("each value once ({} appears twice)", values[k]),
-        )),
-        None => Ok(()),
-    }
 }
 
 impl SensitivityPlan {

@@ -1,0 +1,167 @@
+//! One conformance check run over every solver of [`SolverKind::ALL`], after RustFFT's
+//! `check_fft_algorithm`: a solver added to the list passes [`check_solver`] or fails here.
+//! For each solver:
+//!
+//! 1. every solution it returns meets the hard-wall conditions, with the residual of its
+//!    fields below the tolerance asked for ([`check_solution`]);
+//! 2. a warm start from its own converged solution converges at once, before any step (0
+//!    iterations: every method judges its start first), to the same solution
+//!    ([`assert_agree`]);
+//! 3. Westergaard's sinusoid, periodic, has an exact solution: in partial contact the
+//!    area within two grid spacings and the peak pressure within 1e-3 (the bounds of
+//!    `hard_scenes`), in full contact the pressure exact to 1e-9 `p0` point by point;
+//! 4. a sphere on the free boundary gives Hertz's contact ([`assert_hertz`]).
+//!
+//! The scenes are the smallest that resolve each property, so that the check costs a few
+//! seconds in release; the solver tests (`solvers`, `hard_scenes`) go further.
+
+use persson_check::engine::contact::{ContactProblem, ContactSolution, Model};
+use persson_check::engine::field;
+use persson_check::engine::reference::{Hertz, Westergaard};
+use persson_check::engine::solver::{SolveOptions, Solver, SolverKind, Start};
+use persson_check::engine::surface::{Surface, SurfaceParams};
+
+use crate::common::contact::{
+    assert_agree, assert_hertz, check_solution, sinusoid, sphere_on_free_boundary,
+};
+
+/// The tolerance of the periodic scenes: two orders tighter than the default, as in
+/// `hard_scenes`, so that agreement is tested well below any physical effect.
+const TOL: f64 = 1e-10;
+
+/// A solve of `problem` by `solver` (of `kind`) from `start` to `tol` that must converge
+/// and pass [`check_solution`].
+fn converged(
+    scene: &str,
+    kind: SolverKind,
+    solver: &mut dyn Solver,
+    problem: &ContactProblem,
+    start: Start,
+    tol: f64,
+) -> ContactSolution {
+    let s = solver
+        .solve(problem, start, &SolveOptions::with_tol(tol))
+        .unwrap_or_else(|e| panic!("{scene}, {}: {e}", kind.name()));
+    check_solution(scene, kind, problem, &s, tol);
+    eprintln!(
+        "{scene:<30} {:<4} residual {:.2e}  iterations {:>5}{}  a_r {:.4}",
+        kind.name(),
+        s.stats.residual.value(),
+        s.stats.iterations,
+        if s.stats.warm { " (warm)" } else { "" },
+        s.contact_area()
+    );
+    s
+}
+
+/// Cold, then warm from the cold solution, on a random surface in partial contact
+/// (64^2, H = 0.8, lambda_l = 32, lambda_s = 4, p0 = 0.1 E* g_bar).
+fn warm_from_the_solution(kind: SolverKind) {
+    let surface = Surface::generate(&SurfaceParams::new(64, 0.8, 32.0, 4.0, 3)).unwrap();
+    let model = Model::new(surface.grid().clone(), 1.0).unwrap();
+    let h = surface.heights_at(f64::INFINITY, &model.fft);
+    let problem = ContactProblem::new(&model, &h, 0.1).unwrap();
+    let mut solver = kind.build();
+    let scene = "random surface";
+    let cold = converged(scene, kind, solver.as_mut(), &problem, Start::Cold, TOL);
+    let warm = converged(
+        scene,
+        kind,
+        solver.as_mut(),
+        &problem,
+        Start::Warm(&cold),
+        TOL,
+    );
+    assert!(!cold.stats.warm && warm.stats.warm, "{}", kind.name());
+    assert!(
+        warm.stats.iterations == 0,
+        "{}: {} iterations from the converged solution (cold: {})",
+        kind.name(),
+        warm.stats.iterations,
+        cold.stats.iterations
+    );
+    assert_agree(scene, &cold, &warm, TOL);
+}
+
+/// Westergaard's sinusoid on 64^2, `h0 = 1`: partial contact at `0.3 p*` and full contact
+/// at `1.5 p*`.
+fn westergaard(kind: SolverKind) {
+    let (n, h0) = (64usize, 1.0);
+    let (model, h) = sinusoid(n, h0);
+    let exact = Westergaard {
+        h0,
+        lambda: n as f64,
+        e_star: 1.0,
+    };
+    let mut solver = kind.build();
+    let p0 = 0.3 * exact.full_contact_pressure();
+    let problem = ContactProblem::new(&model, &h, p0).unwrap();
+    let s = converged(
+        "Westergaard, partial",
+        kind,
+        solver.as_mut(),
+        &problem,
+        Start::Cold,
+        TOL,
+    );
+    let area = (s.contact_area() - exact.contact_fraction(p0)).abs() * n as f64;
+    let peak = (field::max(&s.pressure) - exact.peak_pressure(p0)).abs() / exact.peak_pressure(p0);
+    assert!(area <= 2.0, "{}: area off by {area} spacings", kind.name());
+    assert!(peak <= 1e-3, "{}: peak off by {peak:e}", kind.name());
+
+    let p0 = 1.5 * exact.full_contact_pressure();
+    let problem = ContactProblem::new(&model, &h, p0).unwrap();
+    let s = converged(
+        "Westergaard, full",
+        kind,
+        solver.as_mut(),
+        &problem,
+        Start::Cold,
+        1e-11,
+    );
+    assert_eq!(s.contact_area(), 1.0, "{}", kind.name());
+    for (k, &p) in s.pressure.iter().enumerate() {
+        let e = exact.pressure(p0, (k % n) as f64);
+        assert!(
+            (p - e).abs() <= 1e-9 * p0,
+            "{}: point {k}: {p} vs {e}",
+            kind.name()
+        );
+    }
+}
+
+/// A sphere of radius 1000 on a 192^2 free-boundary window, pressed to a contact radius
+/// of 40 grid spacings (far from the window's edges).
+fn hertz_on_the_free_boundary(kind: SolverKind) {
+    let (n, radius, a) = (192usize, 1000.0, 40.0);
+    let hertz = Hertz {
+        radius,
+        e_star: 1.0,
+    };
+    let force = hertz.force_for_radius(a);
+    let (model, h, p0) = sphere_on_free_boundary(n, radius, force);
+    let problem = ContactProblem::new(&model, &h, p0).unwrap();
+    let s = converged(
+        "Hertz, free boundary",
+        kind,
+        kind.build().as_mut(),
+        &problem,
+        Start::Cold,
+        1e-8,
+    );
+    assert_hertz(kind, &model, &s, &hertz, (a, force));
+}
+
+/// Every property of the module docs, for one solver.
+fn check_solver(kind: SolverKind) {
+    warm_from_the_solution(kind);
+    westergaard(kind);
+    hertz_on_the_free_boundary(kind);
+}
+
+#[test]
+fn every_solver_conforms() {
+    for kind in SolverKind::ALL {
+        check_solver(kind);
+    }
+}
