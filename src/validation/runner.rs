@@ -548,8 +548,9 @@ pub fn check_experiment<E: Experiment>(source: &Source) -> Result<()> {
     Ok(())
 }
 
-/// The scene of `def` at `scale` with its jobs, once its ranges are checked and it has
-/// at least one job; errors name the file and the scene's table.
+/// The scene of `def` at `scale` with its jobs, once its ranges are checked, the claims
+/// judged on it name measures its experiment declares ([`claims::check_declared`]) and it
+/// has at least one job; errors name the file and the scene's table.
 fn checked_scene<'a, E: Experiment>(
     source: &Source,
     def: &'a Definition<E::Scene>,
@@ -573,6 +574,13 @@ fn checked_scene<'a, E: Experiment>(
     }
     let scene = def.scene(scale);
     E::validate(scene).map_err(|e| Error::bad_file(&source.path, format!("[{scale}] {e}")))?;
+    claims::check_declared(
+        &def.claims,
+        &E::keys(scene),
+        scale == Scale::Reduced,
+        scene.solver().is_some(),
+    )
+    .map_err(|e| Error::bad_file(&source.path, format!("[{scale}] {e}")))?;
     let jobs = scene.jobs();
     if jobs.is_empty() {
         return Err(Error::bad_file(
