@@ -78,26 +78,28 @@ impl Keys {
     }
 }
 
-/// The names among `declared` closest to `name`: those that share the longest beginning
-/// with it (at least a few characters), or all of them when none does; at most a dozen.
+/// The names among `declared` closest to `name`, at most eight: those that share the
+/// longest beginning with it first (at least a few characters), or the first of them all
+/// when none does.
 pub fn closest(name: &str, declared: &[String]) -> Vec<String> {
-    const MAX: usize = 12;
-    let shared = |d: &String| {
+    const MAX: usize = 8;
+    let shared = |d: &str| {
         name.chars()
             .zip(d.chars())
             .take_while(|(a, b)| a == b)
             .count()
     };
-    let best = declared.iter().map(shared).max().unwrap_or(0);
-    let mut close: Vec<String> = if best >= 3 {
-        declared.iter().filter(|d| shared(d) == best).cloned().collect()
-    } else {
-        declared.to_vec()
-    };
-    close.sort();
-    close.dedup();
-    close.truncate(MAX);
+    let mut close: Vec<(usize, &String)> = declared.iter().map(|d| (shared(d), d)).collect();
+    if close.iter().any(|&(n, _)| n >= 3) {
+        close.retain(|&(n, _)| n >= 3);
+    }
+    close.sort_by(|a, b| b.0.cmp(&a.0).then_with(|| a.1.cmp(b.1)));
+    close.dedup_by(|a, b| a.1 == b.1);
     close
+        .into_iter()
+        .take(MAX)
+        .map(|(_, d)| d.clone())
+        .collect()
 }
 
 #[cfg(test)]
@@ -122,7 +124,10 @@ mod tests {
         let d: Vec<String> = ["share_ar0.14", "share_ar0.014", "shells", "flux_in"]
             .map(String::from)
             .to_vec();
-        assert_eq!(closest("share_ar0.15", &d), ["share_ar0.14"]);
+        assert_eq!(
+            closest("share_ar0.15", &d),
+            ["share_ar0.14", "share_ar0.014"]
+        );
         assert_eq!(closest("share_ar1", &d), ["share_ar0.014", "share_ar0.14"]);
         assert_eq!(closest("zzz", &d).len(), 4);
     }

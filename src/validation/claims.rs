@@ -334,9 +334,12 @@ fn declared(measure: &str, keys: &Keys, fixed_solver: bool) -> std::result::Resu
     match kind {
         "detail" => {
             let (key, grid) = match rest.split_once('@') {
-                Some((k, g)) => (k, Some(g.parse::<usize>().map_err(|_| {
-                    format!("a grid size after '@' in detail:{key}@N", key = k)
-                })?)),
+                Some((k, g)) => (
+                    k,
+                    Some(g.parse::<usize>().map_err(|_| {
+                        format!("a grid size after '@' in detail:{key}@N", key = k)
+                    })?),
+                ),
                 None => (rest, None),
             };
             if keys.has_detail(key, grid) {
@@ -354,10 +357,9 @@ fn declared(measure: &str, keys: &Keys, fixed_solver: bool) -> std::result::Resu
             );
             match keys.study_columns(s) {
                 None => Err(listed("a study", s, &keys.study_names())),
-                Some(columns) if !columns.iter().any(|k| k == c) => Err(format!(
-                    "a column of study {s}: {}",
-                    columns.join(", ")
-                )),
+                Some(columns) if !columns.iter().any(|k| k == c) => {
+                    Err(format!("a column of study {s}: {}", columns.join(", ")))
+                }
                 Some(_) => Ok(()),
             }
         }
@@ -398,8 +400,9 @@ pub fn check_declared(
             named.push((format!("other_readings[{k}].measure"), &r.measure));
         }
         for (field, m) in named {
-            declared(m, keys, fixed_solver)
-                .map_err(|allowed| Error::invalid(&format!("claims.{}.{field}", c.key), m, allowed))?;
+            declared(m, keys, fixed_solver).map_err(|allowed| {
+                Error::invalid(&format!("claims.{}.{field}", c.key), m, allowed)
+            })?;
         }
     }
     Ok(())

@@ -26,7 +26,7 @@ use super::store::{
 use crate::engine::solver::SolverKind;
 use crate::error::{Error, Result};
 use crate::experiments::{
-    Check, Conclusion, Detail, Experiment, JobContext, JobOf, Jobs, ResultOf, Work,
+    Check, Conclusion, Detail, Experiment, JobContext, JobOf, Jobs, Keys, ResultOf, Work,
 };
 use crate::stats::{decide, Claim, Decision, Estimate};
 
@@ -546,6 +546,14 @@ pub fn check_experiment<E: Experiment>(source: &Source) -> Result<()> {
         checked_scene::<E>(source, &def, scale)?;
     }
     Ok(())
+}
+
+/// The measures that experiment `E` declares for `source`'s scene at `scale` (its detail
+/// keys and studies, [`Experiment::keys`]), once the definition is checked at that scale.
+pub fn declared_keys<E: Experiment>(source: &Source, scale: Scale) -> Result<Keys> {
+    let def = source.parse::<E::Scene>()?;
+    let (scene, _) = checked_scene::<E>(source, &def, scale)?;
+    Ok(E::keys(scene))
 }
 
 /// The scene of `def` at `scale` with its jobs, once its ranges are checked, the claims
