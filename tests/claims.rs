@@ -1,13 +1,17 @@
 //! Every claim of the shipped definitions, walked: its rule is its phrase's (or it says
 //! why not), and every measure it names (its own, an ordering's, each other reading's) is
 //! one that the committed outcomes hold, at full scale and on the reduced scenes, so a
-//! mistyped key cannot read as "not measured".
+//! mistyped key cannot read as "not measured". Every detail and study of the committed
+//! outcomes is one its experiment declares for that scene, so the declarations that the
+//! claims are checked against when a definition loads cannot fall behind the code.
 
 use std::path::Path;
 
 use persson_check::stats::Estimate;
 use persson_check::validation::claims::{validate_claims, Measures, Rule};
+use persson_check::validation::registry::Registry;
 use persson_check::validation::source::builtin_sources;
+use persson_check::validation::Scale;
 use persson_check::validation::{ClaimSpec, Outcome};
 use serde::Deserialize;
 
@@ -102,6 +106,52 @@ fn every_measure_a_claim_names_is_in_the_committed_outcomes() {
         missing.is_empty(),
         "measures not in the outcomes:\n{}",
         missing.join("\n")
+    );
+}
+
+#[test]
+fn every_key_in_the_committed_outcomes_is_declared_by_its_experiment() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("results");
+    let registry = Registry::builtin();
+    let mut undeclared = Vec::new();
+    let mut read = 0;
+    for source in builtin_sources() {
+        let (name, _) = source.header().unwrap();
+        for scale in [Scale::Full, Scale::Reduced] {
+            let keys = registry
+                .keys(&source, scale)
+                .unwrap_or_else(|e| panic!("{name} [{scale}]: {e}"));
+            let path = root.join(scale.to_string()).join(format!("{name}.json"));
+            let text = std::fs::read_to_string(&path)
+                .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            let o: Outcome = serde_json::from_str(&text).unwrap();
+            read += 1;
+            for d in &o.details {
+                if !keys.has_detail(&d.key, d.grid) {
+                    let grid = d.grid.map(|n| format!("@{n}")).unwrap_or_default();
+                    undeclared.push(format!("{scale}/{name}: detail {}{grid}", d.key));
+                }
+            }
+            for s in &o.studies {
+                match keys.study_columns(&s.key) {
+                    None => undeclared.push(format!("{scale}/{name}: study {}", s.key)),
+                    Some(columns) => {
+                        for c in s.columns.iter().filter(|c| !columns.contains(&c.key)) {
+                            undeclared.push(format!(
+                                "{scale}/{name}: column {} of study {}",
+                                c.key, s.key
+                            ));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    assert!(read >= 20, "{read} outcomes read");
+    assert!(
+        undeclared.is_empty(),
+        "written but not declared by the experiment:\n{}",
+        undeclared.join("\n")
     );
 }
 

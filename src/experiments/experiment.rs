@@ -11,6 +11,7 @@ use serde::de::DeserializeOwned;
 use serde::Serialize;
 
 use super::findings::{Check, Conclusion, Criteria, Detail, Table};
+use super::keys::Keys;
 use super::study::Study;
 use crate::error::Result;
 use crate::plot::{Figure, Raster, Waterfall};
@@ -155,7 +156,15 @@ pub trait Experiment {
     /// The headline statistic and Persson's prediction of it.
     fn headline(stats: &Self::Stats) -> (Estimate, f64);
 
-    /// Secondary statistics, with stable keys.
+    /// The measures a run of `scene` gives the claims ([`Keys`]): the key of every detail
+    /// and every study (with its columns) that [`Experiment::details`] and
+    /// [`Experiment::studies`] can write for it, built by the same functions. A claim that
+    /// names another is refused when its definition loads.
+    fn keys(_scene: &Self::Scene) -> Keys {
+        Keys::default()
+    }
+
+    /// Secondary statistics, with stable keys (declared by [`Experiment::keys`]).
     fn details(_run: &Run<Self>, _stats: &Self::Stats) -> Vec<Detail> {
         Vec::new()
     }

@@ -39,7 +39,8 @@
 //! fixed-load magnification climb with optional checkpoints), [`contact_change`] (which
 //! points entered or left contact in a step, and the maps' packing and colours),
 //! [`history`] (every point's contact history over a climb, and the flux over an interval)
-//! and [`study`] (the generic table of rows an experiment adds beside its headline).
+//! and [`study`] (the generic table of rows an experiment adds beside its headline);
+//! [`keys`] holds the measures an experiment declares for a scene, which claims name.
 //! No experiment imports another: what two share lives here.
 
 pub mod climb;
@@ -48,6 +49,7 @@ pub mod contact_change;
 pub mod ensemble;
 pub mod flux;
 pub mod history;
+pub mod keys;
 pub mod modes;
 pub mod reentry;
 pub mod scene;
@@ -63,5 +65,6 @@ mod shipped;
 
 pub use self::experiment::{Experiment, JobContext, JobOf, Jobs, ResultOf, Run, Work};
 pub use self::findings::{figure, Check, Conclusion, Criteria, Detail, Table, UNDECIDED};
+pub use self::keys::Keys;
 #[cfg(test)]
 pub(crate) use self::shipped::{assert_refused, shipped_scenes, shipped_valid};

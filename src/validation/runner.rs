@@ -26,7 +26,7 @@ use super::store::{
 use crate::engine::solver::SolverKind;
 use crate::error::{Error, Result};
 use crate::experiments::{
-    Check, Conclusion, Detail, Experiment, JobContext, JobOf, Jobs, ResultOf, Work,
+    Check, Conclusion, Detail, Experiment, JobContext, JobOf, Jobs, Keys, ResultOf, Work,
 };
 use crate::stats::{decide, Claim, Decision, Estimate};
 
@@ -548,8 +548,17 @@ pub fn check_experiment<E: Experiment>(source: &Source) -> Result<()> {
     Ok(())
 }
 
-/// The scene of `def` at `scale` with its jobs, once its ranges are checked and it has
-/// at least one job; errors name the file and the scene's table.
+/// The measures that experiment `E` declares for `source`'s scene at `scale` (its detail
+/// keys and studies, [`Experiment::keys`]), once the definition is checked at that scale.
+pub fn declared_keys<E: Experiment>(source: &Source, scale: Scale) -> Result<Keys> {
+    let def = source.parse::<E::Scene>()?;
+    let (scene, _) = checked_scene::<E>(source, &def, scale)?;
+    Ok(E::keys(scene))
+}
+
+/// The scene of `def` at `scale` with its jobs, once its ranges are checked, the claims
+/// judged on it name measures its experiment declares ([`claims::check_declared`]) and it
+/// has at least one job; errors name the file and the scene's table.
 fn checked_scene<'a, E: Experiment>(
     source: &Source,
     def: &'a Definition<E::Scene>,
@@ -573,6 +582,13 @@ fn checked_scene<'a, E: Experiment>(
     }
     let scene = def.scene(scale);
     E::validate(scene).map_err(|e| Error::bad_file(&source.path, format!("[{scale}] {e}")))?;
+    claims::check_declared(
+        &def.claims,
+        &E::keys(scene),
+        scale == Scale::Reduced,
+        scene.solver().is_some(),
+    )
+    .map_err(|e| Error::bad_file(&source.path, format!("[{scale}] {e}")))?;
     let jobs = scene.jobs();
     if jobs.is_empty() {
         return Err(Error::bad_file(

@@ -51,7 +51,7 @@ use self::figures::{area_figures, area_table};
 use self::stats::{AreaStats, NEAR_FULL_CONTACT};
 use super::scene::{check_increasing, increasing, list_error};
 use super::study::Study;
-use super::{Check, Detail, Experiment, JobContext, Jobs, Table, Work};
+use super::{Check, Detail, Experiment, JobContext, Jobs, Keys, Table, Work};
 use crate::engine::contact::Model;
 use crate::engine::solver::SolveOptions;
 use crate::engine::surface::{Surface, SurfaceParams};
@@ -323,6 +323,31 @@ pub fn persson_kappa() -> f64 {
     (8.0 / std::f64::consts::PI).sqrt()
 }
 
+/// The key of the slope at one Hurst exponent.
+fn hurst_key(hurst: f64) -> String {
+    format!("kappa_H{hurst}")
+}
+
+/// The keys of the other details ([`Experiment::keys`]): the slope on each grid (one key,
+/// measured on several grids), and the law's deviations and shape.
+const KAPPA_ON_GRID: &str = "kappa_on_grid";
+const LAW_DEVIATION: &str = "law_deviation";
+const COMPLEMENT_DEVIATION: &str = "complement_deviation";
+const KAPPA_SPREAD_H: &str = "kappa_spread_h";
+const C2_FIT: &str = "c2_fit";
+const C1_FIT: &str = "c1_fit";
+const CORRECTION_EXPONENT: &str = "correction_exponent";
+const KAPPA_PARTIAL_MEAN: &str = "kappa_partial_mean";
+const LAW_DETAILS: [&str; 7] = [
+    LAW_DEVIATION,
+    COMPLEMENT_DEVIATION,
+    KAPPA_SPREAD_H,
+    C2_FIT,
+    C1_FIT,
+    CORRECTION_EXPONENT,
+    KAPPA_PARTIAL_MEAN,
+];
+
 type Run<'a> = super::Run<'a, ContactArea>;
 
 impl Experiment for ContactArea {
@@ -335,6 +360,17 @@ impl Experiment for ContactArea {
 
     fn headline(s: &AreaStats) -> (Estimate, f64) {
         (s.kappa, persson_kappa())
+    }
+
+    fn keys(scene: &AreaScene) -> Keys {
+        let mut keys = Keys::default();
+        for &refine in &scene.refinements {
+            keys.on_grid(KAPPA_ON_GRID, scene.n * refine);
+        }
+        keys.details(scene.hursts.iter().map(|&h| hurst_key(h)));
+        keys.details(LAW_DETAILS);
+        study::keys(scene, &mut keys);
+        keys
     }
 
     /// The slope on every grid and at every Hurst exponent, and the law's deviation.
@@ -350,7 +386,7 @@ impl Experiment for ContactArea {
             .iter()
             .map(|&(refine, k)| {
                 kappa(
-                    "kappa_on_grid".into(),
+                    KAPPA_ON_GRID.into(),
                     format!(
                         "kappa on the {0}x{0} grid (lambda_s = {1} grid spacings)",
                         scene.n * refine,
@@ -363,20 +399,20 @@ impl Experiment for ContactArea {
             .collect();
         details.extend(s.hursts.iter().map(|h| {
             kappa(
-                format!("kappa_H{}", h.hurst),
+                hurst_key(h.hurst),
                 format!("kappa, H = {} ({label})", h.hurst),
                 h.kappa,
             )
         }));
         details.push(Detail::new(
-            "law_deviation",
+            LAW_DEVIATION,
             format!(
                 "largest relative deviation from eq. (contactArea), |a_r - law| / a_r ({label})"
             ),
             s.law.estimate(),
         ));
         details.push(Detail::new(
-            "complement_deviation",
+            COMPLEMENT_DEVIATION,
             format!(
                 "largest relative deviation of 1 - a_r from eq. (contactArea)'s, a_r in [{}, {}] \
                  ({label})",
@@ -483,7 +519,7 @@ fn shape_details(scene: &AreaScene, s: &AreaStats) -> Vec<Detail> {
     let top = scene.reduced_pressures[scene.reduced_pressures.len() - 1];
     vec![
         Detail::new(
-            "kappa_spread_h",
+            KAPPA_SPREAD_H,
             format!(
                 "largest spread over H of a_r / p~0 at one load, every a_r in [{}, {}] \
                  (p~0 = {p}: H = {hi} against H = {lo}; {label})",
@@ -493,7 +529,7 @@ fn shape_details(scene: &AreaScene, s: &AreaStats) -> Vec<Detail> {
         )
         .persson(0.0),
         Detail::new(
-            "c2_fit",
+            C2_FIT,
             format!(
                 "c2 of eq. (contactArea) with c1 = {} for a_r pooled over H at p~0 = {top} \
                  ({label})",
@@ -503,9 +539,9 @@ fn shape_details(scene: &AreaScene, s: &AreaStats) -> Vec<Detail> {
         )
         .persson(1.0)
         .paper(Some(law.c2)),
-        Detail::new("c1_fit", format!("c1 = kappa / 2 ({label})"), shape.c1).paper(Some(law.c1)),
+        Detail::new(C1_FIT, format!("c1 = kappa / 2 ({label})"), shape.c1).paper(Some(law.c1)),
         Detail::new(
-            "correction_exponent",
+            CORRECTION_EXPONENT,
             format!(
                 "exponent m of kappa(0) - kappa(p~0) ~ p~0^m from p~0 = {p0}, {p1}, {p2}, \
                  kappa pooled over H (jackknife over realizations; {label})"
@@ -514,7 +550,7 @@ fn shape_details(scene: &AreaScene, s: &AreaStats) -> Vec<Detail> {
         )
         .paper(Some(2.0)),
         Detail::new(
-            "kappa_partial_mean",
+            KAPPA_PARTIAL_MEAN,
             format!(
                 "mean a_r / p~0 over H and the loads with a_r in [{}, {}] ({label})",
                 stats::PARTIAL_RANGE.0,

@@ -3,22 +3,55 @@
 //! `a_r / p~0` at low load on every grid.
 
 use super::stats::{AreaStats, CORRECTION_LOADS};
-use super::{grid_label, Run};
+use super::{grid_label, AreaScene, Run};
 use crate::experiments::study::{Cell, Study};
+use crate::experiments::Keys;
+
+/// The studies' keys and columns, `(key, label)`.
+const LAW_READINGS: &str = "law_readings";
+const READINGS_COLUMNS: &[(&str, &str)] = &[
+    ("deviation", "largest deviation, %"),
+    ("hurst", "H"),
+    ("reduced_pressure", "p~0"),
+    ("contact_area", "a_r there"),
+];
+const GRID_ORDER: &str = "grid_order";
+const ORDER_COLUMNS: &[(&str, &str)] = &[
+    ("a_r_1", "a_r, coarse"),
+    ("a_r_2", "a_r, middle"),
+    ("a_r_3", "a_r, fine"),
+    ("ratio", "(a1 - a2) / (a2 - a3)"),
+    ("first_order", "first order"),
+    ("extrapolated_coarse", "extrapolated, coarse pair"),
+    ("extrapolated_fine", "extrapolated, fine pair"),
+];
+const KAPPA_FALL: &str = "kappa_fall";
+const FALL_COLUMNS: &[(&str, &str)] = &[
+    ("kappa_lowest", "a_r / p~0 at the lowest load"),
+    ("kappa_at", "a_r / p~0 at the correction's first load"),
+    ("fall", "fall, %"),
+    ("contact_points", "contact points at the lowest load"),
+    ("l_over_lambda_l", "L / lambda_l"),
+];
+
+/// Declares the studies a run of `scene` can have: the readings and the fall always, the
+/// order of the grid error with a finer grid.
+pub(super) fn keys(scene: &AreaScene, keys: &mut Keys) {
+    keys.study(LAW_READINGS, READINGS_COLUMNS);
+    if scene.finer_grid.is_some() {
+        keys.study(GRID_ORDER, ORDER_COLUMNS);
+    }
+    keys.study(KAPPA_FALL, FALL_COLUMNS);
+}
 
 /// The readings of the law's deviation (denominator, grid) and the finer grid's
 /// order of the grid error.
 pub(super) fn studies(run: &Run, s: &AreaStats) -> Vec<Study> {
     let label = grid_label(run.scene);
     let mut readings = Study::new(
-        "law_readings",
+        LAW_READINGS,
         "Readings of the contact-area law's largest deviation",
-        &[
-            ("deviation", "largest deviation, %"),
-            ("hurst", "H"),
-            ("reduced_pressure", "p~0"),
-            ("contact_area", "a_r there"),
-        ],
+        READINGS_COLUMNS,
     )
     .percent(&["deviation"])
     .about(
@@ -46,22 +79,14 @@ pub(super) fn studies(run: &Run, s: &AreaStats) -> Vec<Study> {
     if let Some(g) = s.grid_order.first() {
         let n = |k: usize| run.scene.n * g.refinements[k];
         let mut order = Study::new(
-            "grid_order",
+            GRID_ORDER,
             format!(
                 "The grid error on three grids ({}^2, {}^2, {}^2): is it first order in eps_c?",
                 n(0),
                 n(1),
                 n(2)
             ),
-            &[
-                ("a_r_1", "a_r, coarse"),
-                ("a_r_2", "a_r, middle"),
-                ("a_r_3", "a_r, fine"),
-                ("ratio", "(a1 - a2) / (a2 - a3)"),
-                ("first_order", "first order"),
-                ("extrapolated_coarse", "extrapolated, coarse pair"),
-                ("extrapolated_fine", "extrapolated, fine pair"),
-            ],
+            ORDER_COLUMNS,
         )
         .about(
             "The same realizations on three grids; the ratio of successive differences is \
@@ -102,17 +127,11 @@ fn kappa_fall(run: &Run, s: &AreaStats) -> Option<Study> {
     }
     let (lowest, at) = (scene.reduced_pressures[0], CORRECTION_LOADS[0]);
     let mut study = Study::new(
-        "kappa_fall",
+        KAPPA_FALL,
         format!(
             "The fall of a_r / p~0 from p~0 = {lowest} to {at}, per grid: a finite-size cause?"
         ),
-        &[
-            ("kappa_lowest", "a_r / p~0 at the lowest load"),
-            ("kappa_at", "a_r / p~0 at the correction's first load"),
-            ("fall", "fall, %"),
-            ("contact_points", "contact points at the lowest load"),
-            ("l_over_lambda_l", "L / lambda_l"),
-        ],
+        FALL_COLUMNS,
     )
     .percent(&["fall"])
     .about(format!(

@@ -57,7 +57,7 @@ use self::study::waterfall::{self, WaterfallPlan, WaterfallResult};
 use super::contact_change::{categories, pack_categories, ENTERED, LEFT};
 use super::scene::{scene, Step};
 use super::study::Study;
-use super::{Check, Detail, Experiment, JobContext, Jobs, Work};
+use super::{Check, Detail, Experiment, JobContext, Jobs, Keys, Work};
 use crate::error::{Error, Result};
 use crate::plot::{Figure, Raster, Waterfall};
 use crate::stats::Estimate;
@@ -252,6 +252,15 @@ impl Experiment for Flux {
 
     fn headline(s: &FluxStats) -> (Estimate, f64) {
         (s.steps.ratio, 0.0)
+    }
+
+    fn keys(scene: &FluxScene) -> Keys {
+        let mut keys = Keys::default();
+        keys.details(stats::DETAILS);
+        if scene.sensitivity.is_some() {
+            keys.study(sensitivity::KEY, sensitivity::COLUMNS);
+        }
+        keys
     }
 
     fn details(_run: &Run, s: &FluxStats) -> Vec<Detail> {

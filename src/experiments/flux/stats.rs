@@ -10,6 +10,25 @@ use crate::experiments::contact_change::net_over_gross;
 use crate::experiments::{Check, Criteria, Detail};
 use crate::stats::{decide, round_sig, Claim, Estimate};
 
+/// The keys of the details ([`crate::experiments::Experiment::keys`]).
+const FLUX_IN: &str = "flux_in";
+const FLUX_OUT: &str = "flux_out";
+const NET_OVER_GROSS: &str = "net_over_gross";
+const NET_FLOW: &str = "net_flow";
+const NET_FLOW_RESIDUAL: &str = "net_flow_residual";
+const CONTACT_AREA_BEFORE: &str = "contact_area_before";
+const CONTACT_AREA_AFTER: &str = "contact_area_after";
+/// Every key of [`details`].
+pub const DETAILS: [&str; 7] = [
+    FLUX_IN,
+    FLUX_OUT,
+    NET_OVER_GROSS,
+    NET_FLOW,
+    NET_FLOW_RESIDUAL,
+    CONTACT_AREA_BEFORE,
+    CONTACT_AREA_AFTER,
+];
+
 /// The statistics of the steps, means over realizations.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StepStats {
@@ -70,33 +89,33 @@ pub fn check(criteria: &Criteria, s: &StepStats) -> Check {
 pub fn details(s: &StepStats) -> Vec<Detail> {
     vec![
         Detail::new(
-            "flux_in",
+            FLUX_IN,
             "fraction of the nominal area entering contact",
             s.flux_in,
         ),
         Detail::new(
-            "flux_out",
+            FLUX_OUT,
             "fraction of the nominal area leaving contact",
             s.flux_out,
         ),
         Detail::new(
-            "net_over_gross",
+            NET_OVER_GROSS,
             "net flux over the mean one-way flux, |out - in| / ((out + in) / 2)",
             s.net,
         ),
         Detail::new(
-            "net_flow",
+            NET_FLOW,
             "net flow to non-contact, flux_out - flux_in, fraction of the nominal area",
             s.net_flow,
         ),
         Detail::new(
-            "net_flow_residual",
+            NET_FLOW_RESIDUAL,
             "net-flow identity at fixed load: (flux_out - flux_in) + (a_r after - a_r before), \
              zero up to rounding",
             s.net_flow_residual,
         ),
-        Detail::new("contact_area_before", "a_r at zeta", s.a_before),
-        Detail::new("contact_area_after", "a_r at zeta + dzeta", s.a_after),
+        Detail::new(CONTACT_AREA_BEFORE, "a_r at zeta", s.a_before),
+        Detail::new(CONTACT_AREA_AFTER, "a_r at zeta + dzeta", s.a_after),
     ]
 }
 

@@ -10,7 +10,7 @@ use super::ModeScene;
 use crate::error::{Error, Result};
 use crate::experiments::ensemble::by_load;
 use crate::experiments::study::{Cell, Study};
-use crate::experiments::{Check, Criteria, Detail, Experiment, Jobs, Table};
+use crate::experiments::{Check, Criteria, Detail, Experiment, Jobs, Keys, Table};
 use crate::plot::Figure;
 use crate::stats::{decide, round_sig, Claim, Estimate};
 
@@ -22,6 +22,44 @@ pub struct ModeFrozen;
 fn paper_k(criteria: &Criteria) -> Option<(f64, f64)> {
     Some((criteria.paper("k1")?, criteria.paper("k2")?))
 }
+
+/// The key of the change of `E_norm` after resolution at load `load`, target `zeta_t`.
+fn change_key(load: f64, zeta_t: f64) -> String {
+    format!("change_ar{load}_zt{zeta_t}")
+}
+
+/// The key of the asymptote of `E_norm` at load `load`, target `zeta_t`.
+fn asymptote_key(load: f64, zeta_t: f64) -> String {
+    format!("asymptote_ar{load}_zt{zeta_t}")
+}
+
+/// The keys of the other details ([`Experiment::keys`]).
+const ASYMPTOTE_LONG_MINUS_SHORT: &str = "asymptote_long_minus_short";
+const K1: &str = "k1";
+const K2: &str = "k2";
+const CHANGE_FULL_CONTACT_MAX: &str = "change_full_contact_max";
+const E_END_LONG_MINUS_SHORT_CD: &str = "e_end_long_minus_short_cd";
+const PEAK_SHORT_PARTIAL: &str = "peak_short_partial";
+const FALLOFF_MID_CHORD_ZETA: &str = "falloff_mid_chord_zeta";
+const OTHER_DETAILS: [&str; 7] = [
+    ASYMPTOTE_LONG_MINUS_SHORT,
+    K1,
+    K2,
+    CHANGE_FULL_CONTACT_MAX,
+    E_END_LONG_MINUS_SHORT_CD,
+    PEAK_SHORT_PARTIAL,
+    FALLOFF_MID_CHORD_ZETA,
+];
+
+/// The study of the asymptote law's readings: its key and columns, `(key, label)`.
+const ASYMPTOTE_LAW: &str = "asymptote_law";
+const LAW_COLUMNS: &[(&str, &str)] = &[
+    ("k1", "K1"),
+    ("k2", "K2"),
+    ("points", "partial-contact points"),
+    ("x_min", "smallest x"),
+    ("x_max", "largest x"),
+];
 
 type Run<'a> = crate::experiments::Run<'a, ModeFrozen>;
 
@@ -57,6 +95,19 @@ impl Experiment for ModeFrozen {
         (s.headline(), 0.0)
     }
 
+    fn keys(scene: &ModeScene) -> Keys {
+        let mut keys = Keys::default();
+        for &load in &scene.contact_areas {
+            for &zt in &scene.targets {
+                keys.details([change_key(load, zt), asymptote_key(load, zt)]);
+            }
+            keys.detail(onset_key(load));
+        }
+        keys.details(OTHER_DETAILS);
+        keys.study(ASYMPTOTE_LAW, LAW_COLUMNS);
+        keys
+    }
+
     /// The change and the asymptote of every load and target, the long-minus-short
     /// difference of the asymptotes, and the fitted law.
     fn details(run: &Run, s: &FrozenStats) -> Vec<Detail> {
@@ -68,7 +119,7 @@ impl Experiment for ModeFrozen {
             let zt = scene.targets[a.target];
             details.push(
                 Detail::new(
-                    format!("change_ar{}_zt{zt}", a.load),
+                    change_key(a.load, zt),
                     format!(
                         "change of E_norm from zeta = {:.3} to {:.3} (zeta_t = {zt}, a_r = {} at \
                          full resolution)",
@@ -80,7 +131,7 @@ impl Experiment for ModeFrozen {
             );
             details.push(
                 Detail::new(
-                    format!("asymptote_ar{}_zt{zt}", a.load),
+                    asymptote_key(a.load, zt),
                     format!(
                         "asymptote of E_norm, zeta -> infinity (zeta_t = {zt}, a_r = {}), at \
                          x = -dln a_r/dln zeta = {}",
@@ -96,7 +147,7 @@ impl Experiment for ModeFrozen {
             let last = scene.targets.len() - 1;
             details.push(
                 Detail::new(
-                    "asymptote_long_minus_short",
+                    ASYMPTOTE_LONG_MINUS_SHORT,
                     format!(
                         "asymptote of zeta_t = {} minus that of zeta_t = {} at a_r = {} \
                          (paper: negative, long wavelengths lose more)",
@@ -109,13 +160,13 @@ impl Experiment for ModeFrozen {
         }
         if let Some((k1, k2)) = s.k() {
             details.push(Detail::new(
-                "k1",
+                K1,
                 "K1 of the asymptote law K1 exp(-K2 x), x over the frozen window (the \
                  claims read x at the mode's own magnification: study asymptote_law, row mode)",
                 k1,
             ));
             details.push(Detail::new(
-                "k2",
+                K2,
                 "K2 of the asymptote law K1 exp(-K2 x), x over the frozen window (the \
                  claims read x at the mode's own magnification: study asymptote_law, row mode)",
                 k2,
@@ -177,7 +228,7 @@ impl Experiment for ModeFrozen {
         let scene = run.scene;
         let mut golden = BTreeMap::new();
         for a in &s.after {
-            let key = format!("change_ar{}_zt{}", a.load, scene.targets[a.target]);
+            let key = change_key(a.load, scene.targets[a.target]);
             golden.insert(key, round_sig(a.change.value, 2));
         }
         golden.insert("change_headline".into(), round_sig(s.headline().value, 2));
@@ -196,15 +247,9 @@ impl Experiment for ModeFrozen {
     fn studies(run: &Run, s: &FrozenStats) -> Vec<Study> {
         let scene = run.scene;
         let mut study = Study::new(
-            "asymptote_law",
+            ASYMPTOTE_LAW,
             "Readings of the asymptote law K1 exp(-K2 x): where x = -d ln a_r / d ln zeta is taken",
-            &[
-                ("k1", "K1"),
-                ("k2", "K2"),
-                ("points", "partial-contact points"),
-                ("x_min", "smallest x"),
-                ("x_max", "largest x"),
-            ],
+            LAW_COLUMNS,
         )
         .about(
             "The same asymptotes E_inf of every partial-contact load and target, fitted \
@@ -339,7 +384,7 @@ fn new_details(scene: &ModeScene, s: &FrozenStats) -> Vec<Detail> {
     if let Some(c) = s.change_full_contact_max {
         details.push(
             Detail::new(
-                "change_full_contact_max",
+                CHANGE_FULL_CONTACT_MAX,
                 format!(
                     "the change of E_norm after resolution of largest magnitude over the \
                      targets at the highest load, a_r = {}",
@@ -353,7 +398,7 @@ fn new_details(scene: &ModeScene, s: &FrozenStats) -> Vec<Detail> {
     if let Some(d) = s.end_long_minus_short {
         details.push(
             Detail::new(
-                "e_end_long_minus_short_cd",
+                E_END_LONG_MINUS_SHORT_CD,
                 format!(
                     "E_norm at zeta = {} of zeta_t = {} minus that of zeta_t = {}, per \
                      realization, mean of the loads nearest a_r = {} and {}",
@@ -370,7 +415,7 @@ fn new_details(scene: &ModeScene, s: &FrozenStats) -> Vec<Detail> {
     }
     if let Some(p) = s.peak_short_partial {
         details.push(Detail::new(
-            "peak_short_partial",
+            PEAK_SHORT_PARTIAL,
             format!(
                 "largest ensemble E_norm over the sweep of zeta_t = {}, mean over the loads in \
                  partial contact at zeta_t (jackknife error)",
@@ -382,7 +427,7 @@ fn new_details(scene: &ModeScene, s: &FrozenStats) -> Vec<Detail> {
     if let Some(f) = s.falloff_mid_chord {
         details.push(
             Detail::new(
-                "falloff_mid_chord_zeta",
+                FALLOFF_MID_CHORD_ZETA,
                 format!(
                     "E_norm of zeta_t = {} at the middle of zeta = {} zeta_t .. {} minus the \
                      chord linear in zeta, over realizations and partial-contact loads",

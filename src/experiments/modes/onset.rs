@@ -9,7 +9,7 @@ use super::ModeScene;
 use crate::error::Result;
 use crate::experiments::climb::step_of;
 use crate::experiments::ensemble::{by_load, group, load_range};
-use crate::experiments::{Check, Detail, Experiment, Table};
+use crate::experiments::{Check, Detail, Experiment, Keys, Table};
 use crate::plot::Figure;
 use crate::stats::{decide, round_sig, Claim, Decision, Estimate};
 
@@ -111,6 +111,14 @@ impl OnsetStats {
     }
 }
 
+/// The key of the onset detail of load `load` on the band of target `zeta_t`.
+fn onset_at_key(load: f64, zeta_t: f64) -> String {
+    format!("onset_ar{load}_zt{zeta_t}")
+}
+
+/// The key of the detail of where the bands peak.
+const PEAK_OVER_ZETA_T: &str = "peak_over_zeta_t";
+
 type Run<'a> = crate::experiments::Run<'a, ModeOnset>;
 
 impl Experiment for ModeOnset {
@@ -126,12 +134,21 @@ impl Experiment for ModeOnset {
         (s.headline, 0.0)
     }
 
+    fn keys(scene: &ModeScene) -> Keys {
+        let mut keys = Keys::default();
+        for &load in &scene.contact_areas {
+            keys.details(scene.targets.iter().map(|&zt| onset_at_key(load, zt)));
+        }
+        keys.detail(PEAK_OVER_ZETA_T);
+        keys
+    }
+
     /// `E_norm` at the onset point of every load and target, and where the bands peak.
     fn details(run: &Run, s: &OnsetStats) -> Vec<Detail> {
         let scene = run.scene;
         let steps = scene.steps();
         let peak = Detail::new(
-            "peak_over_zeta_t",
+            PEAK_OVER_ZETA_T,
             format!(
                 "magnification of a band's largest E_norm over its zeta_t (mean over bands, \
                  realizations and loads with a_r < {PARTIAL} at zeta_t; the sweep ends at \
@@ -146,7 +163,7 @@ impl Experiment for ModeOnset {
             .map(|o| {
                 let zt = scene.targets[o.target];
                 Detail::new(
-                    format!("onset_ar{}_zt{zt}", o.load),
+                    onset_at_key(o.load, zt),
                     format!(
                         "E_norm at zeta = {:.3} (zeta_t = {zt}), a_r = {} at full resolution \
                          ({:.3} measured at that zeta)",
@@ -207,7 +224,7 @@ impl Experiment for ModeOnset {
         let mut golden_values =
             BTreeMap::from([("onset_headline".to_string(), round_sig(s.headline.value, 2))]);
         for o in &s.onsets {
-            let key = format!("onset_ar{}_zt{}", o.load, scene.targets[o.target]);
+            let key = onset_at_key(o.load, scene.targets[o.target]);
             golden_values.insert(key, golden(o.e_norm.value));
         }
         golden_values

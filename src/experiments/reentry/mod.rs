@@ -64,7 +64,7 @@ use super::ensemble::{by_load, check_contact_areas, seed_load_jobs, SeedLoad};
 use super::history::{self, History};
 use super::scene::scene;
 use super::study::Study;
-use super::{Check, Detail, Experiment, JobContext, Jobs, Table, Work};
+use super::{Check, Detail, Experiment, JobContext, Jobs, Keys, Table, Work};
 use crate::engine::scene::check_zeta;
 use crate::engine::sweep::shell_steps;
 use crate::error::{check_positive, Error, Result};
@@ -369,6 +369,25 @@ pub fn out_at_first_key(contact_area: f64) -> String {
     format!("out_at_first_ar{contact_area}")
 }
 
+/// The key of the re-entry share at load `contact_area`.
+fn share_key(contact_area: f64) -> String {
+    format!("share_ar{contact_area}")
+}
+
+/// The key of the share that left after `zeta = 1` and came back, at load `contact_area`.
+fn after_first_key(contact_area: f64) -> String {
+    format!("share_after_first_ar{contact_area}")
+}
+
+/// The keys of the details of one history ([`Experiment::keys`]): its shells, and the flux
+/// of the interval at the headline load.
+const SHELLS: &str = "shells";
+const FLUX_IN: &str = "flux_in";
+const FLUX_OUT: &str = "flux_out";
+const NET_OVER_GROSS: &str = "net_over_gross";
+// The detail of `flux_in_of_noncontact`: the stored key is kept for the committed results.
+const ZERO_BIN_REENTRY: &str = "zero_bin_reentry";
+
 /// The statistics of a run, with the headline's histories they came from and the
 /// tolerance study (where the scene plans one).
 pub struct RunStats {
@@ -522,6 +541,27 @@ impl Experiment for Reentry {
         (s.shares[0].share, 0.0)
     }
 
+    fn keys(scene: &ReentryScene) -> Keys {
+        let mut keys = Keys::default();
+        for &a in &scene.contact_areas {
+            keys.details([share_key(a), after_first_key(a), out_at_first_key(a)]);
+        }
+        keys.details([SHELLS, FLUX_IN, FLUX_OUT, NET_OVER_GROSS, ZERO_BIN_REENTRY]);
+        if range::smaller_range(scene).is_some() {
+            keys.details(scene.contact_areas.iter().map(|&a| range::gain_key(a)));
+        }
+        for v in &scene.variants {
+            keys.details(variants::detail_keys(v, &scene.contact_areas));
+        }
+        if scene.tolerance.is_some() {
+            keys.study(tolerance::STUDY, tolerance::COLUMNS);
+        }
+        if !scene.variants.is_empty() {
+            keys.study(variants::STUDY, variants::COLUMNS);
+        }
+        keys
+    }
+
     /// The shares at every load, and the flux of the interval at the headline load.
     fn details(run: &Run, s: &RunStats) -> Vec<Detail> {
         let scene = run.scene;
@@ -530,7 +570,7 @@ impl Experiment for Reentry {
             let target = share.load;
             details.push(
                 Detail::new(
-                    format!("share_ar{target}"),
+                    share_key(target),
                     format!("re-entry share at a_r = {target}"),
                     share.share,
                 )
@@ -538,7 +578,7 @@ impl Experiment for Reentry {
             );
             details.push(
                 Detail::new(
-                    format!("share_after_first_ar{target}"),
+                    after_first_key(target),
                     format!("share that left after zeta = 1 and came back, a_r = {target}"),
                     share.after_first,
                 )
@@ -557,13 +597,13 @@ impl Experiment for Reentry {
             );
         }
         details.push(Detail::new(
-            "shells",
+            SHELLS,
             "shells |q|^2 added one at a time from q_l to q_s (wave numbers of a history)",
             s.shells,
         ));
         let flux = [
             (
-                "flux_in",
+                FLUX_IN,
                 format!(
                     "flux into contact, zeta {} -> {} (fraction of A0)",
                     scene.flux_zeta,
@@ -572,19 +612,19 @@ impl Experiment for Reentry {
                 s.flux_in,
             ),
             (
-                "flux_out",
+                FLUX_OUT,
                 "flux out of contact (fraction of A0)".to_string(),
                 s.flux_out,
             ),
             (
-                "net_over_gross",
+                NET_OVER_GROSS,
                 "net flux / mean one-way flux".to_string(),
                 s.net_over_gross,
             ),
             // The detail of `flux_in_of_noncontact`: the stored key is kept for the
             // committed results.
             (
-                "zero_bin_reentry",
+                ZERO_BIN_REENTRY,
                 "share of non-contact entering contact (transition out of p = 0)".to_string(),
                 s.flux_in_of_noncontact,
             ),
@@ -596,7 +636,7 @@ impl Experiment for Reentry {
         let zeta_max = scene.base().zeta_max();
         for g in &s.range_gain {
             details.push(Detail::new(
-                format!("range_gain_ar{}", g.load),
+                range::gain_key(g.load),
                 format!(
                     "re-entry share at a_r = {} over zeta 1 -> {zeta_max} minus over 1 -> {} \
                      (same eps_c, independent realizations)",

@@ -5,6 +5,7 @@
 //! (a range extended at its upper end: finer roughness, the same `lambda_l / L`).
 
 use super::stats::ReentryStats;
+use super::tolerance::ToleranceGrid;
 use super::{ReentryJob, ReentryOutput, ReentryScene};
 use crate::stats::Estimate;
 
@@ -18,6 +19,23 @@ pub struct RangeGain {
     pub gain: Estimate,
 }
 
+/// The key of the gain at load `load`.
+pub fn gain_key(load: f64) -> String {
+    format!("range_gain_ar{load}")
+}
+
+/// The tolerance study's grid of a smaller range at the headline's `lambda_s` and
+/// tolerance, if the scene plans one.
+pub fn smaller_range(scene: &ReentryScene) -> Option<&ToleranceGrid> {
+    let plan = scene.tolerance.as_ref()?;
+    let zeta_max = scene.base().zeta_max();
+    plan.grids.iter().find(|g| {
+        g.lambda_s == scene.lambda_s
+            && g.lambda_l / g.lambda_s < zeta_max
+            && plan.tols.contains(&scene.tol)
+    })
+}
+
 /// The share gains over the headline's range against the tolerance study's grids of a
 /// smaller range at the headline's `lambda_s` and tolerance.
 pub fn range_gains(
@@ -25,15 +43,7 @@ pub fn range_gains(
     results: &[(ReentryJob, ReentryOutput)],
     stats: &ReentryStats,
 ) -> Vec<RangeGain> {
-    let Some(plan) = &scene.tolerance else {
-        return Vec::new();
-    };
-    let zeta_max = scene.base().zeta_max();
-    let Some(grid) = plan.grids.iter().find(|g| {
-        g.lambda_s == scene.lambda_s
-            && g.lambda_l / g.lambda_s < zeta_max
-            && plan.tols.contains(&scene.tol)
-    }) else {
+    let Some(grid) = smaller_range(scene) else {
         return Vec::new();
     };
     stats

@@ -309,6 +309,28 @@ pub struct Choice {
     pub tightest: f64,
 }
 
+/// The tolerance study: its key and columns, `(key, label)`.
+pub const STUDY: &str = "tolerance";
+/// The columns of [`STUDY`].
+pub const COLUMNS: &[(&str, &str)] = &[
+    ("n", "points per side"),
+    ("contact_area", "a_r at zeta_max"),
+    ("tol", "residual tolerance"),
+    ("realizations", "realizations"),
+    ("share", "re-entry share"),
+    (
+        "shift_se",
+        "share minus the tightest's (same realization), in standard errors",
+    ),
+    (
+        "contact_differs",
+        "points whose contact at zeta_max differs from the tightest's",
+    ),
+    ("iterations_per_shell", "solver iterations a shell"),
+    ("seconds_per_shell", "wall seconds a shell"),
+    ("accepted", "accepted (1) or not (0)"),
+];
+
 /// The study's table from its rows (every grid, load and tolerance, tolerances in the
 /// plan's order), with the standard error of the headline's share at each load of the
 /// scene's grid for grids of one realization (`headline_se(grid, load)`).
@@ -318,26 +340,9 @@ pub fn study(
     headline_se: impl Fn(&ToleranceGrid, f64) -> Option<f64>,
 ) -> Study {
     let mut study = Study::new(
-        "tolerance",
+        STUDY,
         "Speed against error of a history: the same climbs at several solver tolerances",
-        &[
-            ("n", "points per side"),
-            ("contact_area", "a_r at zeta_max"),
-            ("tol", "residual tolerance"),
-            ("realizations", "realizations"),
-            ("share", "re-entry share"),
-            (
-                "shift_se",
-                "share minus the tightest's (same realization), in standard errors",
-            ),
-            (
-                "contact_differs",
-                "points whose contact at zeta_max differs from the tightest's",
-            ),
-            ("iterations_per_shell", "solver iterations a shell"),
-            ("seconds_per_shell", "wall seconds a shell"),
-            ("accepted", "accepted (1) or not (0)"),
-        ],
+        COLUMNS,
     )
     .about(format!(
         "Each row: one grid, one load, one tolerance, the climbs of every realization \

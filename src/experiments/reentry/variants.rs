@@ -409,35 +409,40 @@ pub fn stats(variants: &[Variant], results: &[(VariantJob, VariantResult)]) -> V
         .collect()
 }
 
+/// The variants' study: its key and columns, `(key, label)`.
+pub const STUDY: &str = "variants";
+/// The columns of [`STUDY`].
+pub const COLUMNS: &[(&str, &str)] = &[
+    ("n", "points per side"),
+    ("hurst", "Hurst exponent"),
+    ("lambda_l", "lambda_l (grid units)"),
+    ("lambda_s", "lambda_s (grid units)"),
+    ("zeta_from", "first magnification (0: the first shell)"),
+    ("contact_area", "a_r at zeta_max"),
+    ("realizations", "realizations"),
+    ("tol", "residual tolerance"),
+    ("share", "re-entry share"),
+    ("headline_share", "the headline's share at this load"),
+    ("a_r_start", "a_r at the first step"),
+    (
+        "remained_of_start",
+        "contact at the first step in contact throughout",
+    ),
+    (
+        "coloured_over_grey",
+        "re-entered (red, blue) over always in contact (grey)",
+    ),
+    ("shells", "shells added one at a time"),
+    ("iterations_per_shell", "solver iterations a shell"),
+];
+
 /// The variants' table: one row per variant and load, beside the headline's share at
 /// that load.
 pub fn study(variants: &[VariantStats], headline: &[Share]) -> Study {
     let mut study = Study::new(
-        "variants",
+        STUDY,
         "Re-entry histories of scenes beside the headline's",
-        &[
-            ("n", "points per side"),
-            ("hurst", "Hurst exponent"),
-            ("lambda_l", "lambda_l (grid units)"),
-            ("lambda_s", "lambda_s (grid units)"),
-            ("zeta_from", "first magnification (0: the first shell)"),
-            ("contact_area", "a_r at zeta_max"),
-            ("realizations", "realizations"),
-            ("tol", "residual tolerance"),
-            ("share", "re-entry share"),
-            ("headline_share", "the headline's share at this load"),
-            ("a_r_start", "a_r at the first step"),
-            (
-                "remained_of_start",
-                "contact at the first step in contact throughout",
-            ),
-            (
-                "coloured_over_grey",
-                "re-entered (red, blue) over always in contact (grey)",
-            ),
-            ("shells", "shells added one at a time"),
-            ("iterations_per_shell", "solver iterations a shell"),
-        ],
+        COLUMNS,
     )
     .about(
         "Each row: one variant scene at one load, the mean over its realizations with the \
@@ -498,6 +503,47 @@ pub fn raster(v: &VariantStats) -> Option<Raster> {
     })
 }
 
+/// The keys of a variant's details at load `a`: its share, the share's shift from the
+/// headline's, and for a variant that starts later, the contact area at its start, the
+/// share of it that remained, and the re-entered over the always-in-contact.
+fn share_key(name: &str, a: f64) -> String {
+    format!("{name}_share_ar{a}")
+}
+fn shift_key(name: &str, a: f64) -> String {
+    format!("{name}_share_shift_ar{a}")
+}
+fn start_key(name: &str, a: f64) -> String {
+    format!("{name}_a_r_start_ar{a}")
+}
+fn remained_key(name: &str, a: f64) -> String {
+    format!("{name}_remained_of_start_ar{a}")
+}
+fn coloured_key(name: &str, a: f64) -> String {
+    format!("{name}_coloured_over_grey_ar{a}")
+}
+
+/// The keys of the details a variant can have ([`details`]), beside a headline at the loads
+/// `headline`.
+pub fn detail_keys(variant: &Variant, headline: &[f64]) -> Vec<String> {
+    let name = &variant.name;
+    let mut keys = Vec::new();
+    for &a in &variant.contact_areas {
+        keys.push(share_key(name, a));
+        if variant.zeta_from == 0.0 {
+            if headline.contains(&a) {
+                keys.push(shift_key(name, a));
+            }
+        } else {
+            keys.extend([
+                start_key(name, a),
+                remained_key(name, a),
+                coloured_key(name, a),
+            ]);
+        }
+    }
+    keys
+}
+
 /// The statistics of a variant: its shares, their shift from the headline's where it
 /// starts from the flat interface too, and where it starts later, the counts of the
 /// paper's 2048^2 figure.
@@ -508,7 +554,7 @@ pub fn details(v: &VariantStats, headline: &[Share]) -> Vec<Detail> {
         let a = l.load;
         details.push(
             Detail::new(
-                format!("{name}_share_ar{a}"),
+                share_key(name, a),
                 format!("re-entry share at a_r = {a}, {what}"),
                 l.share,
             )
@@ -517,7 +563,7 @@ pub fn details(v: &VariantStats, headline: &[Share]) -> Vec<Detail> {
         if v.variant.zeta_from == 0.0 {
             if let Some(h) = headline.iter().find(|h| h.load == a) {
                 details.push(Detail::new(
-                    format!("{name}_share_shift_ar{a}"),
+                    shift_key(name, a),
                     format!("re-entry share at a_r = {a}, {what}, minus the headline's"),
                     Estimate::difference(l.share, h.share),
                 ));
@@ -526,12 +572,12 @@ pub fn details(v: &VariantStats, headline: &[Share]) -> Vec<Detail> {
             let from = v.variant.zeta_from;
             details.extend([
                 Detail::new(
-                    format!("{name}_a_r_start_ar{a}"),
+                    start_key(name, a),
                     format!("contact area at zeta = {from}, a_r = {a} at zeta_max, {what}"),
                     l.a_r_start,
                 ),
                 Detail::new(
-                    format!("{name}_remained_of_start_ar{a}"),
+                    remained_key(name, a),
                     format!(
                         "share of the contact at zeta = {from} in contact at every step \
                          (grey), a_r = {a}, {what}"
@@ -539,7 +585,7 @@ pub fn details(v: &VariantStats, headline: &[Share]) -> Vec<Detail> {
                     l.remained_of_start,
                 ),
                 Detail::new(
-                    format!("{name}_coloured_over_grey_ar{a}"),
+                    coloured_key(name, a),
                     format!(
                         "points that re-entered contact or non-contact (red, blue) over \
                          points in contact throughout (grey), a_r = {a}, {what}"

@@ -50,7 +50,7 @@ use self::stats::SourceStats;
 use super::contact_change::{above, across, ENTERED, NEITHER};
 use super::scene::{Base, Step};
 use super::study::Study;
-use super::{Detail, Experiment, JobContext, Jobs, Table, Work};
+use super::{Detail, Experiment, JobContext, Jobs, Keys, Table, Work};
 use crate::engine::solver::SolverKind;
 use crate::error::{Error, Result};
 use crate::plot::Figure;
@@ -311,6 +311,17 @@ impl Jobs for SourceScene {
     }
 }
 
+/// The key of a row's detail: the share of its non-contact entering contact.
+fn non_contact_key(step: &SourceStep) -> String {
+    format!("non_contact_{}", step.key())
+}
+
+/// The keys of the headline row's other details ([`Experiment::keys`]).
+const OF_CONTACT: &str = "of_contact";
+const OF_NOMINAL: &str = "of_nominal";
+const CONTACT_AREA_BEFORE: &str = "contact_area_before";
+const CONTACT_AREA_AFTER: &str = "contact_area_after";
+
 /// The experiment: Persson's absorbing boundary, read as a source of contact.
 pub struct BoundarySource;
 
@@ -329,6 +340,19 @@ impl Experiment for BoundarySource {
         (s.headline(), 0.0)
     }
 
+    fn keys(scene: &SourceScene) -> Keys {
+        let mut keys = Keys::default();
+        keys.details(scene.steps.iter().map(non_contact_key));
+        keys.details([
+            OF_CONTACT,
+            OF_NOMINAL,
+            CONTACT_AREA_BEFORE,
+            CONTACT_AREA_AFTER,
+        ]);
+        keys.study(study::STUDY, &study::COLUMNS);
+        keys
+    }
+
     /// Every row's share of the non-contact entering contact, and the headline row's
     /// other shares and contact areas.
     fn details(_run: &Run, s: &SourceStats) -> Vec<Detail> {
@@ -337,7 +361,7 @@ impl Experiment for BoundarySource {
             .iter()
             .map(|r| {
                 Detail::new(
-                    format!("non_contact_{}", r.step.key()),
+                    non_contact_key(&r.step),
                     format!(
                         "share of the non-contact at zeta in contact after the step ({})",
                         r.step.label()
@@ -351,22 +375,22 @@ impl Experiment for BoundarySource {
         let zero = first.readings[0];
         details.extend([
             Detail::new(
-                "of_contact",
+                OF_CONTACT,
                 "points entering contact, share of the contact at zeta (first row)",
                 zero.of_contact,
             ),
             Detail::new(
-                "of_nominal",
+                OF_NOMINAL,
                 "points entering contact, share of the nominal area A0 (first row)",
                 zero.of_nominal,
             ),
             Detail::new(
-                "contact_area_before",
+                CONTACT_AREA_BEFORE,
                 "a_r at zeta (first row)",
                 first.contact_before,
             ),
             Detail::new(
-                "contact_area_after",
+                CONTACT_AREA_AFTER,
                 "a_r at zeta + dzeta (first row)",
                 first.contact_after,
             ),

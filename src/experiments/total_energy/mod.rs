@@ -61,7 +61,7 @@ use super::climb::{check_steps_per_octave, climb, ladder, step_of, Recorder};
 use super::ensemble::{by_load, check_headline, load_range, seed_load_jobs, SeedLoad};
 use super::scene::scene;
 use super::study::Study;
-use super::{Check, Detail, Experiment, JobContext, Jobs, Table, Work};
+use super::{Check, Detail, Experiment, JobContext, Jobs, Keys, Table, Work};
 use crate::engine::contact::{ContactSolution, Model};
 use crate::engine::solver::SolverKind;
 use crate::engine::surface::Surface;
@@ -404,6 +404,16 @@ impl Experiment for TotalEnergy {
     /// `E_exa / E_c` at full resolution and the headline load, against Persson's 1.
     fn headline(s: &EnergyStats) -> (Estimate, f64) {
         (s.headline.head.corrected, 1.0)
+    }
+
+    fn keys(scene: &EnergyScene) -> Keys {
+        let mut keys = Keys::default();
+        keys.details(stats::detail_keys(scene));
+        keys.details(resolutions::detail_keys(&scene.resolutions));
+        if !scene.resolutions.is_empty() {
+            keys.study(resolutions::STUDY, resolutions::COLUMNS);
+        }
+        keys
     }
 
     fn details(run: &Run, s: &EnergyStats) -> Vec<Detail> {

@@ -240,6 +240,40 @@ pub fn stats(
         .collect()
 }
 
+/// The keys of a resolution's details at load `a`: its `S~` and the shift from the
+/// headline grid's.
+fn s_tilde_key(name: &str, a: f64) -> String {
+    format!("{name}_s_tilde_ar{a}")
+}
+fn shift_key(name: &str, a: f64) -> String {
+    format!("{name}_s_tilde_shift_ar{a}")
+}
+
+/// The keys of every detail [`details`] can write for `resolutions`.
+pub fn detail_keys(resolutions: &[Resolution]) -> Vec<String> {
+    resolutions
+        .iter()
+        .flat_map(|r| {
+            r.contact_areas
+                .iter()
+                .flat_map(|&a| [s_tilde_key(&r.name, a), shift_key(&r.name, a)])
+        })
+        .collect()
+}
+
+/// The study of the resolutions: its key and columns, `(key, label)`.
+pub const STUDY: &str = "resolutions";
+/// The columns of [`STUDY`].
+pub const COLUMNS: &[(&str, &str)] = &[
+    ("n", "points per side"),
+    ("lambda_s", "lambda_s (grid units)"),
+    ("contact_area", "a_r at zeta_max"),
+    ("realizations", "realizations"),
+    ("s_tilde", "S~, windows averaged"),
+    ("headline", "the same on the headline's grid"),
+    ("shift", "this grid minus the headline's"),
+];
+
 /// The windows' `S~` of each resolution and load, and its shift from the headline grid's.
 pub fn details(stats: &[ResolutionStats]) -> Vec<Detail> {
     let mut details = Vec::new();
@@ -249,7 +283,7 @@ pub fn details(stats: &[ResolutionStats]) -> Vec<Detail> {
             let a = l.contact_area;
             details.extend([
                 Detail::new(
-                    format!("{name}_s_tilde_ar{a}"),
+                    s_tilde_key(name, a),
                     format!(
                         "S~ averaged over the increment windows, a_r = {a}, {n}^2 \
                          (size-scaled), {} realizations",
@@ -258,7 +292,7 @@ pub fn details(stats: &[ResolutionStats]) -> Vec<Detail> {
                     l.s_tilde,
                 ),
                 Detail::new(
-                    format!("{name}_s_tilde_shift_ar{a}"),
+                    shift_key(name, a),
                     format!(
                         "S~ averaged over the increment windows, a_r = {a}: {n}^2 minus the \
                          headline's grid"
@@ -273,20 +307,7 @@ pub fn details(stats: &[ResolutionStats]) -> Vec<Detail> {
 
 /// The table of the resolutions: one row per grid and load.
 pub fn study(stats: &[ResolutionStats], headline_n: usize) -> Study {
-    let mut study = Study::new(
-        "resolutions",
-        "S~ on finer grids, size-scaled",
-        &[
-            ("n", "points per side"),
-            ("lambda_s", "lambda_s (grid units)"),
-            ("contact_area", "a_r at zeta_max"),
-            ("realizations", "realizations"),
-            ("s_tilde", "S~, windows averaged"),
-            ("headline", "the same on the headline's grid"),
-            ("shift", "this grid minus the headline's"),
-        ],
-    )
-    .about(format!(
+    let mut study = Study::new(STUDY, "S~ on finer grids, size-scaled", COLUMNS).about(format!(
         "Each row: the headline's scene on another grid with lambda_l / L and lambda_l / \
          lambda_s unchanged, so that every increment window holds the same shells; S~ of each \
          window (eq. S_q_numerical) averaged over the windows per realization, then over the \

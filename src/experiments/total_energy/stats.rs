@@ -244,6 +244,60 @@ pub struct EnergyStats {
     pub headline: Headline,
 }
 
+/// The keys of a load's details: both theories' ratios at full resolution, the corrected
+/// one's at the lowest magnification, and `S~` over window `w`.
+fn original_key(a: f64) -> String {
+    format!("original_ar{a}")
+}
+fn corrected_key(a: f64) -> String {
+    format!("corrected_ar{a}")
+}
+fn corrected_start_key(a: f64) -> String {
+    format!("corrected_start_ar{a}")
+}
+fn s_tilde_key(a: f64, w: usize) -> String {
+    format!("s_tilde_ar{a}_window{w}")
+}
+
+/// The key of the corrected ratio at the load nearest `p~0 = 0.1` at the lowest
+/// magnification, and at the step nearest each of [`NEAR_P01_ZETAS`] ([`near_p01_key`]).
+const NEAR_P01_START: &str = "corrected_start_p0.1";
+const NEAR_P01_ZETAS: [f64; 2] = [2.0, 4.0];
+fn near_p01_key(zeta: f64) -> String {
+    format!("corrected_p0.1_zeta{zeta}")
+}
+
+/// The keys of the headline's and the loads' other details.
+const CORRECTED_HEADLINE_DRIFT: &str = "corrected_headline_drift";
+const IMPROVEMENT_HEADLINE: &str = "improvement_headline";
+const DEVIATION_GROWTH_LOW_LOAD: &str = "deviation_growth_low_load";
+const OVERESTIMATE_HEADLINE: &str = "overestimate_headline";
+const CORRECTED_WORST_HIGH: &str = "corrected_worst_high";
+const NUMERATOR_CV_LOG_RATIO: &str = "numerator_cv_log_ratio";
+const AREA_CORRECTED_DEVIATION: &str = "area_corrected_deviation";
+const OTHER_DETAILS: [&str; 7] = [
+    CORRECTED_HEADLINE_DRIFT,
+    IMPROVEMENT_HEADLINE,
+    DEVIATION_GROWTH_LOW_LOAD,
+    OVERESTIMATE_HEADLINE,
+    CORRECTED_WORST_HIGH,
+    NUMERATOR_CV_LOG_RATIO,
+    AREA_CORRECTED_DEVIATION,
+];
+
+/// The keys of every detail [`details`] can write for `scene` (the resolutions' apart).
+pub fn detail_keys(scene: &EnergyScene) -> Vec<String> {
+    let mut keys = Vec::new();
+    for &a in &scene.contact_areas {
+        keys.extend([original_key(a), corrected_key(a), corrected_start_key(a)]);
+        keys.extend((0..scene.increments_at.len()).map(|w| s_tilde_key(a, w)));
+    }
+    keys.push(NEAR_P01_START.to_string());
+    keys.extend(NEAR_P01_ZETAS.map(near_p01_key));
+    keys.extend(OTHER_DETAILS.map(String::from));
+    keys
+}
+
 /// The details of every load, then the headline's drift with magnification.
 pub fn details(
     scene: &EnergyScene,
@@ -267,7 +321,7 @@ pub fn details(
     }) {
         details.push(
             Detail::new(
-                "corrected_start_p0.1",
+                NEAR_P01_START,
                 format!(
                     "E_exa / E_c at the lowest magnification, zeta = {:.3}, at the load whose \
                      p~0 at full resolution is nearest 0.1 (a_r = {}, p~0 = {:.4})",
@@ -281,7 +335,7 @@ pub fn details(
         );
         // "Low magnification" read over the first octaves too: the step nearest zeta = 2
         // and 4.
-        for z in [2.0_f64, 4.0] {
+        for z in NEAR_P01_ZETAS {
             let Some(k) = (0..zetas.len()).min_by(|&a, &b| {
                 (zetas[a] / z)
                     .ln()
@@ -292,7 +346,7 @@ pub fn details(
             };
             details.push(
                 Detail::new(
-                    format!("corrected_p0.1_zeta{z}"),
+                    near_p01_key(z),
                     format!(
                         "E_exa / E_c at zeta = {:.3}, at the load whose p~0 at full resolution \
                          is nearest 0.1 (a_r = {})",
@@ -306,7 +360,7 @@ pub fn details(
     }
     details.push(
         Detail::new(
-            "corrected_headline_drift",
+            CORRECTED_HEADLINE_DRIFT,
             format!(
                 "change of E_exa / E_c at the headline load from zeta = {:.3} to {:.3}",
                 zetas[h.quarter], zetas[end]
@@ -316,7 +370,7 @@ pub fn details(
         .persson(0.0),
     );
     details.push(Detail::new(
-        "improvement_headline",
+        IMPROVEMENT_HEADLINE,
         format!(
             "|E_exa / E_P - 1| - |E_exa / E_c - 1| at the headline load (a_r = {:.3}): how much \
              closer the corrected theory is",
@@ -325,7 +379,7 @@ pub fn details(
         h.improvement(),
     ));
     details.push(Detail::new(
-        "deviation_growth_low_load",
+        DEVIATION_GROWTH_LOW_LOAD,
         format!(
             "|E_exa / E_c - 1| at the lowest load (a_r = {:.4}) less that at the headline load",
             h.low.area.value
@@ -335,7 +389,7 @@ pub fn details(
     let headline = group(loads, scene.headline_contact_area);
     details.push(
         Detail::new(
-            "overestimate_headline",
+            OVERESTIMATE_HEADLINE,
             format!(
                 "E_c / E_exa - 1 at full resolution at the headline load (a_r = {:.3}): the \
                  corrected theory's overestimate of the total energy",
@@ -348,7 +402,7 @@ pub fn details(
     if let Some(worst) = corrected_worst(loads, end) {
         details.push(
             Detail::new(
-                "corrected_worst_high",
+                CORRECTED_WORST_HIGH,
                 format!(
                     "E_exa / E_c - 1 at full resolution of largest magnitude over the loads \
                      with a_r >= {HIGH_LOADS_FROM}"
@@ -359,7 +413,7 @@ pub fn details(
         );
     }
     details.push(Detail::new(
-        "numerator_cv_log_ratio",
+        NUMERATOR_CV_LOG_RATIO,
         format!(
             "ln of CV(increments of E_exa) / CV(increments of E_P) over each window's \
              single-shell steps, mean over windows and realizations at the headline load \
@@ -371,7 +425,7 @@ pub fn details(
     if let Some(dev) = area_corrected_deviation(loads, end) {
         details.push(
             Detail::new(
-                "area_corrected_deviation",
+                AREA_CORRECTED_DEVIATION,
                 "|measured a_r / corrected theory's a_r - 1| at full resolution, largest over \
                  the loads",
                 dev,
@@ -394,7 +448,7 @@ fn load_details(
     let a = load.contact_area;
     let mut details = vec![
         Detail::new(
-            format!("original_ar{a}"),
+            original_key(a),
             format!(
                 "E_exa / E_P (S = 1) at full resolution, a_r = {a} ({:.4} measured)",
                 full.area.value
@@ -403,7 +457,7 @@ fn load_details(
         )
         .persson(1.0),
         Detail::new(
-            format!("corrected_ar{a}"),
+            corrected_key(a),
             format!(
                 "E_exa / E_c (S of eq. gamma) at full resolution, a_r = {a} ({:.4} measured)",
                 full.area.value
@@ -412,7 +466,7 @@ fn load_details(
         )
         .persson(1.0),
         Detail::new(
-            format!("corrected_start_ar{a}"),
+            corrected_start_key(a),
             format!(
                 "E_exa / E_c at the lowest magnification, zeta = {:.3}, a_r = {a} at full \
                  resolution (p~0 = p0 / E* g_bar = {:.4}, g_bar at full resolution)",
@@ -429,7 +483,7 @@ fn load_details(
         let s_p = scene.correction.factor(original_area(load, last).value);
         details.push(
             Detail::new(
-                format!("s_tilde_ar{a}_window{w}"),
+                s_tilde_key(a, w),
                 format!(
                     "S~ over {} single-shell increments from zeta = {:.3} to {:.3}, \
                      a_r = {a} at full resolution (Persson: S(a_r) of eq. gamma)",

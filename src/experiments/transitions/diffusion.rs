@@ -11,11 +11,33 @@ use super::stats::{
 };
 use super::{TransitionResult, TransitionScene};
 use crate::error::Result;
-use crate::experiments::{Check, Detail, Experiment, Table};
+use crate::experiments::{Check, Detail, Experiment, Keys, Table};
 use crate::persson::moments;
 use crate::persson::Correction;
 use crate::plot::{Figure, Series, Style};
 use crate::stats::{decide, round_sig, Claim, Estimate};
+
+/// The keys of the details ([`Experiment::keys`]).
+const D_RATIO_HIGH: &str = "d_ratio_high";
+const S_CORRECTED: &str = "s_corrected";
+const APPROX_DELTA_P_ERROR: &str = "approx_delta_p_error";
+const SMALL_P_EXPONENT: &str = "small_p_exponent";
+const FIT_TV_UNSUITED_MINUS_SUITED: &str = "fit_tv_unsuited_minus_suited";
+const FIT_TV_LOWEST_MINUS_TOP_UNSUITED: &str = "fit_tv_lowest_minus_top_unsuited";
+const BIN_SPREAD_OVER_HALF_WIDTH: &str = "bin_spread_over_half_width";
+const BIN_BROADENING_SHARE: &str = "bin_broadening_share";
+const MIRROR_MOMENT_ERROR: &str = "mirror_moment_error";
+const DETAILS: [&str; 9] = [
+    D_RATIO_HIGH,
+    S_CORRECTED,
+    APPROX_DELTA_P_ERROR,
+    SMALL_P_EXPONENT,
+    FIT_TV_UNSUITED_MINUS_SUITED,
+    FIT_TV_LOWEST_MINUS_TOP_UNSUITED,
+    BIN_SPREAD_OVER_HALF_WIDTH,
+    BIN_BROADENING_SHARE,
+    MIRROR_MOMENT_ERROR,
+];
 
 /// The diffusion validation, assumption (a).
 pub struct Diffusion;
@@ -103,29 +125,35 @@ impl Experiment for Diffusion {
         (s.low, 1.0)
     }
 
+    fn keys(_scene: &TransitionScene) -> Keys {
+        let mut keys = Keys::default();
+        keys.details(DETAILS);
+        keys
+    }
+
     /// The high-pressure ratio and the corrected theory's `S(a_r)` beside it.
     fn details(run: &Run, s: &DiffusionStats) -> Vec<Detail> {
         vec![
             Detail::new(
-                "d_ratio_high",
+                D_RATIO_HIGH,
                 format!("D_n / D_P at p >= {} p0/a_r", run.scene.high_pressure),
                 s.high,
             )
             .persson(1.0),
             Detail::new(
-                "s_corrected",
+                S_CORRECTED,
                 "corrected theory's S(a_r) (eq. gamma)",
                 Estimate::new(s.s_corrected, f64::NAN),
             )
             .persson(s.s_corrected),
             Detail::new(
-                "approx_delta_p_error",
+                APPROX_DELTA_P_ERROR,
                 "largest relative error of eq. (approxDeltaPress) against the exact inversion \
                  of eq. (2ndMoment), Dp_n / p' from 1e-3 to 1e3 (exact: no error bar)",
                 Estimate::new(moments::estimate_largest_error(ERROR_POINTS), 0.0),
             ),
             Detail::new(
-                "small_p_exponent",
+                SMALL_P_EXPONENT,
                 format!(
                     "exponent alpha of Pr(p) ~ p^alpha at zeta, fitted over the bins below \
                      {SMALL_PRESSURE} p0/a_r (Persson's eq. pressureDistOri: 1)"
@@ -134,32 +162,32 @@ impl Experiment for Diffusion {
             )
             .persson(1.0),
             Detail::new(
-                "fit_tv_unsuited_minus_suited",
+                FIT_TV_UNSUITED_MINUS_SUITED,
                 "mean total-variation distance between a bin's transitions and the mirror \
                  Gaussian with its moments (eq. transitionFinal), bins with mean below the \
                  broadening minus bins above",
                 s.fit_unsuited_minus_suited,
             ),
             Detail::new(
-                "fit_tv_lowest_minus_top_unsuited",
+                FIT_TV_LOWEST_MINUS_TOP_UNSUITED,
                 "that total-variation distance in the lowest bin with mean below the \
                  broadening minus that in the highest",
                 s.fit_lowest_minus_top_unsuited,
             ),
             Detail::new(
-                "bin_spread_over_half_width",
+                BIN_SPREAD_OVER_HALF_WIDTH,
                 "spread dp_n of the old pressures in a bin over the bin's half width, mean \
                  over analysed bins (a flat density: 1/sqrt3)",
                 s.bin_spread_over_half_width,
             ),
             Detail::new(
-                "bin_broadening_share",
+                BIN_BROADENING_SHARE,
                 "dp_n^2 / Dp_n^2, the share of the broadening the bin's own width makes up \
                  (the relative change of D_n its correction makes), mean over suited bins",
                 s.bin_broadening_share,
             ),
             Detail::new(
-                "mirror_moment_error",
+                MIRROR_MOMENT_ERROR,
                 "largest relative error of the quadrature of the first two moments of eq. \
                  (transitionFinal) against p' and eq. (2ndMoment), Dp_n / p' from 1e-3 to \
                  1e3 (exact: no error bar)",

@@ -10,9 +10,25 @@ use super::stats::{
 };
 use super::{TransitionResult, TransitionScene};
 use crate::error::Result;
-use crate::experiments::{Check, Detail, Experiment, Table};
+use crate::experiments::{Check, Detail, Experiment, Keys, Table};
 use crate::plot::{Figure, Series, Style};
 use crate::stats::{decide, round_sig, Claim, Estimate};
+
+/// The keys of the details ([`Experiment::keys`]).
+const MU_LOW: &str = "mu_low";
+const MU_HIGH: &str = "mu_high";
+const MU_LOWEST_BIN: &str = "mu_lowest_bin";
+const A_R_RELATIVE_CHANGE: &str = "a_r_relative_change";
+const LOST_OVER_PERSSON: &str = "lost_over_persson";
+const SHARE_WALKERS_NEGATIVE_DRIFT: &str = "share_walkers_negative_drift";
+const DETAILS: [&str; 6] = [
+    MU_LOW,
+    MU_HIGH,
+    MU_LOWEST_BIN,
+    A_R_RELATIVE_CHANGE,
+    LOST_OVER_PERSSON,
+    SHARE_WALKERS_NEGATIVE_DRIFT,
+];
 
 /// The drift validation, assumption (b).
 pub struct Drift;
@@ -93,22 +109,28 @@ impl Experiment for Drift {
         (s.mu_c, 0.0)
     }
 
+    fn keys(_scene: &TransitionScene) -> Keys {
+        let mut keys = Keys::default();
+        keys.details(DETAILS);
+        keys
+    }
+
     /// The drift by region (Persson: 0 everywhere).
     fn details(run: &Run, s: &DriftStats) -> Vec<Detail> {
         let scene = run.scene;
         [
             (
-                "mu_low",
+                MU_LOW,
                 format!("mu_n at p < {} p0/a_r", scene.low_pressure),
                 s.low,
             ),
             (
-                "mu_high",
+                MU_HIGH,
                 format!("mu_n at p >= {} p0/a_r", scene.high_pressure),
                 s.high,
             ),
             (
-                "mu_lowest_bin",
+                MU_LOWEST_BIN,
                 "mu_n in the lowest analysed bin".to_string(),
                 s.lowest,
             ),
@@ -116,7 +138,7 @@ impl Experiment for Drift {
         .into_iter()
         .map(|(key, name, e)| Detail::new(key, name, e).persson(0.0))
         .chain(std::iter::once(Detail::new(
-            "a_r_relative_change",
+            A_R_RELATIVE_CHANGE,
             format!(
                 "relative change of a_r over the step, zeta {} -> {}",
                 scene.zeta,
@@ -126,14 +148,14 @@ impl Experiment for Drift {
         )))
         .chain([
             Detail::new(
-                "lost_over_persson",
+                LOST_OVER_PERSSON,
                 "walkers that left contact over the step over the number Persson's \
                  drift-free mirror Gaussian with D_P absorbs at p = 0",
                 s.lost_over_persson,
             )
             .persson(1.0),
             Detail::new(
-                "share_walkers_negative_drift",
+                SHARE_WALKERS_NEGATIVE_DRIFT,
                 format!(
                     "share of the walkers below {MEAN_CONTACT_PRESSURE} p0/a_r in bins of \
                      negative drift"

@@ -508,38 +508,44 @@ impl SensitivityPlan {
     }
 }
 
+/// The study's key.
+pub const KEY: &str = "sensitivity";
+
+/// The study's columns, `(key, label)`.
+pub const COLUMNS: &[(&str, &str)] = &[
+    ("n", "grid (points per side)"),
+    ("zeta", "zeta"),
+    ("dzeta", "dzeta"),
+    ("realizations", "realizations"),
+    ("flux_in", "into contact, % of A0"),
+    ("flux_out", "out of contact, % of A0"),
+    ("flux_in_of_contact", "into contact, % of the contact area"),
+    (
+        "flux_out_of_contact",
+        "out of contact, % of the contact area",
+    ),
+    ("net_over_gross", "net / mean one-way flux"),
+    ("net_flow", "net flow to non-contact, out - in, % of A0"),
+    (
+        "net_flow_residual",
+        "net flow + change of a_r in the step, % of A0 (fixed load; empty: n/a)",
+    ),
+    // The column of `flux_in_of_noncontact`: the stored name is kept for the
+    // committed results.
+    ("zero_bin", "non-contact entering contact, %"),
+    ("contact_area", "a_r at zeta"),
+    ("variance_added", "height variance added, % of that at zeta"),
+    ("modes_added", "modes added"),
+];
+
 /// The rows as a generic table (one row per setting and value, keyed
 /// `PARAMETER=VALUE`, the transition scene's row `transition`), in % where the column
 /// says so.
 pub fn study(rows: &[SensitivityRow]) -> Study {
     let mut study = Study::new(
-        "sensitivity",
+        KEY,
         "What sets the one-step flux: one setting at a time",
-        &[
-            ("n", "grid (points per side)"),
-            ("zeta", "zeta"),
-            ("dzeta", "dzeta"),
-            ("realizations", "realizations"),
-            ("flux_in", "into contact, % of A0"),
-            ("flux_out", "out of contact, % of A0"),
-            ("flux_in_of_contact", "into contact, % of the contact area"),
-            (
-                "flux_out_of_contact",
-                "out of contact, % of the contact area",
-            ),
-            ("net_over_gross", "net / mean one-way flux"),
-            ("net_flow", "net flow to non-contact, out - in, % of A0"),
-            (
-                "net_flow_residual",
-                "net flow + change of a_r in the step, % of A0 (fixed load; empty: n/a)",
-            ),
-            // The column of `flux_in_of_noncontact`: the stored name is kept for the
-            // committed results.
-            ("zero_bin", "non-contact entering contact, %"),
-            ("contact_area", "a_r at zeta"),
-            ("variance_added", "height variance added, % of that at zeta"),
-            ("modes_added", "modes added"),
-        ],
+        COLUMNS,
     )
     .percent(&[
         "flux_in",
