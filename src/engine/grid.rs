@@ -36,11 +36,7 @@
 
 use crate::error::{Error, Result};
 
-/// Relative slack on `|k|^2` when deciding whether a shell is resolved at a magnification:
-/// a `zeta` computed from a shell's own `|q|` includes that shell despite rounding. Every
-/// "is this shell resolved at zeta" decision (grid, surfaces, the spectrum's cutoffs,
-/// theory) uses it.
-pub const SHELL_SLACK: f64 = 1e-9;
+use crate::engine::tolerance::SHELL_SLACK;
 
 /// Smallest side accepted: below this the FFT tables and the spectra are degenerate.
 pub const MIN_N: usize = 4;
