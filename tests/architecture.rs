@@ -257,3 +257,30 @@ fn the_reader_finds_crate_and_super_paths() {
     assert!(refs.contains(&vec!["experiments".into(), "modes".into()]));
     assert_eq!(refs.len(), 2, "{refs:?}");
 }
+
+/// Two-dimensional transforms are the engine's ([`persson_check::engine::fft`]): no module
+/// above it plans an FFT of its own, so that a scan's spectrum and a solver's see the same
+/// convention and the same bits. The one exception transforms profiles, in one dimension,
+/// which the engine does not do.
+#[test]
+fn only_the_engine_plans_fourier_transforms() {
+    const ONE_DIMENSIONAL: &[&str] = &["measured::line::spectrum"];
+    let mut wrong = Vec::new();
+    for (m, path) in modules() {
+        let name = m.join("::");
+        if m[0] == "engine" || ONE_DIMENSIONAL.contains(&name.as_str()) {
+            continue;
+        }
+        let text = code(&path);
+        for planner in ["FftPlanner", "RealFftPlanner", "plan_fft"] {
+            if text.contains(planner) {
+                wrong.push(format!("{name} uses {planner}"));
+            }
+        }
+    }
+    assert!(
+        wrong.is_empty(),
+        "transforms planned outside the engine:\n{}",
+        wrong.join("\n")
+    );
+}

@@ -36,12 +36,7 @@
 
 use crate::error::{Error, Result};
 
-/// Relative slack on `|k|^2` when deciding whether a shell is resolved at a magnification:
-/// a `zeta` computed from a shell's own `|q|` includes that shell despite rounding. Every
-/// "is this shell resolved at zeta" decision (grid, surfaces, the spectrum's cutoffs,
-/// theory) uses it, and the sweep of a measured map's modes, which compares magnifications
-/// (`zeta`, not `|k|^2`) with it.
-pub const SHELL_SLACK: f64 = 1e-9;
+use crate::engine::tolerance::SHELL_SLACK;
 
 /// Smallest side accepted: below this the FFT tables and the spectra are degenerate.
 pub const MIN_N: usize = 4;
@@ -198,6 +193,17 @@ impl Grid {
         self.k2_table()[s]
     }
 
+    /// Integer `|k|^2` of half-spectrum mode `s` in units of `dq^2` (module docs), computed
+    /// from its wavevector in 64 bits: defined on every grid, also on a rectangle without a
+    /// shell table, and equal to [`Grid::k2`] where that is defined.
+    pub fn k2_wide(&self, s: usize) -> u64 {
+        let g = gcd(self.rows, self.cols);
+        let (sx, sy) = ((self.rows / g) as u64, (self.cols / g) as u64);
+        let (mx, my) = self.wavevector(s);
+        let (kx, ky) = (mx.unsigned_abs() * sx, my.unsigned_abs() * sy);
+        kx * kx + ky * ky
+    }
+
     /// The table of integer `|k|^2` over the half spectrum.
     ///
     /// # Panics
@@ -272,13 +278,15 @@ impl Grid {
     /// The relative slack [`SHELL_SLACK`] makes `zeta` values computed from a shell's own
     /// `|q|` include that shell.
     pub fn shell_limit(&self, zeta: f64, lambda_l: f64) -> u32 {
+        u32::try_from(self.shell_limit_wide(zeta, lambda_l)).unwrap_or(u32::MAX)
+    }
+
+    /// [`Grid::shell_limit`] in 64 bits, for the shells of [`Grid::k2_wide`].
+    pub fn shell_limit_wide(&self, zeta: f64, lambda_l: f64) -> u64 {
         let r = zeta * self.length() / lambda_l;
         let r2 = r * r * (1.0 + SHELL_SLACK);
-        if r2 >= u32::MAX as f64 {
-            u32::MAX
-        } else {
-            r2.floor() as u32
-        }
+        // `as` saturates: a limit beyond 64 bits includes every shell.
+        r2.floor() as u64
     }
 
     /// Magnification at which the shell `k2` is resolved: `zeta = |q| / q_l`.
@@ -428,5 +436,22 @@ mod tests {
         }
         let err = std::panic::catch_unwind(|| g.k2(1));
         assert!(err.is_err(), "no shells to read");
+        // The 64-bit shells are there: (1000 * 1021)^2 + (1021 * 1000)^2 at the corner.
+        let corner = (g.rows() / 2) * g.half_cols() + g.half_cols() - 1;
+        assert_eq!(g.k2_wide(corner), 2 * (1000u64 * 1021).pow(2));
+    }
+
+    #[test]
+    fn wide_shells_are_the_table_where_it_exists() {
+        for (rows, cols) in [(6usize, 10usize), (12, 8), (5, 9), (16, 16), (640, 480)] {
+            let g = Grid::rectangle(rows, cols, 1.0).unwrap();
+            for s in 0..g.modes() {
+                assert_eq!(
+                    g.k2_wide(s),
+                    u64::from(g.k2(s)),
+                    "{rows} x {cols}: mode {s}"
+                );
+            }
+        }
     }
 }

@@ -18,6 +18,7 @@
 //! * [`load`]: the load that gives a target contact area;
 //! * [`sweep`]: one realization solved at a sequence of magnifications, warm-started;
 //! * [`scene`]: scene files (a surface and a solve);
+//! * [`tolerance`]: the slacks of comparisons between magnifications and shells;
 //! * [`mod@reference`]: closed-form solutions the solvers are tested against;
 //! * [`wide`]: the element-wise loops compiled for the processor's widest vectors (AVX2)
 //!   where it has them, with the same numbers.
@@ -37,4 +38,5 @@ pub mod surface;
 pub mod sweep;
 #[cfg(test)]
 pub(crate) mod testing;
+pub mod tolerance;
 pub mod wide;

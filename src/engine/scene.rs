@@ -30,6 +30,7 @@ use crate::engine::solver::SolveOptions;
 use crate::engine::solver::SolverKind;
 use crate::engine::spectrum::SelfAffine;
 use crate::engine::surface::{Amplitudes, SurfaceParams};
+use crate::engine::tolerance::ZETA_SLACK;
 use crate::error::{check_open, check_positive, Error, Result};
 
 fn one() -> f64 {
@@ -244,7 +245,7 @@ fn toml_message(text: &str, e: &toml::de::Error) -> String {
 ///
 /// If `zeta` is not finite or outside `[1, zeta_max]`.
 pub fn check_zeta(zeta: f64, zeta_max: f64) -> Result<()> {
-    if zeta.is_finite() && (1.0..=zeta_max * (1.0 + 1e-12)).contains(&zeta) {
+    if zeta.is_finite() && (1.0..=zeta_max * (1.0 + ZETA_SLACK)).contains(&zeta) {
         Ok(())
     } else {
         Err(Error::invalid(

@@ -93,7 +93,7 @@ impl SelfAffine {
         let k2 = k2 as f64;
         let kl2 = (l / self.lambda_l).powi(2);
         let ks2 = (l / self.lambda_s).powi(2);
-        let slack = crate::engine::grid::SHELL_SLACK;
+        let slack = crate::engine::tolerance::SHELL_SLACK;
         if k2 > ks2 * (1.0 + slack) {
             return 0.0;
         }
@@ -190,7 +190,7 @@ impl ShellSpectrum {
     /// Shells resolved at magnification `zeta` (`|q| <= zeta q_l`, with the same slack as
     /// [`Grid::shell_limit`]).
     pub fn up_to(&self, zeta: f64) -> &[Shell] {
-        let limit = zeta * zeta * (1.0 + crate::engine::grid::SHELL_SLACK);
+        let limit = zeta * zeta * (1.0 + crate::engine::tolerance::SHELL_SLACK);
         let end = self.shells.partition_point(|s| s.zeta * s.zeta <= limit);
         &self.shells[..end]
     }

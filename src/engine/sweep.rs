@@ -30,6 +30,7 @@ use crate::engine::load::{persson_load_guess, solve_for_area, AreaSearch, AreaTa
 use crate::engine::solver::SolverKind;
 use crate::engine::solver::{SolveOptions, Solver, Start};
 use crate::engine::surface::Surface;
+use crate::engine::tolerance::ZETA_SLACK;
 use crate::error::Result;
 
 /// A realization, its model and a solver, stepping through magnifications.
@@ -256,7 +257,7 @@ pub fn shell_steps(surface: &Surface, zeta_from: f64, zeta_to: f64) -> Vec<f64> 
         .shell_sequence()
         .into_iter()
         .map(|k2| grid.zeta_of_shell(k2, surface.lambda_l()))
-        .filter(|&z| z > zeta_from * (1.0 + 1e-12) && z <= zeta_to * (1.0 + 1e-12))
+        .filter(|&z| z > zeta_from * (1.0 + ZETA_SLACK) && z <= zeta_to * (1.0 + ZETA_SLACK))
         .collect()
 }
 

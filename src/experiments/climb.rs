@@ -23,6 +23,7 @@ use serde::{Deserialize, Serialize};
 use super::scene::{Base, Realization};
 use crate::engine::contact::{ContactSolution, Residual, SolveStats};
 use crate::engine::solver::SolverKind;
+use crate::engine::tolerance::{STEP_MERGE, ZETA_SLACK};
 use crate::error::{Error, Result};
 use crate::io::checkpoint::{Array, Checkpoints};
 
@@ -100,7 +101,7 @@ pub fn check_steps_per_octave(steps_per_octave: usize) -> Result<()> {
 
 /// Magnification steps: `per_octave` log-spaced steps from `start` to `end` (both
 /// included), merged with the `extra` points that lie in `[start, end]`, sorted, with
-/// points closer than a relative `1e-9` merged.
+/// points closer than a relative [`STEP_MERGE`] merged.
 pub fn ladder(start: f64, end: f64, per_octave: usize, extra: &[f64]) -> Vec<f64> {
     let octaves = (end / start).log2();
     let count = ((octaves * per_octave as f64).ceil() as usize).max(1);
@@ -111,18 +112,18 @@ pub fn ladder(start: f64, end: f64, per_octave: usize, extra: &[f64]) -> Vec<f64
         extra
             .iter()
             .copied()
-            .filter(|&x| x >= start * (1.0 - 1e-12) && x <= end * (1.0 + 1e-12)),
+            .filter(|&x| x >= start * (1.0 - ZETA_SLACK) && x <= end * (1.0 + ZETA_SLACK)),
     );
     z.sort_by(f64::total_cmp);
-    z.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * b.abs());
+    z.dedup_by(|a, b| (*a - *b).abs() <= STEP_MERGE * b.abs());
     z
 }
 
-/// Index of `zeta` in `steps` (to a relative `1e-9`).
+/// Index of `zeta` in `steps` (to a relative [`STEP_MERGE`]).
 pub fn step_of(steps: &[f64], zeta: f64) -> usize {
     steps
         .iter()
-        .position(|&z| (z - zeta).abs() <= 1e-9 * zeta)
+        .position(|&z| (z - zeta).abs() <= STEP_MERGE * zeta)
         .expect("the ladder holds every requested point")
 }
 

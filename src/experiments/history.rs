@@ -4,6 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::engine::contact::ContactSolution;
+use crate::engine::tolerance::ZETA_SLACK;
 use crate::error::Result;
 use crate::experiments::climb::{Arrays, Recorder};
 use crate::experiments::contact_change::{above, change, ENTERED, LEFT};
@@ -158,10 +159,10 @@ impl Recorder for History {
         // The interval opens with the state before its first step and closes with the
         // state after its last one.
         let (from, to) = self.flux_interval;
-        if self.flux_start.is_none() && zeta > from * (1.0 + 1e-12) {
+        if self.flux_start.is_none() && zeta > from * (1.0 + ZETA_SLACK) {
             self.flux_start = Some(self.in_contact.clone());
         }
-        if zeta > to * (1.0 + 1e-12) {
+        if zeta > to * (1.0 + ZETA_SLACK) {
             self.close_flux();
         }
         self.update(step, &solution.pressure);

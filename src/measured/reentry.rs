@@ -7,27 +7,28 @@
 //! `L` and `lambda_s` four points of the grid the sweep is solved on ([`REENTRY_ZETA`],
 //! at most a quarter of the scan's points per side). The truncated surface is
 //! band-limited, so it is solved on the grid of `4 zeta_max` points along the longer
-//! side that holds it exactly (its modes placed on that grid's own wavevectors). Every
-//! distinct shell `|q|` up to `zeta_max` is then added one at a time, from the first, at
-//! the fixed load of the check's middle load, each solve warm-started from the last; the
-//! history of every point of the window ([`History`], the validation's own record) gives
-//! the share of the points in contact at `zeta_max` that were out of contact at a lower
-//! magnification (Persson: 0), and the share that left after the first shell and came
-//! back. A free scan is swept on the free boundary, its heights the detrended scan's
+//! side that holds it exactly (its modes placed on that grid's own wavevectors; both
+//! transforms are the engine's). Every distinct shell `|q|` up to `zeta_max` (the scan
+//! grid's integer shells, [`Grid::k2_wide`]) is then added one at a time, from the
+//! first, at the fixed load of the check's middle load, each solve warm-started from the
+//! last; the history of every point of the window ([`History`], the validation's own
+//! record) gives the share of the points in contact at `zeta_max` that were out of
+//! contact at a lower magnification (Persson: 0), and the share that left after the
+//! first shell and came back. A free scan is swept on the free boundary, its heights the detrended scan's
 //! modes (truncating a non-periodic window's spectrum rings at its edges as the window's
 //! periodic images step; the share counts the whole window).
 
-use std::collections::BTreeMap;
 use std::time::Instant;
 
 use rustfft::num_complex::Complex64;
 use serde::{Deserialize, Serialize};
 
 use super::body::window_of;
-use super::psd::{dft2, idft2, Boundary, ScanSpectrum, Shape};
+use super::psd::{half_spectrum, Boundary, ScanSpectrum, Shape};
 use super::theory::E_STAR;
 use crate::engine::contact::{ContactProblem, ContactSolution, Model};
-use crate::engine::grid::{signed_index, Grid, SHELL_SLACK};
+use crate::engine::fft::Fft2;
+use crate::engine::grid::Grid;
 use crate::engine::solver::{SolveOptions, SolverKind, Start};
 use crate::error::{Error, Result};
 use crate::experiments::history::History;
@@ -70,46 +71,50 @@ pub struct Reentry {
 }
 
 /// The modes of `spectrum`'s heights up to `zeta_max`, on the grid that holds them: the
-/// sweep's shape, its modes by shell (each `(shell |q|/q_l, index, amplitude)`), and the
-/// heights' scale from the scan's pixels to the sweep's.
+/// sweep's grid and its transform, and the modes in increasing shells, each `(shell, index
+/// on the sweep's half spectrum, amplitude)`, the shell the scan grid's integer `|k|^2`
+/// ([`Grid::k2_wide`]); the amplitudes in the sweep's pixels.
 struct Truncated {
     shape: Shape,
-    modes: Vec<(f64, usize, Complex64)>,
+    fft: Fft2,
+    modes: Vec<(u64, usize, Complex64)>,
+    /// The scan grid's `|q| / q_l` of shell `k2`, `sqrt(k2) L / L_s`.
+    zeta_per_root_k2: f64,
 }
 
-fn truncate(spectrum: &ScanSpectrum, zeta_max: f64) -> Truncated {
-    let Shape { rows, cols } = spectrum.shape;
+fn truncate(spectrum: &ScanSpectrum, zeta_max: f64) -> Result<Truncated> {
     let longer = spectrum.shape.longer() as f64;
     let coarse = POINTS_PER_LAMBDA_S * zeta_max;
     let side = |n: usize| ((n as f64 * coarse / longer).ceil() as usize).max(4);
     let shape = Shape {
-        rows: side(rows),
-        cols: side(cols),
+        rows: side(spectrum.shape.rows),
+        cols: side(spectrum.shape.cols),
     };
+    let sweep_grid = Grid::rectangle(shape.rows, shape.cols, 1.0)?;
+    let m = sweep_grid.half_cols();
     // Heights in the sweep's pixels: the scan's pixel over the sweep's.
     let scale = coarse / longer;
-    let spec = dft2(&spectrum.heights, spectrum.shape);
-    let q_l = 1.0 / longer;
-    let mut modes = Vec::new();
-    for ky in 0..rows {
-        let my = signed_index(ky, rows);
-        for kx in 0..cols {
-            let mx = signed_index(kx, cols);
-            if mx == 0 && my == 0 {
-                continue;
-            }
-            // |q| / q_l with q = (mx / cols, my / rows) in cycles per scan pixel.
-            let q = ((mx as f64 / cols as f64).powi(2) + (my as f64 / rows as f64).powi(2)).sqrt();
-            let zeta = q / q_l;
-            if zeta > zeta_max * (1.0 + 1e-12) {
-                continue;
-            }
-            let at = wrap(my, shape.rows) * shape.cols + wrap(mx, shape.cols);
-            modes.push((zeta, at, spec[ky * cols + kx] * scale));
-        }
-    }
-    modes.sort_by(|a, b| a.0.total_cmp(&b.0));
-    Truncated { shape, modes }
+    let (grid, spec) = half_spectrum(&spectrum.heights, spectrum.shape)?;
+    let limit = grid.shell_limit_wide(zeta_max, longer);
+    let mut modes: Vec<(u64, usize, Complex64)> = spec
+        .iter()
+        .enumerate()
+        .skip(1)
+        .filter_map(|(s, h)| {
+            let k2 = grid.k2_wide(s);
+            let (mx, my) = grid.wavevector(s);
+            // |mx| <= zeta_max cols / L <= cols' / 4: every mode has its own place.
+            let at = wrap(my, shape.rows) * m + mx as usize;
+            (k2 <= limit).then_some((k2, at, h * scale))
+        })
+        .collect();
+    modes.sort_by_key(|&(k2, _, _)| k2);
+    Ok(Truncated {
+        shape,
+        fft: Fft2::new(&sweep_grid),
+        modes,
+        zeta_per_root_k2: longer / grid.length(),
+    })
 }
 
 /// The index of signed wavenumber `m` on a side of `n` points.
@@ -117,14 +122,11 @@ fn wrap(m: i64, n: usize) -> usize {
     m.rem_euclid(n as i64) as usize
 }
 
-/// The distinct shells' magnifications, increasing (those that round to the same multiple of
-/// `1e-9` are one shell).
-fn shells(modes: &[(f64, usize, Complex64)]) -> Vec<f64> {
-    let mut zetas: BTreeMap<u64, f64> = BTreeMap::new();
-    for &(z, _, _) in modes {
-        zetas.entry((z * 1e9).round() as u64).or_insert(z);
-    }
-    zetas.into_values().collect()
+/// The distinct shells of the truncated modes, increasing.
+fn shells(modes: &[(u64, usize, Complex64)]) -> Vec<u64> {
+    let mut k2: Vec<u64> = modes.iter().map(|&(k, _, _)| k).collect();
+    k2.dedup();
+    k2
 }
 
 /// Sweeps the shells of `spectrum` at load `p0` with `solver` to `tol` (see the module
@@ -137,7 +139,7 @@ pub fn reentry_share(
 ) -> Result<Reentry> {
     let timer = Instant::now();
     let zeta_max = REENTRY_ZETA.min(spectrum.shape.longer() as f64 / POINTS_PER_LAMBDA_S);
-    let truncated = truncate(spectrum, zeta_max);
+    let truncated = truncate(spectrum, zeta_max)?;
     let shape = truncated.shape;
     let model = match spectrum.boundary {
         Boundary::Periodic => Model::new(Grid::new(shape.rows, 1.0)?, E_STAR)?,
@@ -149,18 +151,20 @@ pub fn reentry_share(
     let mut engine = solver.build();
     let opts = SolveOptions::with_tol(tol);
     let mut last: Option<ContactSolution> = None;
-    let mut spec = vec![Complex64::new(0.0, 0.0); shape.points()];
+    let mut spec = truncated.fft.new_spectrum();
+    let mut window = vec![0.0; shape.points()];
+    let mut work = Vec::new();
     let mut next = 0;
     let mut iterations = 0u64;
     let mut failed = None;
-    for (step, &zeta) in steps.iter().enumerate() {
-        let limit = zeta * (1.0 + SHELL_SLACK);
-        while next < truncated.modes.len() && truncated.modes[next].0 <= limit {
+    for (step, &k2) in steps.iter().enumerate() {
+        while next < truncated.modes.len() && truncated.modes[next].0 <= k2 {
             let (_, at, amplitude) = truncated.modes[next];
             spec[at] = amplitude;
             next += 1;
         }
-        let heights = model.pad_heights(&idft2(&spec, shape))?;
+        truncated.fft.inverse(&spec, &mut window, &mut work);
+        let heights = model.pad_heights(&window)?;
         let problem = ContactProblem::new(&model, &heights, p0 * share)?;
         let start = last.as_ref().map_or(Start::Cold, Start::Warm);
         match engine.solve(&problem, start, &opts) {
@@ -175,6 +179,7 @@ pub fn reentry_share(
                 | Error::NonFinite { .. }
                 | Error::LostContact { .. }),
             ) => {
+                let zeta = (k2 as f64).sqrt() * truncated.zeta_per_root_k2;
                 failed = Some(format!(
                     "re-entry sweep, shell {} of {} (zeta = {zeta:.3}): {e}",
                     step + 1,
@@ -205,7 +210,6 @@ pub fn reentry_share(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::engine::fft::Fft2;
     use crate::engine::surface::{Surface, SurfaceParams};
 
     #[test]
@@ -218,23 +222,26 @@ mod tests {
         let h = surface.heights_at(f64::INFINITY, &fft);
         let shape = Shape { rows: 64, cols: 64 };
         let spectrum = ScanSpectrum::new(&h, shape, 1.0, Boundary::Periodic).unwrap();
-        let t = truncate(&spectrum, 8.0);
+        let t = truncate(&spectrum, 8.0).unwrap();
         assert_eq!(t.shape, Shape { rows: 32, cols: 32 });
-        let mut spec = vec![Complex64::new(0.0, 0.0); t.shape.points()];
+        let mut spec = t.fft.new_spectrum();
         for &(_, at, a) in &t.modes {
             spec[at] = a;
         }
-        let coarse = idft2(&spec, t.shape);
+        let mut coarse = vec![0.0; t.shape.points()];
+        t.fft.inverse(&spec, &mut coarse, &mut Vec::new());
         for i in 0..32 {
             for j in 0..32 {
                 let fine = 0.5 * spectrum.heights[2 * i * 64 + 2 * j];
                 assert!((coarse[i * 32 + j] - fine).abs() < 1e-12, "({i}, {j})");
             }
         }
-        // The shells are the surface's own, in increasing order.
-        let zetas = shells(&t.modes);
-        assert!(zetas.windows(2).all(|w| w[0] < w[1]));
-        assert!((zetas[0] - 1.0).abs() < 1e-12 && *zetas.last().unwrap() <= 8.0 + 1e-9);
+        // The shells are the surface's own, in increasing order, from |k|^2 = 1 to the
+        // last below zeta = 8 (|k|^2 = 64).
+        let k2 = shells(&t.modes);
+        assert!(k2.windows(2).all(|w| w[0] < w[1]));
+        assert_eq!((k2[0], *k2.last().unwrap()), (1, 64));
+        assert!((8.0 * t.zeta_per_root_k2 - 8.0).abs() < 1e-15);
     }
 
     #[test]

@@ -7,6 +7,7 @@ use std::collections::BTreeMap;
 use super::figures::{asymptote_figure, asymptote_table, curve_figures, curve_table};
 use super::stats::{onset_key, FrozenStats, MODE_WINDOW, PANEL_LOADS};
 use super::ModeScene;
+use crate::engine::tolerance::ZETA_SLACK;
 use crate::error::{Error, Result};
 use crate::experiments::ensemble::by_load;
 use crate::experiments::study::{Cell, Study};
@@ -71,7 +72,7 @@ impl Experiment for ModeFrozen {
     fn validate(scene: &ModeScene) -> Result<()> {
         scene.validate()?;
         for &t in &scene.targets {
-            if scene.frozen_from * t * (1.0 + 1e-12) >= scene.zeta_end {
+            if scene.frozen_from * t * (1.0 + ZETA_SLACK) >= scene.zeta_end {
                 return Err(Error::invalid(
                     "targets",
                     t,

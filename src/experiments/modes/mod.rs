@@ -98,6 +98,7 @@ use super::scene::{check_increasing, scene};
 use super::{JobContext, Jobs, Work};
 use crate::engine::contact::{ContactSolution, Model};
 use crate::engine::solver::SolverKind;
+use crate::engine::tolerance::ZETA_SLACK;
 use crate::error::{check_open, check_positive, Error, Result};
 use crate::persson::Correction;
 
@@ -155,7 +156,9 @@ impl Jobs for ModeScene {
         check_headline(self.headline_contact_area, &self.contact_areas)?;
         check_open("band", self.band, 0.0, 0.5)?;
         check_positive("zeta_start", self.zeta_start)?;
-        if !(self.zeta_end > self.zeta_start && self.zeta_end <= base.zeta_max() * (1.0 + 1e-12)) {
+        if !(self.zeta_end > self.zeta_start
+            && self.zeta_end <= base.zeta_max() * (1.0 + ZETA_SLACK))
+        {
             return Err(Error::invalid(
                 "zeta_end",
                 self.zeta_end,

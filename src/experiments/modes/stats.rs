@@ -6,6 +6,7 @@
 //! `E_inf = K1 exp(-K2 x)` fitted to the partial-contact points.
 
 use super::{ModeResult, ModeScene};
+use crate::engine::tolerance::ZETA_SLACK;
 use crate::experiments::climb::step_of;
 use crate::experiments::ensemble::{group, load_range, LoadGroup};
 use crate::stats::{round_sig, Estimate, LineFit};
@@ -81,7 +82,7 @@ pub fn slope_over(run: &ModeResult, lo: f64, hi: f64) -> Option<f64> {
         .zetas
         .iter()
         .zip(&run.contact_area)
-        .filter(|(z, _)| **z >= lo * (1.0 - 1e-12) && **z <= hi * (1.0 + 1e-12))
+        .filter(|(z, _)| **z >= lo * (1.0 - ZETA_SLACK) && **z <= hi * (1.0 + ZETA_SLACK))
         .map(|(z, a)| (z.ln(), a.ln()))
         .unzip();
     LineFit::fit(&ln_z, &ln_a).map(|f| -f.slope.value)

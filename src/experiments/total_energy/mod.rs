@@ -66,6 +66,7 @@ use crate::engine::contact::{ContactSolution, Model};
 use crate::engine::solver::SolverKind;
 use crate::engine::surface::Surface;
 use crate::engine::sweep::shell_steps;
+use crate::engine::tolerance::ZETA_SLACK;
 use crate::error::{check_positive, Error, Result};
 use crate::persson::{Broadening, Correction, Prediction};
 use crate::plot::Figure;
@@ -160,7 +161,7 @@ fn window_shells(surface: &Surface, scene: &EnergyScene) -> Vec<Vec<f64>> {
         .increments_at
         .iter()
         .map(|&z| {
-            let base = all.partition_point(|&s| s <= z * (1.0 + 1e-12));
+            let base = all.partition_point(|&s| s <= z * (1.0 + ZETA_SLACK));
             let first = base.saturating_sub(1);
             all[first..(base + scene.increments).min(all.len())].to_vec()
         })

@@ -21,6 +21,7 @@ use std::path::PathBuf;
 use super::abel::{Converted, LogLog};
 use crate::engine::spectrum::{Shell, ShellSpectrum};
 use crate::engine::surface::{Amplitudes, Surface};
+use crate::engine::tolerance::ZETA_SLACK;
 use crate::error::{Error, Result};
 use crate::measured::psd::Shape;
 use crate::measured::scan::Scan;
@@ -53,7 +54,7 @@ impl Isotropic {
 
     /// `C(q)` (length^4).
     pub fn at(&self, q: f64) -> f64 {
-        if q > self.nyquist * (1.0 + 1e-12) || q <= 0.0 {
+        if q > self.nyquist * (1.0 + ZETA_SLACK) || q <= 0.0 {
             0.0
         } else if q <= self.first.0 {
             self.first.1
