@@ -37,6 +37,7 @@ use super::psd::{Boundary, ScanSpectrum, Shape};
 use super::theory::E_STAR;
 use crate::engine::contact::{ContactProblem, ContactSolution, Model};
 use crate::engine::grid::Grid;
+use crate::engine::solver::{ConstrainedCg, SCAN_STAGNATION};
 use crate::engine::solver::{Progress, SolveOptions, Solver, SolverKind, Start};
 use crate::error::{Error, Result};
 
@@ -290,6 +291,20 @@ fn ends_the_solve(e: &Error) -> bool {
     )
 }
 
+/// The solver `kind` as a measured scan needs it: CG with the scans' stagnation window
+/// ([`SCAN_STAGNATION`]), so that its safeguards against a cycling step act after 25
+/// iterations without progress rather than 200; the others as built.
+pub fn scan_solver(kind: SolverKind) -> Box<dyn Solver + Send> {
+    match kind {
+        SolverKind::Cg => {
+            let mut cg = ConstrainedCg::default();
+            cg.stagnation = SCAN_STAGNATION;
+            Box::new(cg)
+        }
+        other => other.build(),
+    }
+}
+
 /// Solves `body` at `loads` (increasing) with `solver` to `opts.tol` within
 /// `opts.max_iter` iterations a load, each load warm-started from the last that
 /// converged; `budget[i]` bounds the time of load `i` (`None`: no bound). `on_load` sees
@@ -305,7 +320,7 @@ pub fn solve_curve(
 ) -> Result<Curve> {
     let timer = Instant::now();
     let tol = opts.tol;
-    let mut engine: Box<dyn Solver + Send> = solver.build();
+    let mut engine = scan_solver(solver);
     let mut last: Option<ContactSolution> = None;
     let mut points = Vec::with_capacity(loads.len());
     let mut pressures = Vec::with_capacity(loads.len());
@@ -408,7 +423,7 @@ pub fn solve_curve(
         if outcome.is_err() {
             pressures.push(None);
             // The solver's state is the failed solve's: the next load starts afresh.
-            engine = solver.build();
+            engine = scan_solver(solver);
         }
         on_load(i, &outcome);
         points.push(outcome);

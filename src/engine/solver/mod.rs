@@ -41,7 +41,7 @@ mod fire;
 mod gfmd;
 pub mod workspace;
 
-pub use cg::ConstrainedCg;
+pub use cg::{ConstrainedCg, SCAN_STAGNATION};
 pub use fire::{Fire, FireParams};
 pub use gfmd::{Gfmd, GfmdParams};
 

@@ -5,7 +5,7 @@
 use rayon::prelude::*;
 
 use super::sums::View;
-use super::{Solve, DAMPING, STAGNATION};
+use super::{Solve, DAMPING};
 use crate::engine::contact::ContactSolution;
 use crate::engine::solver::executor::Judgement;
 use crate::error::{Result, Termination};
@@ -29,11 +29,15 @@ pub(super) struct Stopping {
     best_at: usize,
     /// Smallest full residual evaluated.
     reached: f64,
+    /// Iterations without progress before a safeguard acts
+    /// ([`super::ConstrainedCg::stagnation`]).
+    window: usize,
 }
 
 impl Stopping {
-    pub(super) fn new(tol: f64) -> Self {
+    pub(super) fn new(tol: f64, window: usize) -> Self {
         Self {
+            window,
             tol,
             target: tol,
             best: f64::INFINITY,
@@ -42,15 +46,15 @@ impl Stopping {
         }
     }
 
-    /// Records the estimate of iteration `it`; true when it has not halved for
-    /// [`STAGNATION`] iterations.
+    /// Records the estimate of iteration `it`; true when it has not halved for the
+    /// window's iterations.
     fn stagnant(&mut self, it: usize, estimate: f64) -> bool {
         if estimate < PROGRESS * self.best {
             self.best = estimate;
             self.best_at = it;
             false
         } else {
-            it - self.best_at > STAGNATION
+            it - self.best_at > self.window
         }
     }
 }
