@@ -820,6 +820,64 @@ fn terrace_with_particles_warm_along_the_loads() {
     }
 }
 
+/// The terrace with particles on the free boundary, loaded as `check-surface` loads a
+/// scan, by the CG that a measured scan gets
+/// ([`persson_check::measured::body::scan_solver`]: its safeguards act after
+/// [`persson_check::engine::solver::SCAN_STAGNATION`] iterations without progress, not
+/// 200): every load reaches the tolerance with the answer of the default CG, and the
+/// loads whose full step cycles cost fewer iterations in all.
+#[test]
+fn terrace_with_particles_by_the_scans_cg() {
+    let n = 128;
+    let h = terrace_with_particles(n);
+    let loads = [0.0002, 0.0004, 0.000654, 0.001, 0.0016, 0.0025, 0.004];
+    let model = Model::free_boundary(n, 1.0).unwrap();
+    let heights = model.pad_heights(&h).unwrap();
+    let share = (n * n) as f64 / model.grid.points() as f64;
+    let mut scan = persson_check::measured::body::scan_solver(SolverKind::Cg);
+    let mut plain = SolverKind::Cg.build();
+    let (mut last_scan, mut last_plain): (Option<ContactSolution>, Option<ContactSolution>) =
+        (None, None);
+    let (mut its_scan, mut its_plain) = (0, 0);
+    for &p0 in &loads {
+        let scene = format!("terrace, free, p0 = {p0}, the scans' CG");
+        let problem = ContactProblem::new(&model, &heights, p0 * share).unwrap();
+        let start = last_scan.as_ref().map_or(Start::Cold, Start::Warm);
+        let s = run(
+            &scene,
+            SolverKind::Cg,
+            scan.as_mut(),
+            &problem,
+            start,
+            &opts(1e-8),
+        )
+        .unwrap_or_else(|r| panic!("{scene}: residual {r:e}"));
+        let start = last_plain.as_ref().map_or(Start::Cold, Start::Warm);
+        let d = run(
+            &scene,
+            SolverKind::Cg,
+            plain.as_mut(),
+            &problem,
+            start,
+            &opts(1e-8),
+        )
+        .unwrap_or_else(|r| panic!("{scene}, default CG: residual {r:e}"));
+        eprintln!(
+            "{scene:<44} iterations {:>5} (default window {:>5})",
+            s.stats.iterations, d.stats.iterations
+        );
+        assert_agree(&scene, &s, &d, 1e-8);
+        its_scan += s.stats.iterations;
+        its_plain += d.stats.iterations;
+        last_scan = Some(s);
+        last_plain = Some(d);
+    }
+    assert!(
+        its_scan + 100 < its_plain,
+        "the scans' window took {its_scan} iterations over the loads, the default {its_plain}"
+    );
+}
+
 /// A lone spike pixel beside a smooth contact patch, the shape of an interferometer scan
 /// with an instrument spike (`tests/fixtures/spike_beside_patch.npy`, 128^2, pixel 1: a
 /// paraboloid of depth 0.03 over the half-width, band-limited self-affine roughness of
