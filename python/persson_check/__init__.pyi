@@ -113,12 +113,12 @@ def solve(
     heights: npt.ArrayLike,
     p0: Optional[float] = None,
     contact_area: Optional[float] = None,
-    solver: SolverName = "cg",
-    tol: float = 1e-8,
+    solver: SolverName = ...,
+    tol: float = ...,
     lambda_l: Optional[float] = None,
     threads: Optional[int] = None,
     zeta: Optional[float] = None,
-    max_iter: int = 100_000,
+    max_iter: int = ...,
     progress: Optional[Progress] = None,
 ) -> Solution:
     """Hard-wall contact on a square height array at p0 or at a target contact area."""
@@ -130,12 +130,12 @@ def sweep(
     zeta_from: float = 1.0,
     zeta_to: Optional[float] = None,
     zetas: Optional[Sequence[float]] = None,
-    solver: SolverName = "cg",
-    tol: float = 1e-8,
+    solver: SolverName = ...,
+    tol: float = ...,
     lambda_l: Optional[float] = None,
     threads: Optional[int] = None,
     fields: bool = False,
-    max_iter: int = 100_000,
+    max_iter: int = ...,
     progress: Optional[Progress] = None,
 ) -> Sweep:
     """A magnification sweep as an iterator of SweepStep."""

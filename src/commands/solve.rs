@@ -5,15 +5,11 @@ use std::path::PathBuf;
 use clap::Args as ClapArgs;
 use indicatif::{ProgressBar, ProgressStyle};
 
-use persson_check::engine::contact::ContactProblem;
 use persson_check::engine::grid::{MAX_N, MIN_N};
-use persson_check::engine::scene::SolveScene;
-use persson_check::engine::solver::SolverKind;
-use persson_check::engine::solver::{Progress, Start, Watched};
 use persson_check::engine::surface::Surface;
 use persson_check::error::{Error, Result};
-use persson_check::tasks::solve::{self, Origin, SolveRequest, Solved};
-use persson_check::tasks::{check_out_dir, parse, surface, Flags, Spelling};
+use persson_check::tasks::solve::{Origin, Progress, SolveArgs, Solved};
+use persson_check::tasks::{check_out_dir, surface, Flags, SolveOptions, SolverKind, Spelling};
 
 use super::{SurfaceArgs, FLAGS};
 
@@ -50,7 +46,7 @@ pub struct Args {
     /// Iteration budget per solve.
     #[arg(
         long = "max-iter",
-        default_value_t = 100_000,
+        default_value_t = SolveOptions::DEFAULT_MAX_ITER,
         allow_negative_numbers = true
     )]
     max_iter: usize,
@@ -65,17 +61,24 @@ const HEIGHTS_FLAGS: Flags<'static> = Flags {
 };
 
 pub fn run(args: Args) -> Result<()> {
-    check_flags(&args)?;
+    // Every flag is checked before any work.
+    let checked = SolveArgs {
+        p0: args.p0,
+        contact_area: args.contact_area,
+        zeta: args.zeta,
+        lambda_l: args.file_lambda_l,
+        solver: args.solver,
+        tol: args.tol,
+        max_iter: Some(args.max_iter),
+    }
+    .check(&FLAGS, &HEIGHTS_FLAGS)?;
     check_out_dir(&args.out, &FLAGS)?;
     let scene_path = args.surface.scene.as_deref();
-    let (surface, settings, seed) = match &args.heights {
-        Some(path) => {
-            let surface = read_heights(path, args.file_lambda_l)?;
-            (surface, SolveScene::default(), None)
-        }
+    let (surface, scene, seed) = match &args.heights {
+        Some(path) => (read_heights(path, args.file_lambda_l)?, None, None),
         None => {
             let (scene, surface) = args.surface.generate()?;
-            (surface, scene.solve, scene.surface.seed)
+            (surface, Some(scene.solve), scene.surface.seed)
         }
     };
     let origin = match (&args.heights, scene_path) {
@@ -88,61 +91,21 @@ pub fn run(args: Args) -> Result<()> {
             seed: seed.unwrap_or(0),
         },
     };
-    // A magnification from the scene is named as its key.
-    let zeta_flags = Flags {
-        renamed: &[("zeta", "solve.zeta")],
-    };
-    let zeta_named: &dyn Spelling = if args.zeta.is_some() {
-        &FLAGS
-    } else {
-        &zeta_flags
-    };
-    let zeta = solve::magnification(&surface, args.zeta.or(settings.zeta), zeta_named)?;
-    let kind = args.solver.or(settings.solver).unwrap_or_default();
-    let tol = args.tol.or(settings.tol).unwrap_or(1e-8);
-    let opts = parse::solve_options(tol, args.max_iter, &FLAGS)?;
-    let e_star = settings.e_star.unwrap_or(1.0);
-    // A load given on the command line replaces the scene's (both were checked).
-    let load = parse::load(
-        args.p0,
-        args.contact_area,
-        Some((settings.p0, settings.contact_area)),
-        &FLAGS,
-    )?;
-    let request = SolveRequest {
-        load,
-        zeta,
-        opts,
-        e_star,
-    };
-    let bar = spinner(kind);
+    // A load given on the command line replaces the scene's.
+    let settled = checked.settle(Some(&scene.unwrap_or_default()), &FLAGS)?;
+    let bar = spinner(settled.solver());
     // Every 16th iteration ticks the spinner.
-    let mut solver = Watched {
-        inner: kind.build(),
-        watch: |problem: &ContactProblem, p: Progress| {
-            if p.iteration % 16 == 0 {
-                bar.set_message(format!(
-                    "p0 {:.4e}  iteration {}  residual {:.2e}",
-                    problem.p0, p.iteration, p.residual
-                ));
-                bar.tick();
-            }
-        },
-    };
-    let solved = solve::solve(&surface, &request, &mut solver, Start::Cold, origin, &FLAGS)?;
+    let solved = settled.run(&surface, origin, &FLAGS, |p0, p: Progress| {
+        if p.iteration % 16 == 0 {
+            bar.set_message(format!(
+                "p0 {p0:.4e}  iteration {}  residual {:.2e}",
+                p.iteration, p.residual
+            ));
+            bar.tick();
+        }
+    })?;
     bar.finish_and_clear();
-    // The solver's work buffers (24 bytes per point with CG) are not needed to write.
-    drop(solver);
     write_outputs(&args.out, &solved)
-}
-
-/// Checks the ranges of the flags given, before any work; errors name the flag (`--zeta`
-/// gets its upper bound once the surface is known).
-fn check_flags(args: &Args) -> Result<()> {
-    parse::check_load(args.p0, args.contact_area, &FLAGS)?;
-    parse::check_zeta_floor(args.zeta, &FLAGS)?;
-    parse::check_lambda_l(args.file_lambda_l, &HEIGHTS_FLAGS)?;
-    parse::solve_options(args.tol.unwrap_or(1e-8), args.max_iter, &FLAGS).map(|_| ())
 }
 
 /// The surface of a heights file; a `--file-lambda-l` beyond the box is named as the flag,

@@ -9,7 +9,9 @@
 use crate::engine::fft::Fft2;
 use crate::engine::grid::Grid;
 use crate::engine::scene::{check_zeta, SurfaceScene};
-use crate::engine::surface::Surface;
+
+/// A surface: its heights, its grid and its spectrum.
+pub use crate::engine::surface::Surface;
 use crate::error::Result;
 
 use super::Spelling;
