@@ -6,10 +6,9 @@ use numpy::{PyArray2, PyReadonlyArrayDyn};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use persson_check::engine::scene::SurfaceScene;
-use persson_check::engine::surface::Amplitudes;
 use persson_check::tasks::solve::{Origin, SolveArgs, SolveSummary, Solved};
-use persson_check::tasks::{parse, surface as surfaces, Keywords};
+use persson_check::tasks::surface::{self as surfaces, SurfaceArgs};
+use persson_check::tasks::{parse, Keywords};
 
 use crate::conversions::{array2, field, grid_size, record};
 use crate::errors::OrRaise;
@@ -33,18 +32,18 @@ pub fn surface(
 ) -> PyResult<Py<PyArray2<f64>>> {
     let n = grid_size(n)?;
     let seed = crate::conversions::seed(seed)?;
-    let scene = SurfaceScene {
-        n,
-        hurst,
-        lambda_l,
-        lambda_s,
-        lambda_r: None,
-        amplitudes: Amplitudes::Gaussian,
-        rms_gradient: 1.0,
+    let scene = SurfaceArgs {
+        n: Some(n),
+        hurst: Some(hurst),
+        lambda_l: Some(lambda_l),
+        lambda_s: Some(lambda_s),
         seed: Some(seed),
-    };
+        scene: None,
+    }
+    .resolve(&Keywords, "given")
+    .or_raise()?;
     let h = py
-        .detach(|| surfaces::generate(&scene, seed, zeta, &Keywords))
+        .detach(|| surfaces::generate(&scene, zeta, &Keywords))
         .or_raise()?;
     array2(py, n, h)
 }

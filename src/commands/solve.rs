@@ -5,11 +5,9 @@ use std::path::PathBuf;
 use clap::Args as ClapArgs;
 use indicatif::{ProgressBar, ProgressStyle};
 
-use persson_check::engine::grid::{MAX_N, MIN_N};
-use persson_check::engine::surface::Surface;
 use persson_check::error::{Error, Result};
 use persson_check::tasks::solve::{Origin, Progress, SolveArgs, Solved};
-use persson_check::tasks::{check_out_dir, surface, Flags, SolveOptions, SolverKind, Spelling};
+use persson_check::tasks::{check_out_dir, surface, Flags, SolveOptions, SolverKind};
 
 use super::{SurfaceArgs, FLAGS};
 
@@ -73,26 +71,25 @@ pub fn run(args: Args) -> Result<()> {
     }
     .check(&FLAGS, &HEIGHTS_FLAGS)?;
     check_out_dir(&args.out, &FLAGS)?;
-    let scene_path = args.surface.scene.as_deref();
-    let (surface, scene, seed) = match &args.heights {
-        Some(path) => (read_heights(path, args.file_lambda_l)?, None, None),
+    let (surface, scene) = match &args.heights {
+        Some(path) => {
+            let surface = surface::read_heights(path, args.file_lambda_l, &HEIGHTS_FLAGS)?;
+            (surface, None)
+        }
         None => {
-            let (scene, surface) = args.surface.generate()?;
-            (surface, Some(scene.solve), scene.surface.seed)
+            let scene = args.surface.resolve()?;
+            (surface::realization(&scene)?, Some(scene))
         }
     };
-    let origin = match (&args.heights, scene_path) {
+    let seed = scene.and_then(|s| s.surface.seed).unwrap_or(0);
+    let origin = match (&args.heights, args.surface.scene.as_deref()) {
         (Some(path), _) => Origin::File(path),
-        (None, Some(path)) => Origin::Scene {
-            path,
-            seed: seed.unwrap_or(0),
-        },
-        (None, None) => Origin::Generated {
-            seed: seed.unwrap_or(0),
-        },
+        (None, Some(path)) => Origin::Scene { path, seed },
+        (None, None) => Origin::Generated { seed },
     };
     // A load given on the command line replaces the scene's.
-    let settled = checked.settle(Some(&scene.unwrap_or_default()), &FLAGS)?;
+    let table = scene.map(|s| s.solve).unwrap_or_default();
+    let settled = checked.settle(Some(&table), &FLAGS)?;
     let bar = spinner(settled.solver());
     // Every 16th iteration ticks the spinner.
     let solved = settled.run(&surface, origin, &FLAGS, |p0, p: Progress| {
@@ -106,16 +103,6 @@ pub fn run(args: Args) -> Result<()> {
     })?;
     bar.finish_and_clear();
     write_outputs(&args.out, &solved)
-}
-
-/// The surface of a heights file; a `--file-lambda-l` beyond the box is named as the flag,
-/// anything else as the file.
-fn read_heights(path: &std::path::Path, file_lambda_l: Option<f64>) -> Result<Surface> {
-    let field = persson_check::io::npy::read_field(path, MIN_N..=MAX_N)?;
-    surface::from_heights(field.n, &field.values, file_lambda_l).map_err(|e| match &e {
-        Error::InvalidInput { field, .. } if field == "lambda_l" => HEIGHTS_FLAGS.rename(e),
-        _ => Error::bad_file(path, e.to_string()),
-    })
 }
 
 fn spinner(kind: SolverKind) -> ProgressBar {

@@ -347,21 +347,19 @@ pub fn solve(
 mod tests {
     use super::super::{surface, Keywords};
     use super::*;
-    use crate::engine::scene::SurfaceScene;
-    use crate::engine::surface::Amplitudes;
 
     fn rough() -> Surface {
-        let scene = SurfaceScene {
-            n: 32,
-            hurst: 0.8,
-            lambda_l: 16.0,
-            lambda_s: 4.0,
-            lambda_r: None,
-            amplitudes: Amplitudes::Gaussian,
-            rms_gradient: 1.0,
-            seed: None,
-        };
-        let h = surface::generate(&scene, 3, None, &Keywords).unwrap();
+        let scene = surface::SurfaceArgs {
+            n: Some(32),
+            hurst: Some(0.8),
+            lambda_l: Some(16.0),
+            lambda_s: Some(4.0),
+            seed: Some(3),
+            ..Default::default()
+        }
+        .resolve(&Keywords, "given")
+        .unwrap();
+        let h = surface::generate(&scene, None, &Keywords).unwrap();
         surface::from_heights(32, &h, Some(16.0)).unwrap()
     }
 
