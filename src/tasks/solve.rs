@@ -3,6 +3,12 @@
 //! load that gives a target contact area, and its summary (`summary.json`, Python's
 //! `Solution.summary()`).
 //!
+//! The request is [`SolveArgs`]: a front end parses its flags or keywords into it, and
+//! gets back a [`Solved`]. Its values are checked once ([`SolveArgs::check`]), before any
+//! work; a scene's `[solve]` table and the defaults fill what was not given
+//! ([`Checked::settle`]); [`Settled::run`] solves. Python's `sweep` takes the same request
+//! ([`super::sweep::with_run`]).
+//!
 //! A contact-area target is met by root finding on the load ([`crate::engine::load`]),
 //! starting from Persson's estimate `p0 = sqrt2 (E* g_bar / 2) erfinv(a_r)` with the rms
 //! gradient `g_bar` of the heights solved against; every solve after the first starts from
@@ -467,6 +473,13 @@ mod tests {
                 ..p0
             }),
             "invalid --tol = 0: must be in [1e-14, 1)"
+        );
+        assert_eq!(
+            bad(SolveArgs {
+                tol: Some(1e-20),
+                ..p0
+            }),
+            "invalid --tol = 0.00000000000000000001: must be in [1e-14, 1)"
         );
         assert_eq!(
             bad(SolveArgs {
