@@ -9,6 +9,11 @@ import numpy.typing as npt
 
 __version__: str
 SOLVERS: tuple[str, ...]
+# The defaults of solve and sweep, read from the library (a test keeps the stubs' defaults
+# below equal to them).
+DEFAULT_SOLVER: str
+DEFAULT_TOL: float
+DEFAULT_MAX_ITER: int
 
 Array2 = npt.NDArray[np.float64]
 Progress = Callable[[int, float], object]
@@ -113,12 +118,12 @@ def solve(
     heights: npt.ArrayLike,
     p0: Optional[float] = None,
     contact_area: Optional[float] = None,
-    solver: SolverName = ...,
-    tol: float = ...,
+    solver: SolverName = "cg",
+    tol: float = 1e-8,
     lambda_l: Optional[float] = None,
     threads: Optional[int] = None,
     zeta: Optional[float] = None,
-    max_iter: int = ...,
+    max_iter: int = 100_000,
     progress: Optional[Progress] = None,
 ) -> Solution:
     """Hard-wall contact on a square height array at p0 or at a target contact area."""
@@ -130,12 +135,12 @@ def sweep(
     zeta_from: float = 1.0,
     zeta_to: Optional[float] = None,
     zetas: Optional[Sequence[float]] = None,
-    solver: SolverName = ...,
-    tol: float = ...,
+    solver: SolverName = "cg",
+    tol: float = 1e-8,
     lambda_l: Optional[float] = None,
     threads: Optional[int] = None,
     fields: bool = False,
-    max_iter: int = ...,
+    max_iter: int = 100_000,
     progress: Optional[Progress] = None,
 ) -> Sweep:
     """A magnification sweep as an iterator of SweepStep."""
