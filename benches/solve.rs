@@ -27,7 +27,7 @@ use criterion::{criterion_group, criterion_main, BatchSize, BenchmarkId, Criteri
 use persson_check::engine::contact::{ContactProblem, ContactSolution, Model};
 use persson_check::engine::solver::SolverKind;
 use persson_check::engine::solver::{SolveOptions, Solver, Start};
-use persson_check::engine::surface::{Surface, SurfaceParams};
+use persson_check::engine::surface::{Surface, SurfaceModel};
 use persson_check::engine::sweep::shell_steps;
 
 /// Hurst exponent of the scene.
@@ -53,7 +53,7 @@ struct Scene {
 
 impl Scene {
     fn new(n: usize) -> Self {
-        let params = SurfaceParams::new(n, HURST, n as f64 / 2.0, LAMBDA_S, SEED);
+        let params = SurfaceModel::new(n, HURST, n as f64 / 2.0, LAMBDA_S, SEED);
         let surface = Surface::generate(&params).expect("valid scene");
         let model = Model::new(surface.grid().clone(), 1.0).expect("valid model");
         Self { surface, model }

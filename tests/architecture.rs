@@ -284,3 +284,39 @@ fn only_the_engine_plans_fourier_transforms() {
         wrong.join("\n")
     );
 }
+
+/// The front ends are adapters: the command line's `src/commands/` and the Python
+/// package's `python/src/` parse their flags and keywords into the requests of `tasks`
+/// and print or return what comes back, so neither names an `engine` item (a type a front
+/// end must name is re-exported by `tasks`). A file's own comments are not read.
+#[test]
+fn the_front_ends_import_no_engine_item() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = Vec::new();
+    for dir in ["src/commands", "python/src"] {
+        for entry in std::fs::read_dir(root.join(dir)).unwrap() {
+            let path = entry.unwrap().path();
+            if path.extension().is_some_and(|e| e == "rs") {
+                files.push(path);
+            }
+        }
+    }
+    files.push(root.join("src/main.rs"));
+    assert!(files.len() >= 15, "{files:?}");
+    let wrong: Vec<String> = files
+        .iter()
+        .filter(|path| {
+            let text = std::fs::read_to_string(path).unwrap();
+            text.lines().any(|l| {
+                let code = l.find("//").map_or(l, |i| &l[..i]);
+                code.contains("engine::")
+            })
+        })
+        .map(|path| path.display().to_string())
+        .collect();
+    assert!(
+        wrong.is_empty(),
+        "front-end files that name engine items:\n{}",
+        wrong.join("\n")
+    );
+}

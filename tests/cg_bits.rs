@@ -7,7 +7,7 @@
 
 use persson_check::engine::contact::{ContactProblem, ContactSolution, Model};
 use persson_check::engine::solver::{ConstrainedCg, SolveOptions, Solver, Start};
-use persson_check::engine::surface::{Surface, SurfaceParams};
+use persson_check::engine::surface::{Surface, SurfaceModel};
 use sha2::{Digest, Sha256};
 
 /// The first twelve bytes of the SHA-256 of the bit patterns of `v`, in hex.
@@ -80,7 +80,7 @@ pub(crate) struct Scene {
 pub(crate) fn scenes() -> impl Iterator<Item = Scene> {
     [128usize, 256].into_iter().flat_map(|n| {
         [0.8, 0.3].into_iter().map(move |hurst| {
-            let params = SurfaceParams::new(n, hurst, n as f64 / 2.0, 4.0, 11);
+            let params = SurfaceModel::new(n, hurst, n as f64 / 2.0, 4.0, 11);
             let surface = Surface::generate(&params).unwrap();
             let model = Model::new(surface.grid().clone(), 1.0).unwrap();
             let h = surface.heights_at(f64::INFINITY, &model.fft);

@@ -385,8 +385,8 @@ fn the_check_surface_guide_names_every_warning() {
 /// Row `row` of a generated `n x n` surface (H = 0.8), heights times `scale`.
 fn profile(n: usize, row: usize, scale: f64) -> Vec<f64> {
     use persson_check::engine::fft::Fft2;
-    use persson_check::engine::surface::{Surface, SurfaceParams};
-    let s = Surface::generate(&SurfaceParams::new(n, 0.8, n as f64 / 2.0, 4.0, 9)).unwrap();
+    use persson_check::engine::surface::{Surface, SurfaceModel};
+    let s = Surface::generate(&SurfaceModel::new(n, 0.8, n as f64 / 2.0, 4.0, 9)).unwrap();
     let h = s.heights_at(f64::INFINITY, &Fft2::new(s.grid()));
     h[row * n..(row + 1) * n]
         .iter()

@@ -19,7 +19,7 @@ use persson_check::engine::contact::{ContactProblem, ContactSolution, Model};
 use persson_check::engine::field;
 use persson_check::engine::reference::{Hertz, Westergaard};
 use persson_check::engine::solver::{SolveOptions, Solver, SolverKind, Start};
-use persson_check::engine::surface::{Surface, SurfaceParams};
+use persson_check::engine::surface::{Surface, SurfaceModel};
 
 use crate::common::contact::{
     assert_agree, assert_hertz, check_solution, sinusoid, sphere_on_free_boundary,
@@ -57,7 +57,7 @@ fn converged(
 /// Cold, then warm from the cold solution, on a random surface in partial contact
 /// (64^2, H = 0.8, lambda_l = 32, lambda_s = 4, p0 = 0.1 E* g_bar).
 fn warm_from_the_solution(kind: SolverKind) {
-    let surface = Surface::generate(&SurfaceParams::new(64, 0.8, 32.0, 4.0, 3)).unwrap();
+    let surface = Surface::generate(&SurfaceModel::new(64, 0.8, 32.0, 4.0, 3)).unwrap();
     let model = Model::new(surface.grid().clone(), 1.0).unwrap();
     let h = surface.heights_at(f64::INFINITY, &model.fft);
     let problem = ContactProblem::new(&model, &h, 0.1).unwrap();

@@ -13,7 +13,7 @@ use std::process::{Command, Stdio};
 use persson_check::engine::contact::{ContactSolution, Model};
 use persson_check::engine::solver::SolveOptions;
 use persson_check::engine::solver::SolverKind;
-use persson_check::engine::surface::{Surface, SurfaceParams};
+use persson_check::engine::surface::{Surface, SurfaceModel};
 use persson_check::engine::sweep::Sweep;
 
 use crate::common::{definitions_with_reentry, outcome_numbers, table_without_wall};
@@ -111,7 +111,7 @@ fn sweep_in_pool(kind: SolverKind, threads: usize) -> (f64, ContactSolution) {
         .unwrap();
     pool.install(|| {
         // 256^2: eight reduction chunks, and rows split differently on 1, 2 and 3 threads.
-        let surface = Surface::generate(&SurfaceParams::new(256, 0.8, 128.0, 8.0, 7)).unwrap();
+        let surface = Surface::generate(&SurfaceModel::new(256, 0.8, 128.0, 8.0, 7)).unwrap();
         let model = Model::new(surface.grid().clone(), 1.0).unwrap();
         let mut sweep = Sweep::new(&surface, &model, kind, SolveOptions::with_tol(1e-9));
         let p0 = 0.05;

@@ -18,7 +18,7 @@ use persson_check::engine::load::{persson_load_guess, solve_for_area, AreaSearch
 use persson_check::engine::reference::Westergaard;
 use persson_check::engine::solver::SolverKind;
 use persson_check::engine::solver::{SolveOptions, Solver, Start};
-use persson_check::engine::surface::{Surface, SurfaceParams};
+use persson_check::engine::surface::{Surface, SurfaceModel};
 use persson_check::error::Termination;
 use persson_check::Error;
 
@@ -32,7 +32,7 @@ const ALL: [SolverKind; SolverKind::ALL.len()] = SolverKind::ALL;
 const TOL: f64 = 1e-10;
 
 /// A self-affine surface at full resolution, with its model (`E* = 1`).
-fn self_affine(params: &SurfaceParams) -> (Surface, Model, Vec<f64>) {
+fn self_affine(params: &SurfaceModel) -> (Surface, Model, Vec<f64>) {
     let surface = Surface::generate(params).unwrap();
     let model = Model::new(surface.grid().clone(), 1.0).unwrap();
     let h = surface.heights_at(f64::INFINITY, &model.fft);
@@ -173,7 +173,7 @@ fn spread(points: &[usize], n: usize) -> usize {
 /// at most 16 points out of contact: both extremes are reached at the grid's resolution,
 /// and a finer grid would only make them cost more.
 fn extreme_load_surface() -> (Surface, Model, Vec<f64>) {
-    self_affine(&SurfaceParams::new(128, 0.8, 64.0, 4.0, 5))
+    self_affine(&SurfaceModel::new(128, 0.8, 64.0, 4.0, 5))
 }
 
 #[test]
@@ -363,9 +363,9 @@ fn near_full_contact() {
 /// scales: many small patches on a field that changes from point to point.
 #[test]
 fn hurst_03_at_zeta_128() {
-    let params = SurfaceParams::new(256, 0.3, 256.0, 2.0, 7);
+    let params = SurfaceModel::new(256, 0.3, 256.0, 2.0, 7);
     let (surface, model, h) = self_affine(&params);
-    assert_eq!(params.spectrum.zeta_max(), 128.0);
+    assert_eq!(params.zeta_max(), 128.0);
     assert!(surface.zeta_max() > 127.0, "{}", surface.zeta_max());
     for p0 in [0.01, 0.1] {
         let scene = format!("H = 0.3, zeta 128, p0 = {p0}");
@@ -390,7 +390,7 @@ fn hurst_03_at_zeta_128() {
 #[test]
 fn single_tall_spike() {
     let n = 64;
-    let mut params = SurfaceParams::new(n, 0.8, 32.0, 4.0, 11);
+    let mut params = SurfaceModel::new(n, 0.8, 32.0, 4.0, 11);
     params.rms_gradient = 0.01;
     let (_, model, mut h) = self_affine(&params);
     let spike = n * n / 2 + n / 2;
@@ -580,7 +580,7 @@ fn scaled_heights_and_load() {
 #[test]
 fn non_power_of_two_grids() {
     for n in [96usize, 100, 127, 135] {
-        let (_, model, h) = self_affine(&SurfaceParams::new(n, 0.8, n as f64 / 2.0, 4.0, 3));
+        let (_, model, h) = self_affine(&SurfaceModel::new(n, 0.8, n as f64 / 2.0, 4.0, 3));
         let scene = format!("N = {n}, p0 = 0.05");
         let cg = cold(&scene, SolverKind::Cg, &model, &h, 0.05);
         let gfmd = cold(&scene, SolverKind::Gfmd, &model, &h, 0.05);
@@ -747,7 +747,7 @@ fn exhausted_budgets_on_hard_scenes_are_clean_errors() {
 fn terrace_with_particles(n: usize) -> Vec<f64> {
     use rand::Rng;
     use rand_chacha::rand_core::SeedableRng;
-    let params = SurfaceParams::new(n, 0.8, n as f64 / 4.0, 4.0, 2);
+    let params = SurfaceModel::new(n, 0.8, n as f64 / 4.0, 4.0, 2);
     let (_, _, rough) = self_affine(&params);
     let scale = 0.03 / field::std_dev(&rough);
     let mut h: Vec<f64> = rough.iter().map(|v| v * scale).collect();

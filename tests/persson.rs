@@ -6,7 +6,7 @@
 use std::f64::consts::{PI, SQRT_2};
 
 use persson_check::engine::spectrum::{Shell, ShellSpectrum};
-use persson_check::engine::surface::{Amplitudes, Surface, SurfaceParams};
+use persson_check::engine::surface::{Amplitudes, Surface, SurfaceModel};
 use persson_check::persson::moments::{
     relative_width_estimate, second_moment, width_estimate, width_from_moments,
 };
@@ -17,8 +17,8 @@ use persson_check::persson::{
 use statrs::function::erf::erfc;
 
 /// The realization of the snapshot: small, but with some 200 shells.
-fn params() -> SurfaceParams {
-    SurfaceParams::new(128, 0.8, 64.0, 4.0, 1)
+fn params() -> SurfaceModel {
+    SurfaceModel::new(128, 0.8, 64.0, 4.0, 1)
 }
 
 fn realization() -> (Surface, Broadening) {
@@ -136,7 +136,7 @@ fn random_phase_shells_carry_the_model_spectrum_exactly() {
     p.amplitudes = Amplitudes::RandomPhase;
     let spectrum = Surface::generate(&p).unwrap().shells();
     let first = &spectrum.shells[0];
-    let c = |s: &Shell| s.h2 / (s.modes as f64 * s.zeta.powf(-2.0 * (1.0 + p.spectrum.hurst)));
+    let c = |s: &Shell| s.h2 / (s.modes as f64 * s.zeta.powf(-2.0 * (1.0 + p.hurst)));
     for s in &spectrum.shells {
         assert!(rel(c(s), c(first)) < 1e-12, "k2 = {}", s.k2);
     }

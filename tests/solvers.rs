@@ -8,7 +8,7 @@ use persson_check::engine::load::{persson_load_guess, solve_for_area, AreaSearch
 use persson_check::engine::reference::{Hertz, Westergaard};
 use persson_check::engine::solver::SolverKind;
 use persson_check::engine::solver::{SolveOptions, Start};
-use persson_check::engine::surface::{Surface, SurfaceParams};
+use persson_check::engine::surface::{Surface, SurfaceModel};
 use persson_check::error::Termination;
 use persson_check::Error;
 
@@ -86,7 +86,7 @@ fn westergaard_contact_area_and_peak_pressure_converge_with_resolution() {
 
 #[test]
 fn full_contact_on_a_random_surface_matches_persson_exactly() {
-    let surface = Surface::generate(&SurfaceParams::new(64, 0.8, 32.0, 4.0, 3)).unwrap();
+    let surface = Surface::generate(&SurfaceModel::new(64, 0.8, 32.0, 4.0, 3)).unwrap();
     let model = Model::new(surface.grid().clone(), 1.0).unwrap();
     let h = surface.heights_at(f64::INFINITY, &model.fft);
     // g_bar = 1: pressure fluctuations have rms E* g_bar / 2 = 0.5, so p0 = 5 stays in full
@@ -132,7 +132,7 @@ fn flat_surface_carries_the_load_uniformly() {
 
 #[test]
 fn load_balance_and_energy_identity_hold_on_random_contact() {
-    let surface = Surface::generate(&SurfaceParams::new(128, 0.8, 64.0, 4.0, 8)).unwrap();
+    let surface = Surface::generate(&SurfaceModel::new(128, 0.8, 64.0, 4.0, 8)).unwrap();
     let model = Model::new(surface.grid().clone(), 1.0).unwrap();
     let h = surface.heights_at(f64::INFINITY, &model.fft);
     for kind in SolverKind::ALL {
@@ -158,7 +158,7 @@ fn load_balance_and_energy_identity_hold_on_random_contact() {
 #[test]
 fn solvers_agree_on_a_random_surface() {
     const TOL: f64 = 1e-10;
-    let surface = Surface::generate(&SurfaceParams::new(256, 0.8, 128.0, 4.0, 1)).unwrap();
+    let surface = Surface::generate(&SurfaceModel::new(256, 0.8, 128.0, 4.0, 1)).unwrap();
     let model = Model::new(surface.grid().clone(), 1.0).unwrap();
     let h = surface.heights_at(f64::INFINITY, &model.fft);
     for target in [0.1, 0.01] {
@@ -206,7 +206,7 @@ fn solvers_agree_on_a_random_surface() {
 
 #[test]
 fn very_low_and_near_full_contact_converge() {
-    let surface = Surface::generate(&SurfaceParams::new(128, 0.8, 64.0, 4.0, 5)).unwrap();
+    let surface = Surface::generate(&SurfaceModel::new(128, 0.8, 64.0, 4.0, 5)).unwrap();
     let model = Model::new(surface.grid().clone(), 1.0).unwrap();
     let h = surface.heights_at(f64::INFINITY, &model.fft);
     for kind in SolverKind::ALL {
@@ -235,7 +235,7 @@ fn very_low_and_near_full_contact_converge() {
 
 #[test]
 fn warm_start_reaches_the_cold_solution() {
-    let surface = Surface::generate(&SurfaceParams::new(128, 0.8, 64.0, 4.0, 2)).unwrap();
+    let surface = Surface::generate(&SurfaceModel::new(128, 0.8, 64.0, 4.0, 2)).unwrap();
     let model = Model::new(surface.grid().clone(), 1.0).unwrap();
     let h_lo = surface.heights_at(8.0, &model.fft);
     let h_hi = surface.heights_at(9.0, &model.fft);
@@ -272,7 +272,7 @@ fn warm_start_reaches_the_cold_solution() {
 /// oscillated without converging).
 #[test]
 fn warm_start_across_a_doubled_load_converges() {
-    let surface = Surface::generate(&SurfaceParams::new(256, 0.3, 128.0, 8.0, 1)).unwrap();
+    let surface = Surface::generate(&SurfaceModel::new(256, 0.3, 128.0, 8.0, 1)).unwrap();
     let model = Model::new(surface.grid().clone(), 1.0).unwrap();
     let h = surface.heights_at(f64::INFINITY, &model.fft);
     for kind in SolverKind::ALL {
@@ -307,7 +307,7 @@ fn warm_start_across_a_doubled_load_converges() {
 
 #[test]
 fn budget_exhaustion_is_an_error_with_the_residual() {
-    let (model, h) = full_resolution(SurfaceParams::new(64, 0.8, 32.0, 4.0, 2));
+    let (model, h) = full_resolution(SurfaceModel::new(64, 0.8, 32.0, 4.0, 2));
     let problem = ContactProblem::new(&model, &h, 0.1).unwrap();
     for kind in SolverKind::ALL {
         let opts = SolveOptions {
@@ -322,7 +322,7 @@ fn budget_exhaustion_is_an_error_with_the_residual() {
 }
 
 /// The model and the full-resolution heights of the surface of `params`.
-fn full_resolution(params: SurfaceParams) -> (Model, Vec<f64>) {
+fn full_resolution(params: SurfaceModel) -> (Model, Vec<f64>) {
     let surface = Surface::generate(&params).unwrap();
     let model = Model::new(surface.grid().clone(), 1.0).unwrap();
     let h = surface.heights_at(f64::INFINITY, &model.fft);
@@ -356,7 +356,7 @@ fn not_converged(
 /// budget.
 #[test]
 fn a_tolerance_below_the_rounding_floor_stalls_with_the_residual_reached() {
-    let (model, h) = full_resolution(SurfaceParams::new(128, 0.8, 64.0, 4.0, 11));
+    let (model, h) = full_resolution(SurfaceModel::new(128, 0.8, 64.0, 4.0, 11));
     let problem = ContactProblem::new(&model, &h, 0.01).unwrap();
     let opts = SolveOptions {
         tol: 1e-14,

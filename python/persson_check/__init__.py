@@ -29,6 +29,9 @@ import numpy as _np
 
 from . import _native
 from ._native import (
+    DEFAULT_MAX_ITER,
+    DEFAULT_SOLVER,
+    DEFAULT_TOL,
     SOLVERS,
     Solution,
     SolveError,
@@ -41,6 +44,9 @@ from ._native import (
 )
 
 __all__ = [
+    "DEFAULT_MAX_ITER",
+    "DEFAULT_SOLVER",
+    "DEFAULT_TOL",
     "SOLVERS",
     "Solution",
     "SolveError",
@@ -85,12 +91,12 @@ def solve(
     heights,
     p0=None,
     contact_area=None,
-    solver="cg",
-    tol=1e-8,
+    solver=_native.DEFAULT_SOLVER,
+    tol=_native.DEFAULT_TOL,
     lambda_l=None,
     threads=None,
     zeta=None,
-    max_iter=100_000,
+    max_iter=_native.DEFAULT_MAX_ITER,
     progress=None,
 ):
     return _native.solve(
@@ -114,12 +120,12 @@ def sweep(
     zeta_from=1.0,
     zeta_to=None,
     zetas=None,
-    solver="cg",
-    tol=1e-8,
+    solver=_native.DEFAULT_SOLVER,
+    tol=_native.DEFAULT_TOL,
     lambda_l=None,
     threads=None,
     fields=False,
-    max_iter=100_000,
+    max_iter=_native.DEFAULT_MAX_ITER,
     progress=None,
 ):
     return _native.sweep(

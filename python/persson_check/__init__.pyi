@@ -9,6 +9,11 @@ import numpy.typing as npt
 
 __version__: str
 SOLVERS: tuple[str, ...]
+# The defaults of solve and sweep, read from the library (a test keeps the stubs' defaults
+# below equal to them).
+DEFAULT_SOLVER: str
+DEFAULT_TOL: float
+DEFAULT_MAX_ITER: int
 
 Array2 = npt.NDArray[np.float64]
 Progress = Callable[[int, float], object]

@@ -31,14 +31,21 @@ mod worker;
 
 use pyo3::prelude::*;
 
+use persson_check::tasks::{SolveOptions, SolverKind};
+
 /// Native part of persson_check (use the persson_check package).
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("SolveError", m.py().get_type::<errors::SolveError>())?;
     m.add(
         "SOLVERS",
-        pyo3::types::PyTuple::new(m.py(), persson_check::engine::solver::SolverKind::NAMES)?,
+        pyo3::types::PyTuple::new(m.py(), SolverKind::NAMES)?,
     )?;
+    // The defaults of `solve` and `sweep`, written once in the library: the wrappers in
+    // `persson_check/__init__.py` take them from here.
+    m.add("DEFAULT_SOLVER", SolverKind::default().name())?;
+    m.add("DEFAULT_TOL", SolveOptions::DEFAULT_TOL)?;
+    m.add("DEFAULT_MAX_ITER", SolveOptions::DEFAULT_MAX_ITER)?;
     m.add_class::<solve::Solution>()?;
     m.add_class::<sweeps::Sweep>()?;
     m.add_class::<sweeps::SweepStep>()?;

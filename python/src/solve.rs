@@ -6,11 +6,9 @@ use numpy::{PyArray2, PyReadonlyArrayDyn};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use persson_check::engine::scene::SurfaceScene;
-use persson_check::engine::solver::Start;
-use persson_check::engine::surface::Amplitudes;
-use persson_check::tasks::solve::{self as task, Origin, SolveRequest, SolveSummary, Solved};
-use persson_check::tasks::{parse, surface as surfaces, Keywords};
+use persson_check::tasks::solve::{Origin, SolveArgs, SolveSummary, Solved};
+use persson_check::tasks::surface::{self as surfaces, SurfaceArgs};
+use persson_check::tasks::{parse, Keywords};
 
 use crate::conversions::{array2, field, grid_size, record};
 use crate::errors::OrRaise;
@@ -34,18 +32,18 @@ pub fn surface(
 ) -> PyResult<Py<PyArray2<f64>>> {
     let n = grid_size(n)?;
     let seed = crate::conversions::seed(seed)?;
-    let scene = SurfaceScene {
-        n,
-        hurst,
-        lambda_l,
-        lambda_s,
-        lambda_r: None,
-        amplitudes: Amplitudes::Gaussian,
-        rms_gradient: 1.0,
+    let scene = SurfaceArgs {
+        n: Some(n),
+        hurst: Some(hurst),
+        lambda_l: Some(lambda_l),
+        lambda_s: Some(lambda_s),
         seed: Some(seed),
-    };
+        scene: None,
+    }
+    .resolve(&Keywords, "given")
+    .or_raise()?;
     let h = py
-        .detach(|| surfaces::generate(&scene, seed, zeta, &Keywords))
+        .detach(|| surfaces::generate(&scene, zeta, &Keywords))
         .or_raise()?;
     array2(py, n, h)
 }
@@ -219,48 +217,43 @@ impl Solution {
 /// KeyboardInterrupt. Bad input raises ValueError; a solve that does not converge raises
 /// SolveError.
 #[pyfunction]
-#[pyo3(signature = (heights, p0=None, contact_area=None, solver="cg", tol=1e-8, lambda_l=None, threads=None, zeta=None, max_iter=100_000, progress=None))]
+#[pyo3(signature = (heights, p0=None, contact_area=None, solver=None, tol=None, lambda_l=None, threads=None, zeta=None, max_iter=None, progress=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn solve(
     py: Python<'_>,
     heights: PyReadonlyArrayDyn<'_, f64>,
     p0: Option<f64>,
     contact_area: Option<f64>,
-    solver: &str,
-    tol: f64,
+    solver: Option<&str>,
+    tol: Option<f64>,
     lambda_l: Option<f64>,
     threads: Option<i64>,
     zeta: Option<f64>,
-    max_iter: i64,
+    max_iter: Option<i64>,
     progress: Option<Bound<'_, PyAny>>,
 ) -> PyResult<Solution> {
-    // The command line's order: the load, the magnification, lambda_l, the solver
-    // options; then the array.
-    let load = parse::load(p0, contact_area, None, &Keywords).or_raise()?;
-    parse::check_zeta_floor(zeta, &Keywords).or_raise()?;
-    parse::check_lambda_l(lambda_l, &Keywords).or_raise()?;
-    let kind = parse::solver(solver).or_raise()?;
-    let max_iter = parse::integer("max_iter", max_iter, 0, u64::MAX, &Keywords).or_raise()?;
-    let opts = parse::solve_options(tol, max_iter as usize, &Keywords).or_raise()?;
+    let max_iter = max_iter
+        .map(|m| parse::integer("max_iter", m, 0, u64::MAX, &Keywords).map(|m| m as usize))
+        .transpose()
+        .or_raise()?;
+    let settled = SolveArgs {
+        p0,
+        contact_area,
+        zeta,
+        lambda_l,
+        solver: solver.map(parse::solver).transpose().or_raise()?,
+        tol,
+        max_iter,
+    }
+    .check(&Keywords, &Keywords)
+    .and_then(|checked| checked.settle(None, &Keywords))
+    .or_raise()?;
     let (n, values) = field(&heights)?;
     let (solved, gap) = run_blocking(py, threads, progress.as_ref(), |hook| {
         let surface = surfaces::from_heights(n, values, lambda_l)?;
-        let request = SolveRequest {
-            load,
-            zeta: task::magnification(&surface, zeta, &Keywords)?,
-            opts,
-            e_star: 1.0,
-        };
-        let mut solver = hook.wrap(kind.build());
-        let solved = task::solve(
-            &surface,
-            &request,
-            solver.as_mut(),
-            Start::Cold,
-            Origin::Array,
-            &Keywords,
-        )?;
-        drop(solver);
+        let solved = settled.run(&surface, Origin::Array, &Keywords, |_, p| {
+            hook.iteration(p)
+        })?;
         let gap = solved.solution.gap(&solved.heights);
         Ok((solved, gap))
     })?;

@@ -12,12 +12,11 @@ use numpy::{PyArray1, PyArray2, PyReadonlyArrayDyn};
 use pyo3::exceptions::{PyRuntimeError, PyStopIteration};
 use pyo3::prelude::*;
 
-use persson_check::engine::contact::Model;
-use persson_check::engine::solver::{SolveOptions, SolverKind};
-use persson_check::engine::surface::Surface;
-use persson_check::tasks::parse::{self, Load};
-use persson_check::tasks::sweep::{self as task, SweepRun};
-use persson_check::tasks::{surface as surfaces, Keywords};
+use persson_check::tasks::parse;
+use persson_check::tasks::solve::{SolveArgs, Settled};
+use persson_check::tasks::surface::{self as surfaces, Surface};
+use persson_check::tasks::sweep as task;
+use persson_check::tasks::Keywords;
 
 use crate::conversions::{array2, field};
 use crate::errors::OrRaise;
@@ -91,43 +90,37 @@ impl SweepStep {
 struct SweepJob {
     surface: Surface,
     steps: Vec<f64>,
-    load: Load,
-    kind: SolverKind,
-    opts: SolveOptions,
+    settled: Settled,
     fields: bool,
 }
 
 impl SweepJob {
     fn run(self, requests: Receiver<()>, out: Sender<Event>, hook: Hook) {
         let send = |r: Result<task::SweepStep, Failure>| out.send(Event::Step(Box::new(r)));
-        let model = match Model::new(self.surface.grid().clone(), 1.0) {
-            Ok(m) => m,
-            Err(e) => {
-                let _ = send(Err(Failure::Lib(e)));
-                return;
-            }
-        };
-        let solver = hook.wrap(self.kind.build());
-        let mut run = SweepRun::new(
+        let watched = hook.clone();
+        let ran = task::with_run(
             &self.surface,
-            &model,
-            solver,
-            self.opts,
-            self.load,
+            &self.settled,
             self.fields,
+            move |_, p| watched.iteration(p),
+            |run| {
+                for &zeta in &self.steps {
+                    if requests.recv().is_err() {
+                        return;
+                    }
+                    let result = match catch_unwind(AssertUnwindSafe(|| run.step(zeta))) {
+                        Ok(r) => r.map_err(Failure::Lib),
+                        Err(payload) => Err(Failure::from_panic(payload)),
+                    };
+                    let ends = result.as_ref().is_err_and(Failure::ends_worker);
+                    if send(result).is_err() || ends {
+                        return;
+                    }
+                }
+            },
         );
-        for &zeta in &self.steps {
-            if requests.recv().is_err() {
-                return;
-            }
-            let result = match catch_unwind(AssertUnwindSafe(|| run.step(zeta))) {
-                Ok(r) => r.map_err(Failure::Lib),
-                Err(payload) => Err(Failure::from_panic(payload)),
-            };
-            let ends = result.as_ref().is_err_and(Failure::ends_worker);
-            if send(result).is_err() || ends {
-                return;
-            }
+        if let Err(e) = ran {
+            let _ = send(Err(Failure::Lib(e)));
         }
     }
 }
@@ -240,7 +233,7 @@ impl Drop for Sweep {
 /// the iterator is advanced, on a worker thread with the GIL released; Ctrl-C stops the
 /// running solve. `fields=True` adds each step's pressure and gap arrays.
 #[pyfunction]
-#[pyo3(signature = (heights, p0=None, contact_area=None, zeta_from=1.0, zeta_to=None, zetas=None, solver="cg", tol=1e-8, lambda_l=None, threads=None, fields=false, max_iter=100_000, progress=None))]
+#[pyo3(signature = (heights, p0=None, contact_area=None, zeta_from=1.0, zeta_to=None, zetas=None, solver=None, tol=None, lambda_l=None, threads=None, fields=false, max_iter=None, progress=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn sweep(
     heights: PyReadonlyArrayDyn<'_, f64>,
@@ -249,19 +242,30 @@ pub fn sweep(
     zeta_from: f64,
     zeta_to: Option<f64>,
     zetas: Option<Vec<f64>>,
-    solver: &str,
-    tol: f64,
+    solver: Option<&str>,
+    tol: Option<f64>,
     lambda_l: Option<f64>,
     threads: Option<i64>,
     fields: bool,
-    max_iter: i64,
+    max_iter: Option<i64>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Sweep> {
-    let load = parse::load(p0, contact_area, None, &Keywords).or_raise()?;
-    parse::check_lambda_l(lambda_l, &Keywords).or_raise()?;
-    let kind = parse::solver(solver).or_raise()?;
-    let max_iter = parse::integer("max_iter", max_iter, 0, u64::MAX, &Keywords).or_raise()?;
-    let opts = parse::solve_options(tol, max_iter as usize, &Keywords).or_raise()?;
+    let max_iter = max_iter
+        .map(|m| parse::integer("max_iter", m, 0, u64::MAX, &Keywords).map(|m| m as usize))
+        .transpose()
+        .or_raise()?;
+    let settled = SolveArgs {
+        p0,
+        contact_area,
+        zeta: None,
+        lambda_l,
+        solver: solver.map(parse::solver).transpose().or_raise()?,
+        tol,
+        max_iter,
+    }
+    .check(&Keywords, &Keywords)
+    .and_then(|checked| checked.settle(None, &Keywords))
+    .or_raise()?;
     let (n, values) = field(&heights)?;
     let surface = surfaces::from_heights(n, values, lambda_l).or_raise()?;
     let steps = task::steps(&surface, zetas, zeta_from, zeta_to, &Keywords).or_raise()?;
@@ -277,9 +281,7 @@ pub fn sweep(
     let job = SweepJob {
         surface,
         steps: steps.clone(),
-        load,
-        kind,
-        opts,
+        settled,
         fields,
     };
     std::thread::Builder::new()

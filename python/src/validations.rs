@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use persson_check::engine::grid::MAX_N;
+use persson_check::tasks::surface::MAX_N;
 use persson_check::error::Error;
 use persson_check::report::{ReportOptions, SpeedChoice};
 use persson_check::speed::SpeedOptions;

@@ -1,8 +1,8 @@
 //! The cancellable worker: long computations run on a worker thread with the GIL
 //! released, while the calling thread waits for it and checks for signals every
 //! [`POLL`]. On Ctrl-C (or an exception from a progress callback) it raises a flag that
-//! the solver's per-iteration monitor sees ([`Hook::wrap`]; iteration 0 of every solve
-//! comes right after its set-up), and the worker stops at its next
+//! the watch of every solve sees ([`Hook::iteration`]; iteration 0 of every solve comes
+//! right after its set-up), and the worker stops at its next
 //! iteration by unwinding with [`Cancelled`] out of the solver's loop; the exception is
 //! raised once the worker has stopped.
 
@@ -15,10 +15,9 @@ use std::time::Duration;
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 
-use persson_check::engine::contact::ContactProblem;
-use persson_check::engine::solver::{Progress, Solver, Watched};
 use persson_check::error::Error;
 use persson_check::tasks::parse::{self, MAX_THREADS};
+use persson_check::tasks::solve::Progress;
 use persson_check::tasks::sweep::SweepStep;
 use persson_check::tasks::Keywords;
 
@@ -58,15 +57,6 @@ pub struct Hook {
 }
 
 impl Hook {
-    /// `solver`, stopped by the cancel flag and reporting its progress.
-    pub fn wrap(&self, solver: Box<dyn Solver + Send>) -> Box<dyn Solver + Send> {
-        let hook = self.clone();
-        Box::new(Watched {
-            inner: solver,
-            watch: move |_: &ContactProblem, p: Progress| hook.iteration(p),
-        })
-    }
-
     /// Whether the worker is to stop.
     pub fn cancelled(&self) -> bool {
         self.cancel.load(Ordering::Relaxed)

@@ -6,7 +6,6 @@ use std::path::PathBuf;
 
 use clap::Args as ClapArgs;
 use indicatif::{ProgressBar, ProgressStyle};
-use persson_check::engine::solver::SolverKind;
 use persson_check::error::{Error, Result};
 use persson_check::measured::check::{CheckOptions, Event, SurfaceCheck};
 use persson_check::measured::fill::Fill;
@@ -14,6 +13,7 @@ use persson_check::measured::line::check::{LineOptions, DEFAULT_SEEDS, DEFAULT_S
 use persson_check::measured::options::MAX_ITERATIONS;
 use persson_check::measured::psd::Boundary;
 use persson_check::tasks::check::{check_line, check_surface, load_line, read_input, Input};
+use persson_check::tasks::SolverKind;
 
 use super::FLAGS;
 

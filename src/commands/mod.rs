@@ -29,10 +29,9 @@ pub mod surface;
 pub mod validate;
 
 use clap::Args as ClapArgs;
-use persson_check::engine::scene::{read_scene, Scene, SurfaceScene};
-use persson_check::engine::surface::{Amplitudes, Surface};
-use persson_check::error::{Error, Result};
-use persson_check::tasks::{Flags, Spelling};
+use persson_check::error::Result;
+use persson_check::tasks::surface::{Scene, SurfaceArgs as SurfaceRequest};
+use persson_check::tasks::Flags;
 use std::path::PathBuf;
 
 /// Surface given on the command line or by a scene file.
@@ -59,47 +58,17 @@ pub struct SurfaceArgs {
 }
 
 impl SurfaceArgs {
-    /// The scene (from file or flags), with its seed.
-    pub fn resolve(&self) -> Result<(Scene, u64)> {
-        let mut scene = match &self.scene {
-            Some(path) => read_scene(path)?,
-            None => {
-                let missing = |name: &str| {
-                    Error::invalid(name, "missing", "given (or use --scene FILE.toml)")
-                };
-                let surface = SurfaceScene {
-                    n: self.n.ok_or_else(|| missing("--n"))?,
-                    hurst: self.hurst.ok_or_else(|| missing("--hurst"))?,
-                    lambda_l: self.lambda_l.ok_or_else(|| missing("--lambda-l"))?,
-                    lambda_s: self.lambda_s.ok_or_else(|| missing("--lambda-s"))?,
-                    lambda_r: None,
-                    amplitudes: Amplitudes::Gaussian,
-                    rms_gradient: 1.0,
-                    seed: None,
-                };
-                surface.validate().map_err(|e| FLAGS.rename(e))?;
-                Scene {
-                    surface,
-                    solve: Default::default(),
-                }
-            }
-        };
-        let seed = self.seed.or(scene.surface.seed).ok_or_else(|| {
-            Error::invalid(
-                "seed",
-                "missing",
-                "given (--seed K or seed = K in the scene)",
-            )
-        })?;
-        scene.surface.seed = Some(seed);
-        Ok((scene, seed))
-    }
-
-    /// The generated surface (after checking every range).
-    pub fn generate(&self) -> Result<(Scene, Surface)> {
-        let (scene, seed) = self.resolve()?;
-        let surface = Surface::generate(&scene.surface.params(seed))?;
-        Ok((scene, surface))
+    /// The scene (from file or flags, checked), with its seed.
+    pub fn resolve(&self) -> Result<Scene> {
+        SurfaceRequest {
+            scene: self.scene.as_deref(),
+            n: self.n,
+            hurst: self.hurst,
+            lambda_l: self.lambda_l,
+            lambda_s: self.lambda_s,
+            seed: self.seed,
+        }
+        .resolve(&FLAGS, "given (or use --scene FILE.toml)")
     }
 }
 

@@ -5,15 +5,9 @@ use std::path::PathBuf;
 use clap::Args as ClapArgs;
 use indicatif::{ProgressBar, ProgressStyle};
 
-use persson_check::engine::contact::ContactProblem;
-use persson_check::engine::grid::{MAX_N, MIN_N};
-use persson_check::engine::scene::SolveScene;
-use persson_check::engine::solver::SolverKind;
-use persson_check::engine::solver::{Progress, Start, Watched};
-use persson_check::engine::surface::Surface;
 use persson_check::error::{Error, Result};
-use persson_check::tasks::solve::{self, Origin, SolveRequest, Solved};
-use persson_check::tasks::{check_out_dir, parse, surface, Flags, Spelling};
+use persson_check::tasks::solve::{Origin, Progress, SolveArgs, Solved};
+use persson_check::tasks::{check_out_dir, surface, Flags, SolveOptions, SolverKind};
 
 use super::{SurfaceArgs, FLAGS};
 
@@ -50,7 +44,7 @@ pub struct Args {
     /// Iteration budget per solve.
     #[arg(
         long = "max-iter",
-        default_value_t = 100_000,
+        default_value_t = SolveOptions::DEFAULT_MAX_ITER,
         allow_negative_numbers = true
     )]
     max_iter: usize,
@@ -65,94 +59,50 @@ const HEIGHTS_FLAGS: Flags<'static> = Flags {
 };
 
 pub fn run(args: Args) -> Result<()> {
-    check_flags(&args)?;
+    // Every flag is checked before any work.
+    let checked = SolveArgs {
+        p0: args.p0,
+        contact_area: args.contact_area,
+        zeta: args.zeta,
+        lambda_l: args.file_lambda_l,
+        solver: args.solver,
+        tol: args.tol,
+        max_iter: Some(args.max_iter),
+    }
+    .check(&FLAGS, &HEIGHTS_FLAGS)?;
     check_out_dir(&args.out, &FLAGS)?;
-    let scene_path = args.surface.scene.as_deref();
-    let (surface, settings, seed) = match &args.heights {
+    let (surface, scene) = match &args.heights {
         Some(path) => {
-            let surface = read_heights(path, args.file_lambda_l)?;
-            (surface, SolveScene::default(), None)
+            let surface = surface::read_heights(path, args.file_lambda_l, &HEIGHTS_FLAGS)?;
+            (surface, None)
         }
         None => {
-            let (scene, surface) = args.surface.generate()?;
-            (surface, scene.solve, scene.surface.seed)
+            let scene = args.surface.resolve()?;
+            (surface::realization(&scene)?, Some(scene))
         }
     };
-    let origin = match (&args.heights, scene_path) {
+    let seed = scene.and_then(|s| s.surface.seed).unwrap_or(0);
+    let origin = match (&args.heights, args.surface.scene.as_deref()) {
         (Some(path), _) => Origin::File(path),
-        (None, Some(path)) => Origin::Scene {
-            path,
-            seed: seed.unwrap_or(0),
-        },
-        (None, None) => Origin::Generated {
-            seed: seed.unwrap_or(0),
-        },
+        (None, Some(path)) => Origin::Scene { path, seed },
+        (None, None) => Origin::Generated { seed },
     };
-    // A magnification from the scene is named as its key.
-    let zeta_flags = Flags {
-        renamed: &[("zeta", "solve.zeta")],
-    };
-    let zeta_named: &dyn Spelling = if args.zeta.is_some() {
-        &FLAGS
-    } else {
-        &zeta_flags
-    };
-    let zeta = solve::magnification(&surface, args.zeta.or(settings.zeta), zeta_named)?;
-    let kind = args.solver.or(settings.solver).unwrap_or_default();
-    let tol = args.tol.or(settings.tol).unwrap_or(1e-8);
-    let opts = parse::solve_options(tol, args.max_iter, &FLAGS)?;
-    let e_star = settings.e_star.unwrap_or(1.0);
-    // A load given on the command line replaces the scene's (both were checked).
-    let load = parse::load(
-        args.p0,
-        args.contact_area,
-        Some((settings.p0, settings.contact_area)),
-        &FLAGS,
-    )?;
-    let request = SolveRequest {
-        load,
-        zeta,
-        opts,
-        e_star,
-    };
-    let bar = spinner(kind);
+    // A load given on the command line replaces the scene's.
+    let table = scene.map(|s| s.solve).unwrap_or_default();
+    let settled = checked.settle(Some(&table), &FLAGS)?;
+    let bar = spinner(settled.solver());
     // Every 16th iteration ticks the spinner.
-    let mut solver = Watched {
-        inner: kind.build(),
-        watch: |problem: &ContactProblem, p: Progress| {
-            if p.iteration % 16 == 0 {
-                bar.set_message(format!(
-                    "p0 {:.4e}  iteration {}  residual {:.2e}",
-                    problem.p0, p.iteration, p.residual
-                ));
-                bar.tick();
-            }
-        },
-    };
-    let solved = solve::solve(&surface, &request, &mut solver, Start::Cold, origin, &FLAGS)?;
+    let solved = settled.run(&surface, origin, &FLAGS, |p0, p: Progress| {
+        if p.iteration % 16 == 0 {
+            bar.set_message(format!(
+                "p0 {p0:.4e}  iteration {}  residual {:.2e}",
+                p.iteration, p.residual
+            ));
+            bar.tick();
+        }
+    })?;
     bar.finish_and_clear();
-    // The solver's work buffers (24 bytes per point with CG) are not needed to write.
-    drop(solver);
     write_outputs(&args.out, &solved)
-}
-
-/// Checks the ranges of the flags given, before any work; errors name the flag (`--zeta`
-/// gets its upper bound once the surface is known).
-fn check_flags(args: &Args) -> Result<()> {
-    parse::check_load(args.p0, args.contact_area, &FLAGS)?;
-    parse::check_zeta_floor(args.zeta, &FLAGS)?;
-    parse::check_lambda_l(args.file_lambda_l, &HEIGHTS_FLAGS)?;
-    parse::solve_options(args.tol.unwrap_or(1e-8), args.max_iter, &FLAGS).map(|_| ())
-}
-
-/// The surface of a heights file; a `--file-lambda-l` beyond the box is named as the flag,
-/// anything else as the file.
-fn read_heights(path: &std::path::Path, file_lambda_l: Option<f64>) -> Result<Surface> {
-    let field = persson_check::io::npy::read_field(path, MIN_N..=MAX_N)?;
-    surface::from_heights(field.n, &field.values, file_lambda_l).map_err(|e| match &e {
-        Error::InvalidInput { field, .. } if field == "lambda_l" => HEIGHTS_FLAGS.rename(e),
-        _ => Error::bad_file(path, e.to_string()),
-    })
 }
 
 fn spinner(kind: SolverKind) -> ProgressBar {

@@ -23,8 +23,8 @@ pub struct Args {
 
 pub fn run(args: Args) -> Result<()> {
     check_out_file(&args.out, &FLAGS)?;
-    let (scene, seed) = args.surface.resolve()?;
-    let h = surface::generate(&scene.surface, seed, args.zeta, &FLAGS)?;
+    let scene = args.surface.resolve()?;
+    let h = surface::generate(&scene, args.zeta, &FLAGS)?;
     persson_check::io::npy::write_field(&args.out, scene.surface.n, &h)?;
     Ok(())
 }

@@ -4,9 +4,9 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use clap::Args as ClapArgs;
-use persson_check::engine::solver::SolverKind;
 use persson_check::error::{Error, Result};
 use persson_check::tasks::parse::MAX_SHARDS;
+use persson_check::tasks::SolverKind;
 use persson_check::tasks::{check_out_dir, validations};
 use persson_check::validation::shard::Shard;
 use persson_check::validation::source::Source;

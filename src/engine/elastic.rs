@@ -126,11 +126,11 @@ impl HalfSpace {
 mod tests {
     use super::*;
     use crate::engine::fft::Fft2;
-    use crate::engine::surface::{Surface, SurfaceParams};
+    use crate::engine::surface::{Surface, SurfaceModel};
 
     #[test]
     fn energy_in_real_space_equals_energy_in_fourier_space() {
-        let s = Surface::generate(&SurfaceParams::new(64, 0.7, 32.0, 4.0, 11)).unwrap();
+        let s = Surface::generate(&SurfaceModel::new(64, 0.7, 32.0, 4.0, 11)).unwrap();
         let grid = s.grid();
         let fft = Fft2::new(grid);
         let hs = HalfSpace::new(grid, 2.5).unwrap();

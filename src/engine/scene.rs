@@ -25,78 +25,11 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use crate::engine::grid::Grid;
 use crate::engine::solver::SolveOptions;
 use crate::engine::solver::SolverKind;
-use crate::engine::spectrum::SelfAffine;
-use crate::engine::surface::{Amplitudes, SurfaceParams};
+use crate::engine::surface::SurfaceModel;
 use crate::engine::tolerance::ZETA_SLACK;
 use crate::error::{check_open, check_positive, Error, Result};
-
-fn one() -> f64 {
-    1.0
-}
-
-/// The `[surface]` table: a self-affine surface model (the seed may come from elsewhere).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SurfaceScene {
-    /// Points per side.
-    pub n: usize,
-    /// Hurst exponent.
-    pub hurst: f64,
-    /// Long-wavelength cutoff (grid units).
-    pub lambda_l: f64,
-    /// Short-wavelength cutoff (grid units).
-    pub lambda_s: f64,
-    /// Optional roll-off wavelength.
-    #[serde(default)]
-    pub lambda_r: Option<f64>,
-    /// Amplitude distribution.
-    #[serde(default)]
-    pub amplitudes: Amplitudes,
-    /// Rms gradient at full resolution.
-    #[serde(default = "one")]
-    pub rms_gradient: f64,
-    /// Seed of the realization (scene files for one surface).
-    #[serde(default)]
-    pub seed: Option<u64>,
-}
-
-impl SurfaceScene {
-    /// The generator parameters for `seed`.
-    pub fn params(&self, seed: u64) -> SurfaceParams {
-        SurfaceParams {
-            n: self.n,
-            spectrum: SelfAffine {
-                hurst: self.hurst,
-                lambda_l: self.lambda_l,
-                lambda_s: self.lambda_s,
-                lambda_r: self.lambda_r,
-            },
-            seed,
-            amplitudes: self.amplitudes,
-            rms_gradient: self.rms_gradient,
-        }
-    }
-
-    /// Checks every range (grid size, spectrum, normalisation).
-    ///
-    /// # Errors
-    ///
-    /// If the grid size, the spectrum or the rms gradient is out of range; the error names
-    /// the key.
-    pub fn validate(&self) -> Result<()> {
-        let grid = Grid::new(self.n, 1.0)?;
-        self.params(0).spectrum.validate(&grid)?;
-        crate::error::check_positive("rms_gradient", self.rms_gradient)
-    }
-
-    /// `zeta_max = lambda_l / lambda_s`.
-    pub fn zeta_max(&self) -> f64 {
-        self.lambda_l / self.lambda_s
-    }
-}
 
 /// The `[solve]` table: load, magnification and solver settings.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
@@ -157,8 +90,8 @@ impl SolveScene {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Scene {
-    /// The surface.
-    pub surface: SurfaceScene,
+    /// The surface (the `[surface]` table).
+    pub surface: SurfaceModel,
     /// The solve.
     #[serde(default)]
     pub solve: SolveScene,
@@ -170,7 +103,7 @@ impl Scene {
     ///
     /// # Errors
     ///
-    /// As [`SurfaceScene::validate`] and [`SolveScene::validate`].
+    /// As [`SurfaceModel::validate`] and [`SolveScene::validate`].
     pub fn validate(&self) -> Result<()> {
         self.surface.validate()?;
         self.solve.validate(self.surface.zeta_max())

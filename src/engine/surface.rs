@@ -38,36 +38,89 @@ pub enum Amplitudes {
     RandomPhase,
 }
 
-/// Everything that defines a generated surface.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct SurfaceParams {
-    /// Points per side.
-    pub n: usize,
-    /// The model spectrum.
-    pub spectrum: SelfAffine,
-    /// The seed of the realization.
-    pub seed: u64,
-    /// How amplitudes are drawn.
-    pub amplitudes: Amplitudes,
-    /// The rms gradient at full resolution.
-    pub rms_gradient: f64,
+fn one() -> f64 {
+    1.0
 }
 
-impl SurfaceParams {
-    /// A Gaussian self-affine surface with `g_bar = 1`, grid spacing 1.
+/// The self-affine surface model, declared once: the `[surface]` table of a scene file
+/// ([`crate::engine::scene`]), the surface of every validation's scene
+/// ([`crate::experiments::scene::Base`]), the command line's surface flags and Python's
+/// `surface`. With a seed it is one realization ([`Surface::generate`]); without one, the
+/// seed comes from elsewhere (a flag, a scene's list of seeds).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SurfaceModel {
+    /// Points per side.
+    pub n: usize,
+    /// Hurst exponent, in (0, 1).
+    pub hurst: f64,
+    /// Long-wavelength cutoff (grid units), at most `n`.
+    pub lambda_l: f64,
+    /// Short-wavelength cutoff (grid units), at least 2.
+    pub lambda_s: f64,
+    /// Optional roll-off wavelength: a plateau from `lambda_r` down to `lambda_l`.
+    #[serde(default)]
+    pub lambda_r: Option<f64>,
+    /// How the amplitudes are drawn.
+    #[serde(default)]
+    pub amplitudes: Amplitudes,
+    /// The rms gradient at full resolution.
+    #[serde(default = "one")]
+    pub rms_gradient: f64,
+    /// The seed of the realization.
+    #[serde(default)]
+    pub seed: Option<u64>,
+}
+
+impl SurfaceModel {
+    /// Realization `seed` of a Gaussian self-affine surface with `g_bar = 1` and no
+    /// roll-off, grid spacing 1.
     pub fn new(n: usize, hurst: f64, lambda_l: f64, lambda_s: f64, seed: u64) -> Self {
         Self {
             n,
-            spectrum: SelfAffine {
-                hurst,
-                lambda_l,
-                lambda_s,
-                lambda_r: None,
-            },
-            seed,
+            hurst,
+            lambda_l,
+            lambda_s,
+            lambda_r: None,
             amplitudes: Amplitudes::Gaussian,
             rms_gradient: 1.0,
+            seed: Some(seed),
         }
+    }
+
+    /// The same model, realization `seed`.
+    pub fn seeded(self, seed: u64) -> Self {
+        Self {
+            seed: Some(seed),
+            ..self
+        }
+    }
+
+    /// The model spectrum.
+    pub fn spectrum(&self) -> SelfAffine {
+        SelfAffine {
+            hurst: self.hurst,
+            lambda_l: self.lambda_l,
+            lambda_s: self.lambda_s,
+            lambda_r: self.lambda_r,
+        }
+    }
+
+    /// Checks the grid and the spectrum against the grid; errors name the field.
+    pub fn validate_spectrum(&self) -> Result<()> {
+        let grid = Grid::new(self.n, 1.0)?;
+        self.spectrum().validate(&grid)
+    }
+
+    /// Checks every range (grid size, spectrum, normalisation); errors name the field.
+    pub fn validate(&self) -> Result<()> {
+        self.validate_spectrum()?;
+        check_positive("rms_gradient", self.rms_gradient)
+    }
+
+    /// `zeta_max = lambda_l / lambda_s`.
+    pub fn zeta_max(&self) -> f64 {
+        self.lambda_l / self.lambda_s
     }
 }
 
@@ -80,27 +133,30 @@ pub struct Surface {
 }
 
 impl Surface {
-    /// Generates the realization described by `params`.
+    /// Generates the realization of `model` (its seed).
     ///
     /// # Errors
     ///
-    /// If the grid size, the spectrum ([`SelfAffine::validate`]) or the rms gradient is out
-    /// of range.
-    pub fn generate(params: &SurfaceParams) -> Result<Self> {
-        let grid = Grid::new(params.n, 1.0)?;
-        params.spectrum.validate(&grid)?;
-        check_positive("rms_gradient", params.rms_gradient)?;
-        let modes = draw_modes(&grid, params.seed, params.amplitudes, |k2| {
-            params.spectrum.shape_on_shell(&grid, k2)
+    /// A range of the model out of bounds, or no seed, named by its field.
+    pub fn generate(model: &SurfaceModel) -> Result<Self> {
+        let grid = Grid::new(model.n, 1.0)?;
+        let spectrum = model.spectrum();
+        spectrum.validate(&grid)?;
+        check_positive("rms_gradient", model.rms_gradient)?;
+        let seed = model
+            .seed
+            .ok_or_else(|| Error::invalid("seed", "missing", "given"))?;
+        let modes = draw_modes(&grid, seed, model.amplitudes, |k2| {
+            spectrum.shape_on_shell(&grid, k2)
         });
         let mut surface = Self {
             grid,
-            lambda_l: params.spectrum.lambda_l,
+            lambda_l: spectrum.lambda_l,
             modes,
         };
         let g = surface.rms_gradient(f64::INFINITY);
         if g > 0.0 {
-            let f = params.rms_gradient / g;
+            let f = model.rms_gradient / g;
             surface.modes.iter_mut().for_each(|h| *h *= f);
         }
         Ok(surface)
@@ -367,8 +423,8 @@ fn unit_open(bits: u64) -> f64 {
 mod tests {
     use super::*;
 
-    fn params(n: usize, seed: u64) -> SurfaceParams {
-        SurfaceParams::new(n, 0.8, n as f64 / 2.0, 4.0, seed)
+    fn params(n: usize, seed: u64) -> SurfaceModel {
+        SurfaceModel::new(n, 0.8, n as f64 / 2.0, 4.0, seed)
     }
 
     #[test]
@@ -406,10 +462,10 @@ mod tests {
         p.amplitudes = Amplitudes::RandomPhase;
         let model = Surface::generate(&p).unwrap();
         let grid = Grid::new(32, 1.0).unwrap();
-        let (q_l, q_s) = (p.spectrum.q_l(), p.spectrum.q_s());
+        let (q_l, q_s) = (p.spectrum().q_l(), p.spectrum().q_s());
         let power = |q: f64| {
             if q >= q_l * (1.0 - 1e-9) && q <= q_s * (1.0 + 1e-9) {
-                3.0 * (q / q_l).powf(-2.0 * (1.0 + p.spectrum.hurst))
+                3.0 * (q / q_l).powf(-2.0 * (1.0 + p.hurst))
             } else {
                 0.0
             }
@@ -449,8 +505,8 @@ mod tests {
     fn seed_fixes_the_modes_across_grid_sizes() {
         // Same physical surface at twice the resolution: lambda in grid units doubles and
         // the normalisation is the same set of modes, so common modes agree.
-        let coarse = Surface::generate(&SurfaceParams::new(32, 0.8, 16.0, 4.0, 5)).unwrap();
-        let fine = Surface::generate(&SurfaceParams::new(64, 0.8, 32.0, 8.0, 5)).unwrap();
+        let coarse = Surface::generate(&SurfaceModel::new(32, 0.8, 16.0, 4.0, 5)).unwrap();
+        let fine = Surface::generate(&SurfaceModel::new(64, 0.8, 32.0, 8.0, 5)).unwrap();
         let (gc, gf) = (coarse.grid(), fine.grid());
         let mut matched = 0;
         for s in 0..gc.modes() {

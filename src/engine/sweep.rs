@@ -264,7 +264,7 @@ pub fn shell_steps(surface: &Surface, zeta_from: f64, zeta_to: f64) -> Vec<f64> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::engine::surface::SurfaceParams;
+    use crate::engine::surface::SurfaceModel;
     use crate::engine::testing::rough_contact;
 
     #[test]
@@ -327,7 +327,7 @@ mod tests {
 
     #[test]
     fn shell_steps_are_the_distinct_shells() {
-        let surface = Surface::generate(&SurfaceParams::new(32, 0.8, 16.0, 4.0, 1)).unwrap();
+        let surface = Surface::generate(&SurfaceModel::new(32, 0.8, 16.0, 4.0, 1)).unwrap();
         let steps = shell_steps(&surface, 1.0, 4.0);
         // Shells k2 in (4, 64] holding roughness: sums of two squares between 5 and 64.
         assert!(steps.windows(2).all(|w| w[0] < w[1]));

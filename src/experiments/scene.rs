@@ -13,7 +13,8 @@
 //! ```
 //!
 //! `scene!` declares a scene struct with these fields followed by the experiment's own,
-//! and gives it [`Base`]: the surface parameters of a seed, its realization, a sweep, and
+//! and gives it [`Base`]: the surface model (the one [`SurfaceModel`] of scene files, the
+//! command line and Python), the realization of a seed, its realization, a sweep, and
 //! the range checks, so that no experiment writes them again. The solver is not part of a
 //! scene: the runner runs every scene with each solver it is asked for (GFMD for the
 //! headline, CG for the cross-check), and a job learns its solver from its
@@ -25,7 +26,7 @@ use crate::engine::contact::{ContactSolution, Model};
 use crate::engine::grid::Grid;
 use crate::engine::scene::check_zeta;
 use crate::engine::solver::{SolveOptions, SolverKind};
-use crate::engine::surface::{Surface, SurfaceParams};
+use crate::engine::surface::{Surface, SurfaceModel};
 use crate::engine::sweep::Sweep;
 use crate::error::{check_open, check_positive, Error, Result};
 use crate::stats::realizations;
@@ -33,14 +34,9 @@ use crate::stats::realizations;
 /// The common part of a scene, borrowed from it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Base<'a> {
-    /// Points per side.
-    pub n: usize,
-    /// Hurst exponent.
-    pub hurst: f64,
-    /// Long-wavelength cutoff (grid units).
-    pub lambda_l: f64,
-    /// Short-wavelength cutoff (grid units).
-    pub lambda_s: f64,
+    /// The surface model (Gaussian, `g_bar = 1`, no roll-off; its seed is each of
+    /// `seeds` in turn).
+    pub surface: SurfaceModel,
     /// Realizations.
     pub seeds: &'a [u64],
     /// Residual tolerance.
@@ -55,31 +51,52 @@ pub struct Realization {
     pub model: Model,
 }
 
-impl Base<'_> {
-    /// The generator parameters of the realization `seed`.
-    pub fn params(&self, seed: u64) -> SurfaceParams {
-        SurfaceParams::new(self.n, self.hurst, self.lambda_l, self.lambda_s, seed)
+impl<'a> Base<'a> {
+    /// The common part of a scene: the surface model of `n`, `hurst`, `lambda_l` and
+    /// `lambda_s`, over `seeds`, solved to `tol`.
+    pub fn new(
+        n: usize,
+        hurst: f64,
+        lambda_l: f64,
+        lambda_s: f64,
+        seeds: &'a [u64],
+        tol: f64,
+    ) -> Self {
+        Self {
+            surface: SurfaceModel {
+                seed: None,
+                ..SurfaceModel::new(n, hurst, lambda_l, lambda_s, 0)
+            },
+            seeds,
+            tol,
+        }
+    }
+
+    /// The realization `seed` of the surface model.
+    pub fn params(&self, seed: u64) -> SurfaceModel {
+        self.surface.seeded(seed)
     }
 
     /// `zeta_max = lambda_l / lambda_s`.
     pub fn zeta_max(&self) -> f64 {
-        self.lambda_l / self.lambda_s
+        self.surface.zeta_max()
     }
 
     /// How many distinct shells (`k2 = mx^2 + my^2`) a magnification climb from `zeta_from`
     /// (excluded) to `zeta_to` (included) resolves one at a time: the steps of a climb
     /// through every shell, counted on the grid without generating a surface.
     pub fn shells(&self, zeta_from: f64, zeta_to: f64) -> usize {
-        let Ok(grid) = Grid::new(self.n, 1.0) else {
+        let Ok(grid) = Grid::new(self.surface.n, 1.0) else {
             return 0;
         };
+        let lambda_l = self.surface.lambda_l;
         let lo = if zeta_from > 0.0 {
-            grid.shell_limit(zeta_from, self.lambda_l)
+            grid.shell_limit(zeta_from, lambda_l)
         } else {
             0
         };
-        let half = (self.n / 2) as u64;
-        let hi = (grid.shell_limit(zeta_to, self.lambda_l) as u64).min(2 * half * half);
+        let half = (self.surface.n / 2) as u64;
+        let hi = (grid.shell_limit(zeta_to, lambda_l) as u64).min(2 * half * half);
         let mut seen = vec![false; hi as usize + 1];
         let r = (hi as f64).sqrt() as u64;
         for i in 0..=r.min(half) {
@@ -104,8 +121,7 @@ impl Base<'_> {
     /// Checks the grid, the spectrum against the grid, the seeds and the tolerance; errors
     /// name the field.
     pub fn validate(&self) -> Result<()> {
-        let grid = Grid::new(self.n, 1.0)?;
-        self.params(0).spectrum.validate(&grid)?;
+        self.surface.validate()?;
         crate::error::check_seeds(self.seeds)?;
         self.solve_options().validate()
     }
@@ -134,11 +150,11 @@ impl Base<'_> {
         format!(
             "Over {} (H = {}, {}x{} grid, lambda_l = {}, lambda_s = {})",
             realizations(self.seeds.len()),
-            self.hurst,
-            self.n,
-            self.n,
-            self.lambda_l,
-            self.lambda_s
+            self.surface.hurst,
+            self.surface.n,
+            self.surface.n,
+            self.surface.lambda_l,
+            self.surface.lambda_s
         )
     }
 
@@ -148,11 +164,11 @@ impl Base<'_> {
         format!(
             "{} ({}x{}, H = {}, lambda_l = {}, lambda_s = {})",
             realizations(self.seeds.len()),
-            self.n,
-            self.n,
-            self.hurst,
-            self.lambda_l,
-            self.lambda_s
+            self.surface.n,
+            self.surface.n,
+            self.surface.hurst,
+            self.surface.lambda_l,
+            self.surface.lambda_s
         )
     }
 
@@ -250,14 +266,14 @@ macro_rules! scene {
         impl $name {
             /// The fields every scene shares.
             pub fn base(&self) -> $crate::experiments::scene::Base<'_> {
-                $crate::experiments::scene::Base {
-                    n: self.n,
-                    hurst: self.hurst,
-                    lambda_l: self.lambda_l,
-                    lambda_s: self.lambda_s,
-                    seeds: &self.seeds,
-                    tol: self.tol,
-                }
+                $crate::experiments::scene::Base::new(
+                    self.n,
+                    self.hurst,
+                    self.lambda_l,
+                    self.lambda_s,
+                    &self.seeds,
+                    self.tol,
+                )
             }
         }
     };

@@ -440,10 +440,10 @@ pub fn solve_curve(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::engine::surface::{Surface, SurfaceParams};
+    use crate::engine::surface::{Surface, SurfaceModel};
 
     fn scan(n: usize, boundary: Boundary) -> ScanSpectrum {
-        let s = Surface::generate(&SurfaceParams::new(n, 0.8, n as f64, 4.0, 3)).unwrap();
+        let s = Surface::generate(&SurfaceModel::new(n, 0.8, n as f64, 4.0, 3)).unwrap();
         let fft = crate::engine::fft::Fft2::new(s.grid());
         let shape = Shape { rows: n, cols: n };
         ScanSpectrum::new(&s.heights_at(f64::INFINITY, &fft), shape, 1.0, boundary).unwrap()

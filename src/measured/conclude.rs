@@ -389,7 +389,7 @@ mod tests {
     use super::super::theory::Theory;
     use super::*;
     use crate::engine::solver::SolverKind;
-    use crate::engine::surface::{Surface, SurfaceParams};
+    use crate::engine::surface::{Surface, SurfaceModel};
     use std::time::Duration;
 
     /// A 32^2 window checked by hand: the headline's second load and the cross-check's
@@ -397,7 +397,7 @@ mod tests {
     #[test]
     fn a_failed_solve_is_listed_by_solver_and_load_and_costs_only_its_own_load() {
         let n = 32;
-        let s = Surface::generate(&SurfaceParams::new(n, 0.8, n as f64, 4.0, 3)).unwrap();
+        let s = Surface::generate(&SurfaceModel::new(n, 0.8, n as f64, 4.0, 3)).unwrap();
         let fft = crate::engine::fft::Fft2::new(s.grid());
         let heights = s.heights_at(f64::INFINITY, &fft);
         let shape = Shape { rows: n, cols: n };
@@ -483,7 +483,7 @@ mod tests {
     /// The `rows x cols` corner of a generated 64^2 surface (H = 0.8), scaled to an rms
     /// slope of about `slope`.
     fn window(rows: usize, cols: usize, slope: f64) -> Vec<f64> {
-        let s = Surface::generate(&SurfaceParams::new(64, 0.8, 32.0, 4.0, 5)).unwrap();
+        let s = Surface::generate(&SurfaceModel::new(64, 0.8, 32.0, 4.0, 5)).unwrap();
         let fft = crate::engine::fft::Fft2::new(s.grid());
         let full = s.heights_at(f64::INFINITY, &fft);
         let h: Vec<f64> = (0..rows * cols)

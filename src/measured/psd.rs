@@ -433,7 +433,7 @@ fn high_q_slope(radial: &[RadialBin], pixel: f64) -> Option<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::engine::surface::{Surface, SurfaceParams};
+    use crate::engine::surface::{Surface, SurfaceModel};
 
     fn square(n: usize) -> Shape {
         Shape { rows: n, cols: n }
@@ -455,7 +455,7 @@ mod tests {
         // A generated surface (unit rms gradient) read back as a periodic scan with pixel
         // 0.25: the spectral slope is the generator's, h_rms scales with the pixel, and
         // integral C d^2q gives back h_rms^2.
-        let surface = Surface::generate(&SurfaceParams::new(64, 0.8, 64.0, 4.0, 5)).unwrap();
+        let surface = Surface::generate(&SurfaceModel::new(64, 0.8, 64.0, 4.0, 5)).unwrap();
         let fft = Fft2::new(surface.grid());
         let h: Vec<f64> = surface
             .heights_at(f64::INFINITY, &fft)
@@ -503,7 +503,7 @@ mod tests {
         // A 128^2 window cut from a 256^2 periodic surface: its windowed spectral slope is
         // close to the whole surface's (the window removes the edge leak); so is that of a
         // 128 x 96 window, whose shells hold its modes in physical wavevectors.
-        let surface = Surface::generate(&SurfaceParams::new(256, 0.8, 128.0, 4.0, 2)).unwrap();
+        let surface = Surface::generate(&SurfaceModel::new(256, 0.8, 128.0, 4.0, 2)).unwrap();
         let fft = Fft2::new(surface.grid());
         let full = surface.heights_at(f64::INFINITY, &fft);
         for shape in [

@@ -210,14 +210,14 @@ pub fn reentry_share(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::engine::surface::{Surface, SurfaceParams};
+    use crate::engine::surface::{Surface, SurfaceModel};
 
     #[test]
     fn the_truncated_surface_keeps_its_modes_on_the_coarse_grid() {
         // A band-limited periodic 64^2 surface (lambda_s = 8: zeta <= 8) truncated at
         // zeta_max = 8 lands on a 32^2 grid with every mode: the coarse heights are the
         // fine ones at every second point, in coarse pixels (half as many per length).
-        let surface = Surface::generate(&SurfaceParams::new(64, 0.8, 64.0, 8.0, 4)).unwrap();
+        let surface = Surface::generate(&SurfaceModel::new(64, 0.8, 64.0, 8.0, 4)).unwrap();
         let fft = Fft2::new(surface.grid());
         let h = surface.heights_at(f64::INFINITY, &fft);
         let shape = Shape { rows: 64, cols: 64 };
@@ -248,7 +248,7 @@ mod tests {
     fn points_leave_and_come_back_as_shells_are_added() {
         // A 64^2 window of a rough surface at a_r about 0.1: some points re-enter (the
         // paper's finding), and the share counts the points in contact at zeta_max.
-        let surface = Surface::generate(&SurfaceParams::new(128, 0.8, 64.0, 4.0, 6)).unwrap();
+        let surface = Surface::generate(&SurfaceModel::new(128, 0.8, 64.0, 4.0, 6)).unwrap();
         let fft = Fft2::new(surface.grid());
         let full = surface.heights_at(f64::INFINITY, &fft);
         let shape = Shape { rows: 48, cols: 64 };

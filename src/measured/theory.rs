@@ -144,11 +144,11 @@ pub struct TheoryPoint {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::engine::surface::{Surface, SurfaceParams};
+    use crate::engine::surface::{Surface, SurfaceModel};
 
     #[test]
     fn the_default_loads_give_the_targeted_areas() {
-        let s = Surface::generate(&SurfaceParams::new(64, 0.8, 64.0, 4.0, 1)).unwrap();
+        let s = Surface::generate(&SurfaceModel::new(64, 0.8, 64.0, 4.0, 1)).unwrap();
         let theory = Theory::new(&s.shells()).unwrap();
         let loads = loads(&theory, None).unwrap();
         assert_eq!(loads.len(), 8);
@@ -162,7 +162,7 @@ mod tests {
 
     #[test]
     fn loads_out_of_range_are_refused_by_name() {
-        let s = Surface::generate(&SurfaceParams::new(32, 0.8, 32.0, 4.0, 1)).unwrap();
+        let s = Surface::generate(&SurfaceModel::new(32, 0.8, 32.0, 4.0, 1)).unwrap();
         let theory = Theory::new(&s.shells()).unwrap();
         for bad in [vec![], vec![0.1, -0.2], vec![f64::NAN], vec![20.0]] {
             let e = loads(&theory, Some(&bad)).unwrap_err().to_string();

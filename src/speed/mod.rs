@@ -52,7 +52,7 @@ use serde::{Deserialize, Serialize};
 use crate::engine::contact::{ContactProblem, ContactSolution, Model};
 use crate::engine::solver::SolverKind;
 use crate::engine::solver::{SolveOptions, Start};
-use crate::engine::surface::{Surface, SurfaceParams};
+use crate::engine::surface::{Surface, SurfaceModel};
 use crate::engine::sweep::shell_steps;
 use crate::error::{check_positive, Error, Result};
 use crate::plot::{Axis, Figure, Series, Style};

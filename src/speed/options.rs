@@ -70,7 +70,7 @@ impl SpeedOptions {
     /// Checks the ranges; errors name the option.
     pub fn validate(&self) -> Result<()> {
         self.params(self.n)
-            .spectrum
+            .spectrum()
             .validate(&crate::engine::grid::Grid::new(self.n, 1.0)?)
             .map_err(|e| {
                 Error::invalid(
@@ -97,7 +97,7 @@ impl SpeedOptions {
         }
         for &n in &self.floor_sizes {
             crate::engine::grid::Grid::new(n, 1.0)
-                .and_then(|g| self.params(n).spectrum.validate(&g))
+                .and_then(|g| self.params(n).spectrum().validate(&g))
                 .map_err(|e| {
                     Error::invalid(
                         "speed floor sizes",
@@ -112,8 +112,8 @@ impl SpeedOptions {
         check_positive("speed p0", self.p0)
     }
 
-    pub(super) fn params(&self, n: usize) -> SurfaceParams {
-        SurfaceParams::new(n, self.hurst, n as f64 / 2.0, self.lambda_s, self.seed)
+    pub(super) fn params(&self, n: usize) -> SurfaceModel {
+        SurfaceModel::new(n, self.hurst, n as f64 / 2.0, self.lambda_s, self.seed)
     }
 
     /// The sizes of the size study whose scene is valid.
@@ -124,7 +124,7 @@ impl SpeedOptions {
             .copied()
             .filter(|&n| {
                 crate::engine::grid::Grid::new(n, 1.0)
-                    .and_then(|g| self.params(n).spectrum.validate(&g))
+                    .and_then(|g| self.params(n).spectrum().validate(&g))
                     .is_ok()
             })
             .collect();

@@ -8,13 +8,20 @@
 //! |---|---|---|---|
 //! | a self-affine surface | [`surface::generate`] | `surface` | `surface` |
 //! | heights handed over as a field | [`surface::from_heights`] | `solve --heights` | `solve`, `sweep`, `theory` |
-//! | one contact problem and its summary | [`solve::magnification`], [`solve::solve`], [`solve::SolveSummary`] | `solve` (`summary.json`) | `solve`, `Solution.summary()` |
-//! | a magnification sweep | [`sweep::steps`], [`sweep::SweepRun`] | | `sweep` |
+//! | one contact problem and its summary | [`solve::SolveArgs`] (checked, settled, run), [`solve::SolveSummary`] | `solve` (`summary.json`) | `solve`, `Solution.summary()` |
+//! | a magnification sweep | [`solve::SolveArgs`], [`sweep::steps`], [`sweep::with_run`] | | `sweep` |
 //! | Persson's theory on a surface's spectrum | [`theory::theory`] | | `theory` |
 //! | the validations, their plan and merge | [`validations`] | `validate [--plan] [--merge]` | `validate`, `plan`, `merge` |
 //! | Persson checked on measured height maps | [`check::check_surface`] | `check-surface` | `check_surface` |
 //! | the parsers: solver names, the load, ranges | [`parse`] | flags | keywords |
 //! | stored job results recomputed and compared | [`audit::audit`] | `audit` | |
+//!
+//! # Defaults and checks, once
+//!
+//! A task's defaults are written once, in the library ([`SolveOptions::DEFAULT_TOL`],
+//! [`SolveOptions::DEFAULT_MAX_ITER`], [`SolverKind::default`]); a front end leaves a value
+//! it was not given as `None` (Python's wrappers show the defaults, read from the native
+//! module). A request checks the values given once, before any work.
 //!
 //! # Names in messages
 //!
@@ -33,6 +40,10 @@ pub mod theory;
 pub mod validations;
 
 use std::path::Path;
+
+/// The solvers by name and their options (with the defaults of `tol` and `max_iter`), for
+/// a front end that names them.
+pub use crate::engine::solver::{SolveOptions, SolverKind};
 
 use crate::error::{Error, Result};
 

@@ -1,9 +1,9 @@
 //! The parsers of what a user gives: solver and theory names, the load (a mean pressure
 //! `p0` or a target contact area), and the ranges checked before any work (a
-//! magnification's lower bound before the surface gives its upper one, tolerances,
-//! integer counts). Errors name the parameter through the front end's [`Spelling`].
+//! magnification's lower bound before the surface gives its upper one, integer counts).
+//! Errors name the parameter through the front end's [`Spelling`].
 
-use crate::engine::solver::{SolveOptions, SolverKind};
+use crate::engine::solver::SolverKind;
 use crate::error::{check_open, check_positive, Error, Result};
 use crate::persson::Correction;
 
@@ -148,18 +148,6 @@ pub fn check_lambda_l(lambda_l: Option<f64>, s: &dyn Spelling) -> Result<()> {
     }
 }
 
-/// The solver options, checked: `tol` in [1e-14, 1), `max_iter >= 1`.
-///
-/// # Errors
-///
-/// If `tol` or `max_iter` is out of range ([`SolveOptions::validate`]), named as `s`
-/// spells it.
-pub fn solve_options(tol: f64, max_iter: usize, s: &dyn Spelling) -> Result<SolveOptions> {
-    let opts = SolveOptions { tol, max_iter };
-    opts.validate().map_err(|e| s.rename(e))?;
-    Ok(opts)
-}
-
 /// An integer given as a signed number, checked against `[lo, hi]`.
 ///
 /// # Errors
@@ -253,12 +241,6 @@ mod tests {
                 "invalid max_iter = -1: must be an integer in [0, {}]",
                 u64::MAX
             )
-        );
-        assert_eq!(
-            solve_options(1e-20, 10, &Flags::default())
-                .unwrap_err()
-                .to_string(),
-            "invalid --tol = 0.00000000000000000001: must be in [1e-14, 1)"
         );
     }
 }

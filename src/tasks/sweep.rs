@@ -4,15 +4,36 @@
 //! protocol) or the load that gives a target contact area at the first step, kept for the
 //! steps after it.
 
-use crate::engine::contact::Model;
+use crate::engine::contact::{ContactProblem, Model};
 use crate::engine::scene::check_zeta;
-use crate::engine::solver::{SolveOptions, Solver};
+use crate::engine::solver::{SolveOptions, Solver, Watched};
 use crate::engine::surface::Surface;
 use crate::engine::sweep::{shell_steps, Sweep};
 use crate::error::{Error, Result};
 
 use super::parse::Load;
+use super::solve::{Progress, Settled};
 use super::Spelling;
+
+/// Runs a sweep of `surface` as `settled` asks (its load, solver, options and `E*`; the
+/// magnifications are the steps [`SweepRun::step`] is called with): `body` gets the run.
+/// `watch` sees the load `p0` and the progress of every iteration of every solve; `fields`
+/// keeps each step's pressure and gap.
+pub fn with_run<R>(
+    surface: &Surface,
+    settled: &Settled,
+    fields: bool,
+    mut watch: impl FnMut(f64, Progress) + Send + 'static,
+    body: impl FnOnce(&mut SweepRun) -> R,
+) -> Result<R> {
+    let model = Model::new(surface.grid().clone(), settled.e_star)?;
+    let solver = Box::new(Watched {
+        inner: settled.solver.build(),
+        watch: move |problem: &ContactProblem, p: Progress| watch(problem.p0, p),
+    });
+    let mut run = SweepRun::new(surface, &model, solver, settled.opts, settled.load, fields);
+    Ok(body(&mut run))
+}
 
 /// The magnifications of a sweep of `surface`: `zetas` as given (each in
 /// `[1, zeta_max]`), or else every shell with `zeta_from < zeta <= zeta_to` (default:

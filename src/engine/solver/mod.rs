@@ -163,13 +163,20 @@ pub struct SolveOptions {
 impl Default for SolveOptions {
     fn default() -> Self {
         Self {
-            tol: 1e-8,
-            max_iter: 100_000,
+            tol: Self::DEFAULT_TOL,
+            max_iter: Self::DEFAULT_MAX_ITER,
         }
     }
 }
 
 impl SolveOptions {
+    /// The residual asked for when none is given: the command line's `--tol`, Python's
+    /// `tol`, a scene's `[solve] tol` (the one place this default is written).
+    pub const DEFAULT_TOL: f64 = 1e-8;
+
+    /// The iteration budget of a solve when none is given (`--max-iter`, `max_iter`).
+    pub const DEFAULT_MAX_ITER: usize = 100_000;
+
     /// Options with tolerance `tol`.
     pub fn with_tol(tol: f64) -> Self {
         Self {

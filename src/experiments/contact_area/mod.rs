@@ -54,7 +54,7 @@ use super::study::Study;
 use super::{Check, Detail, Experiment, JobContext, Jobs, Keys, Table, Work};
 use crate::engine::contact::Model;
 use crate::engine::solver::SolveOptions;
-use crate::engine::surface::{Surface, SurfaceParams};
+use crate::engine::surface::{Surface, SurfaceModel};
 use crate::engine::sweep::Sweep;
 use crate::error::{check_open, check_positive, Error, Result};
 use crate::plot::Figure;
@@ -130,9 +130,9 @@ pub struct AreaResult {
 pub struct ContactArea;
 
 impl AreaScene {
-    fn params(&self, job: &AreaJob) -> SurfaceParams {
+    fn params(&self, job: &AreaJob) -> SurfaceModel {
         let r = job.refine as f64;
-        SurfaceParams::new(
+        SurfaceModel::new(
             self.n * job.refine,
             job.hurst,
             self.lambda_l * r,
@@ -178,7 +178,7 @@ impl AreaScene {
                 seed: 0,
                 refine: f.refine,
             });
-            p.spectrum
+            p.spectrum()
                 .validate(&crate::engine::grid::Grid::new(p.n, 1.0)?)?;
         }
         check_increasing("finer_grid.reduced_pressures", &f.reduced_pressures)?;
@@ -222,7 +222,7 @@ impl Jobs for AreaScene {
                     seed: 0,
                     refine,
                 });
-                p.spectrum
+                p.spectrum()
                     .validate(&crate::engine::grid::Grid::new(p.n, 1.0)?)?;
             }
         }

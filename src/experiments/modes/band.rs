@@ -76,11 +76,11 @@ pub fn band_energies(model: &Model, solution: &ContactSolution, bands: &[Band]) 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::engine::surface::SurfaceParams;
+    use crate::engine::surface::SurfaceModel;
 
     #[test]
     fn band_energy_is_the_full_contact_energy_of_its_shells() {
-        let surface = Surface::generate(&SurfaceParams::new(64, 0.5, 32.0, 4.0, 5)).unwrap();
+        let surface = Surface::generate(&SurfaceModel::new(64, 0.5, 32.0, 4.0, 5)).unwrap();
         let band = Band::new(&surface, 4.0, 0.15, 2.0).unwrap();
         let shells: f64 = surface
             .shells()

@@ -172,14 +172,7 @@ impl TolerancePlan {
             return Err(Error::invalid("tolerance.grids", "[]", "at least one grid"));
         }
         for g in &self.grids {
-            let base = Base {
-                n: g.n,
-                hurst,
-                lambda_l: g.lambda_l,
-                lambda_s: g.lambda_s,
-                seeds: &g.seeds,
-                tol: self.tols[0],
-            };
+            let base = Base::new(g.n, hurst, g.lambda_l, g.lambda_s, &g.seeds, self.tols[0]);
             base.validate()?;
             check_contact_areas(&g.contact_areas)?;
         }
@@ -204,14 +197,7 @@ impl TolerancePlan {
 
 /// The base of a job: its grid and tolerance at `hurst`.
 fn base<'a>(job: &ToleranceJob, hurst: f64, seeds: &'a [u64]) -> Base<'a> {
-    Base {
-        n: job.n,
-        hurst,
-        lambda_l: job.lambda_l,
-        lambda_s: job.lambda_s,
-        seeds,
-        tol: job.tol,
-    }
+    Base::new(job.n, hurst, job.lambda_l, job.lambda_s, seeds, job.tol)
 }
 
 /// What a job costs: a load search and every shell.

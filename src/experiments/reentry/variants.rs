@@ -160,14 +160,14 @@ impl Variant {
     }
 
     fn base(&self) -> Base<'_> {
-        Base {
-            n: self.n,
-            hurst: self.hurst,
-            lambda_l: self.lambda_l,
-            lambda_s: self.lambda_s,
-            seeds: &self.seeds,
-            tol: self.tol,
-        }
+        Base::new(
+            self.n,
+            self.hurst,
+            self.lambda_l,
+            self.lambda_s,
+            &self.seeds,
+            self.tol,
+        )
     }
 
     /// Checks the variant: a valid scene, loads in (0, 1), `zeta_from` in `[0,
@@ -232,14 +232,7 @@ pub fn work(job: &VariantJob) -> Work {
 }
 
 fn job_base<'a>(job: &VariantJob, seeds: &'a [u64]) -> Base<'a> {
-    Base {
-        n: job.n,
-        hurst: job.hurst,
-        lambda_l: job.lambda_l,
-        lambda_s: job.lambda_s,
-        seeds,
-        tol: job.tol,
-    }
+    Base::new(job.n, job.hurst, job.lambda_l, job.lambda_s, seeds, job.tol)
 }
 
 /// A history that also counts the contact after its first step.

@@ -120,14 +120,14 @@ pub struct SourceScene {
 impl SourceScene {
     /// The fields every scene shares, with the Hurst exponent `hurst` of a row.
     pub fn base(&self, hurst: f64) -> Base<'_> {
-        Base {
-            n: self.n,
+        Base::new(
+            self.n,
             hurst,
-            lambda_l: self.lambda_l,
-            lambda_s: self.lambda_s,
-            seeds: &self.seeds,
-            tol: self.tol,
-        }
+            self.lambda_l,
+            self.lambda_s,
+            &self.seeds,
+            self.tol,
+        )
     }
 
     /// The grid and seeds in words: `"4 realizations (128x128, lambda_l = 64, lambda_s =

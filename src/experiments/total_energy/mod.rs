@@ -461,7 +461,7 @@ impl Experiment for TotalEnergy {
 mod tests {
     use super::*;
     use crate::engine::solver::{SolveOptions, SolverKind};
-    use crate::engine::surface::SurfaceParams;
+    use crate::engine::surface::SurfaceModel;
     use crate::engine::sweep::Sweep;
     use crate::engine::testing::rough_contact;
 
@@ -558,7 +558,7 @@ mod tests {
 
     #[test]
     fn increment_windows_are_consecutive_shells() {
-        let surface = Surface::generate(&SurfaceParams::new(64, 0.8, 32.0, 4.0, 1)).unwrap();
+        let surface = Surface::generate(&SurfaceModel::new(64, 0.8, 32.0, 4.0, 1)).unwrap();
         let scene = EnergyScene {
             n: 64,
             hurst: 0.8,

@@ -84,7 +84,8 @@ impl Resolution {
         check_key_name("resolutions.name", &self.name)?;
         // Its grid's ranges (n, lambda_l, lambda_s), under the headline's own names.
         let mut grid = headline.base();
-        (grid.n, grid.lambda_l, grid.lambda_s) = (self.n, self.lambda_l, self.lambda_s);
+        (grid.surface.n, grid.surface.lambda_l, grid.surface.lambda_s) =
+            (self.n, self.lambda_l, self.lambda_s);
         grid.validate()?;
         check_seeds(&self.seeds).map_err(|e| e.with_field("resolutions.seeds"))?;
         check_contact_areas(&self.contact_areas)

@@ -305,11 +305,11 @@ pub fn check_line(
 mod tests {
     use super::*;
     use crate::engine::fft::Fft2;
-    use crate::engine::surface::{Amplitudes, Surface, SurfaceParams};
+    use crate::engine::surface::{Amplitudes, Surface, SurfaceModel};
     use crate::measured::line::abel::Uncertain;
     use crate::measured::psd::{ScanSpectrum, Shape};
 
-    fn heights(p: &SurfaceParams) -> Vec<f64> {
+    fn heights(p: &SurfaceModel) -> Vec<f64> {
         let s = Surface::generate(p).unwrap();
         s.heights_at(f64::INFINITY, &Fft2::new(s.grid()))
     }
@@ -321,7 +321,7 @@ mod tests {
         // gives the model back, within its error bars, where it is not marked uncertain.
         let n = 256;
         let hurst = 0.8;
-        let mut p = SurfaceParams::new(n, hurst, n as f64, 2.0, 11);
+        let mut p = SurfaceModel::new(n, hurst, n as f64, 2.0, 11);
         p.amplitudes = Amplitudes::RandomPhase;
         let surface = Surface::generate(&p).unwrap();
         let h = surface.heights_at(f64::INFINITY, &Fft2::new(surface.grid()));
@@ -377,7 +377,7 @@ mod tests {
         // own 2D spectrum, and on the spectrum converted from its rows. The rows' mean lies
         // within three of the windows' standard errors of theirs, and so do the rms slopes.
         let big = 512;
-        let h = heights(&SurfaceParams::new(big, 0.8, 256.0, 4.0, 5));
+        let h = heights(&SurfaceModel::new(big, 0.8, 256.0, 4.0, 5));
         let w = 128;
         let loads = [0.01, 0.03, 0.1];
         let (mut own, mut rows) = (vec![vec![]; 4], vec![vec![]; 4]);
@@ -432,7 +432,7 @@ mod tests {
         // disagree with the rows, and the check says so; the synthesized surfaces' contact
         // area rises with the load beside Persson's.
         let n = 128;
-        let mut h = heights(&SurfaceParams::new(n, 0.8, 64.0, 4.0, 3));
+        let mut h = heights(&SurfaceModel::new(n, 0.8, 64.0, 4.0, 3));
         for (k, v) in h.iter_mut().enumerate() {
             *v += 3.0 * (0.9 * (k / n) as f64).sin();
         }

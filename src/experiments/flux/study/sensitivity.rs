@@ -296,14 +296,14 @@ impl SensitivityPlan {
             return Err(Error::invalid("sensitivity.solvers", "[]", "at least one"));
         }
         for (parameter, _, _, config) in self.rows(step) {
-            let base = Base {
-                n: config.n,
-                hurst: config.hurst.unwrap_or(hurst),
-                lambda_l: config.lambda_l,
-                lambda_s: config.lambda_s,
-                seeds: &self.seeds,
-                tol: config.tol,
-            };
+            let base = Base::new(
+                config.n,
+                config.hurst.unwrap_or(hurst),
+                config.lambda_l,
+                config.lambda_s,
+                &self.seeds,
+                config.tol,
+            );
             base.validate()
                 .map_err(|e| e.with_field(&format!("sensitivity.{parameter}")))?;
             crate::engine::scene::check_zeta(config.zeta + config.dzeta, base.zeta_max())
@@ -602,14 +602,14 @@ pub fn study(rows: &[SensitivityRow]) -> Study {
 pub fn run(hurst: f64, job: &StudyJob) -> Result<StudyResult> {
     let c = &job.config;
     let seeds = [job.seed];
-    let base = Base {
-        n: c.n,
-        hurst: c.hurst.unwrap_or(hurst),
-        lambda_l: c.lambda_l,
-        lambda_s: c.lambda_s,
-        seeds: &seeds,
-        tol: c.tol,
-    };
+    let base = Base::new(
+        c.n,
+        c.hurst.unwrap_or(hurst),
+        c.lambda_l,
+        c.lambda_s,
+        &seeds,
+        c.tol,
+    );
     let r = base.realization(job.seed)?;
     let mut sweep = base.sweep(&r, c.solver);
     let p0 = sweep.find_load(c.zeta, c.contact_area)?;
@@ -820,8 +820,8 @@ mod tests {
 
     #[test]
     fn the_step_taken_counts_the_added_shells_only() {
-        use crate::engine::surface::{Surface, SurfaceParams};
-        let s = Surface::generate(&SurfaceParams::new(64, 0.8, 32.0, 2.0, 3)).unwrap();
+        use crate::engine::surface::{Surface, SurfaceModel};
+        let s = Surface::generate(&SurfaceModel::new(64, 0.8, 32.0, 2.0, 3)).unwrap();
         let shells = s.shells();
         let (v, m) = step_taken(&shells, 4.0, 1.0);
         let lo: f64 = shells.up_to(4.0).iter().map(|s| s.h2).sum();
