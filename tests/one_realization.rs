@@ -100,7 +100,7 @@ const ONE_SEED_SCENES: &[(&str, &str)] = &[
     (
         "total_energy",
         "n = 64\nhurst = 0.8\nlambda_l = 32\nlambda_s = 4\nseeds = [1]\n\
-         low_load_seeds = []\ncontact_areas = [0.03, 0.3]\nheadline_contact_area = 0.3\n\
+         low_load_seeds = []\ncontact_areas = [0.01, 0.03, 0.3]\nheadline_contact_area = 0.3\n\
          zeta_start = 1.0\nsteps_per_octave = 2\nincrements_at = [2.0]\nincrements = 3\n\
          tol = 1e-8\n",
     ),
