@@ -10,9 +10,9 @@ use pyo3::prelude::*;
 use pyo3::types::PyInt;
 use serde::Serialize;
 
-use persson_check::tasks::surface::{MAX_N, MIN_N};
 use persson_check::error::Error;
 use persson_check::io::npy;
+use persson_check::tasks::surface::{MAX_N, MIN_N};
 
 use crate::errors::to_py;
 

@@ -6,7 +6,7 @@ use numpy::{PyArray2, PyReadonlyArrayDyn};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use persson_check::tasks::solve::{Origin, SolveArgs, SolveSummary, Solved};
+use persson_check::tasks::solve::{Origin, Settled, SolveArgs, SolveSummary, Solved};
 use persson_check::tasks::surface::{self as surfaces, SurfaceArgs};
 use persson_check::tasks::{parse, Keywords};
 
@@ -232,28 +232,11 @@ pub fn solve(
     max_iter: Option<i64>,
     progress: Option<Bound<'_, PyAny>>,
 ) -> PyResult<Solution> {
-    let max_iter = max_iter
-        .map(|m| parse::integer("max_iter", m, 0, u64::MAX, &Keywords).map(|m| m as usize))
-        .transpose()
-        .or_raise()?;
-    let settled = SolveArgs {
-        p0,
-        contact_area,
-        zeta,
-        lambda_l,
-        solver: solver.map(parse::solver).transpose().or_raise()?,
-        tol,
-        max_iter,
-    }
-    .check(&Keywords, &Keywords)
-    .and_then(|checked| checked.settle(None, &Keywords))
-    .or_raise()?;
+    let settled = settle(p0, contact_area, zeta, lambda_l, solver, tol, max_iter)?;
     let (n, values) = field(&heights)?;
     let (solved, gap) = run_blocking(py, threads, progress.as_ref(), |hook| {
         let surface = surfaces::from_heights(n, values, lambda_l)?;
-        let solved = settled.run(&surface, Origin::Array, &Keywords, |_, p| {
-            hook.iteration(p)
-        })?;
+        let solved = settled.run(&surface, Origin::Array, &Keywords, |_, p| hook.iteration(p))?;
         let gap = solved.solution.gap(&solved.heights);
         Ok((solved, gap))
     })?;
@@ -269,4 +252,34 @@ pub fn solve(
         heights: array2(py, n, heights)?,
         summary,
     })
+}
+
+/// The solve request of the keywords `solve` and `sweep` share, checked once and settled
+/// on the defaults (no scene file: the keywords are all there is).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn settle(
+    p0: Option<f64>,
+    contact_area: Option<f64>,
+    zeta: Option<f64>,
+    lambda_l: Option<f64>,
+    solver: Option<&str>,
+    tol: Option<f64>,
+    max_iter: Option<i64>,
+) -> PyResult<Settled> {
+    let max_iter = max_iter
+        .map(|m| parse::integer("max_iter", m, 0, u64::MAX, &Keywords).map(|m| m as usize))
+        .transpose()
+        .or_raise()?;
+    SolveArgs {
+        p0,
+        contact_area,
+        zeta,
+        lambda_l,
+        solver: solver.map(parse::solver).transpose().or_raise()?,
+        tol,
+        max_iter,
+    }
+    .check(&Keywords, &Keywords)
+    .and_then(|checked| checked.settle(None, &Keywords))
+    .or_raise()
 }

@@ -12,8 +12,7 @@ use numpy::{PyArray1, PyArray2, PyReadonlyArrayDyn};
 use pyo3::exceptions::{PyRuntimeError, PyStopIteration};
 use pyo3::prelude::*;
 
-use persson_check::tasks::parse;
-use persson_check::tasks::solve::{SolveArgs, Settled};
+use persson_check::tasks::solve::Settled;
 use persson_check::tasks::surface::{self as surfaces, Surface};
 use persson_check::tasks::sweep as task;
 use persson_check::tasks::Keywords;
@@ -250,22 +249,7 @@ pub fn sweep(
     max_iter: Option<i64>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Sweep> {
-    let max_iter = max_iter
-        .map(|m| parse::integer("max_iter", m, 0, u64::MAX, &Keywords).map(|m| m as usize))
-        .transpose()
-        .or_raise()?;
-    let settled = SolveArgs {
-        p0,
-        contact_area,
-        zeta: None,
-        lambda_l,
-        solver: solver.map(parse::solver).transpose().or_raise()?,
-        tol,
-        max_iter,
-    }
-    .check(&Keywords, &Keywords)
-    .and_then(|checked| checked.settle(None, &Keywords))
-    .or_raise()?;
+    let settled = crate::solve::settle(p0, contact_area, None, lambda_l, solver, tol, max_iter)?;
     let (n, values) = field(&heights)?;
     let surface = surfaces::from_heights(n, values, lambda_l).or_raise()?;
     let steps = task::steps(&surface, zetas, zeta_from, zeta_to, &Keywords).or_raise()?;

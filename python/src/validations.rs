@@ -7,11 +7,11 @@ use std::path::{Path, PathBuf};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use persson_check::tasks::surface::MAX_N;
 use persson_check::error::Error;
 use persson_check::report::{ReportOptions, SpeedChoice};
 use persson_check::speed::SpeedOptions;
 use persson_check::tasks::parse::{self, MAX_SHARDS};
+use persson_check::tasks::surface::MAX_N;
 use persson_check::tasks::{check_out_dir, check_out_file, validations as task, Keywords};
 use persson_check::validation::source::Source;
 use persson_check::validation::{Registry, RunOptions};
