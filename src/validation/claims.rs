@@ -42,12 +42,11 @@
 use serde::{Deserialize, Serialize};
 
 pub use super::phrase::{Phrase, Rule, ABOUT, ORDER, PHRASES};
-use crate::engine::solver::SolverKind;
 use crate::error::{Error, Result};
-use crate::experiments::keys::closest;
-use crate::experiments::study::{self, Study};
-use crate::experiments::{Detail, Keys};
 use crate::stats::{establish, Decision, Estimate, Region};
+
+use super::measures::check_measure;
+pub use super::measures::{check_declared, Measures};
 
 /// A value the claim's test must be able to exclude.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -253,159 +252,6 @@ pub struct ClaimOutcome {
     /// The other readings, judged by the same rule.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub readings: Vec<ReadingOutcome>,
-}
-
-/// Where a claim finds its numbers: a run's headline, details, studies and cross-checks.
-pub struct Measures<'a> {
-    /// The headline statistic.
-    pub headline: Estimate,
-    /// The secondary statistics.
-    pub details: &'a [Detail],
-    /// The studies.
-    pub studies: &'a [Study],
-    /// The other solvers' headlines: (solver, estimate).
-    pub cross_checks: Vec<(String, Estimate)>,
-}
-
-impl Measures<'_> {
-    /// The estimate a measure names, if the run has it.
-    pub fn get(&self, measure: &str) -> Option<Estimate> {
-        let (kind, rest) = measure.split_once(':').unwrap_or((measure, ""));
-        match kind {
-            "headline" => Some(self.headline),
-            "detail" => {
-                let (key, grid) = match rest.split_once('@') {
-                    Some((k, g)) => (k, g.parse::<usize>().ok()),
-                    None => (rest, None),
-                };
-                self.details
-                    .iter()
-                    .find(|d| d.key == key && (grid.is_none() || d.grid == grid))
-                    .map(|d| d.value)
-            }
-            "study" => {
-                let mut parts = rest.splitn(3, '/');
-                let (s, r, c) = (parts.next()?, parts.next()?, parts.next()?);
-                study::find(self.studies, s)?.cell(r, c)?.estimate()
-            }
-            "cross_check" => self
-                .cross_checks
-                .iter()
-                .find(|(s, _)| s == rest)
-                .map(|(_, e)| *e),
-            _ => None,
-        }
-    }
-}
-
-/// Checks a measure's form: one of the kinds above.
-fn check_measure(field: &str, measure: &str) -> Result<()> {
-    let (kind, rest) = measure.split_once(':').unwrap_or((measure, ""));
-    let ok = match kind {
-        "headline" => rest.is_empty(),
-        "detail" | "cross_check" => !rest.is_empty(),
-        "study" => rest.splitn(3, '/').filter(|p| !p.is_empty()).count() == 3,
-        _ => false,
-    };
-    if ok {
-        Ok(())
-    } else {
-        Err(Error::invalid(
-            field,
-            measure,
-            "headline, detail:KEY[@N], study:STUDY/ROW/COLUMN or cross_check:SOLVER",
-        ))
-    }
-}
-
-/// Whether a run of a scene whose experiment declares `keys` has the measure `measure`
-/// (of a checked form): a declared detail (on the grid it names), a declared study and
-/// column (the rows of a study are known from its results only), or the cross-check of a
-/// known solver where the scene does not fix its solver (`fixed_solver`). `Err` says what
-/// is allowed instead.
-fn declared(measure: &str, keys: &Keys, fixed_solver: bool) -> std::result::Result<(), String> {
-    let (kind, rest) = measure.split_once(':').unwrap_or((measure, ""));
-    let listed = |what: &str, name: &str, names: &[String]| {
-        format!(
-            "{what} the experiment declares for this scene; the closest: {}",
-            closest(name, names).join(", ")
-        )
-    };
-    match kind {
-        "detail" => {
-            let (key, grid) = match rest.split_once('@') {
-                Some((k, g)) => (
-                    k,
-                    Some(g.parse::<usize>().map_err(|_| {
-                        format!("a grid size after '@' in detail:{key}@N", key = k)
-                    })?),
-                ),
-                None => (rest, None),
-            };
-            if keys.has_detail(key, grid) {
-                Ok(())
-            } else {
-                Err(listed("a detail", rest, &keys.detail_names()))
-            }
-        }
-        "study" => {
-            let mut parts = rest.splitn(3, '/');
-            let (s, _row, c) = (
-                parts.next().unwrap_or(""),
-                parts.next().unwrap_or(""),
-                parts.next().unwrap_or(""),
-            );
-            match keys.study_columns(s) {
-                None => Err(listed("a study", s, &keys.study_names())),
-                Some(columns) if !columns.iter().any(|k| k == c) => {
-                    Err(format!("a column of study {s}: {}", columns.join(", ")))
-                }
-                Some(_) => Ok(()),
-            }
-        }
-        "cross_check" if fixed_solver => {
-            Err("no cross-check: the scene fixes its solver, so a run has none".into())
-        }
-        "cross_check" if SolverKind::from_name(rest).is_none() => Err(format!(
-            "the cross-check of a solver, {}",
-            SolverKind::listed()
-        )),
-        _ => Ok(()),
-    }
-}
-
-/// Checks that every measure that the claims judged on a scene name (each claim's own, an
-/// ordering's second measure, each other reading's) is one that a run of the scene has by
-/// the keys its experiment declares (`keys`); on the reduced scene (`reduced_scene`) the
-/// claims it does not judge (`reduced = false`) are left out. `fixed_solver`: the scene
-/// fixes its solver, so a run has no cross-checks.
-///
-/// # Errors
-///
-/// A measure the experiment does not declare, naming the claim and the field and listing
-/// the declared keys closest to the one named.
-pub fn check_declared(
-    claims: &[ClaimSpec],
-    keys: &Keys,
-    reduced_scene: bool,
-    fixed_solver: bool,
-) -> Result<()> {
-    for c in claims.iter().filter(|c| c.reduced || !reduced_scene) {
-        let Some(measure) = &c.measure else { continue };
-        let mut named = vec![("measure".to_string(), measure)];
-        if let Rule::Exceeds(other) = &c.rule {
-            named.push(("rule.exceeds".into(), other));
-        }
-        for (k, r) in c.other_readings.iter().enumerate() {
-            named.push((format!("other_readings[{k}].measure"), &r.measure));
-        }
-        for (field, m) in named {
-            declared(m, keys, fixed_solver).map_err(|allowed| {
-                Error::invalid(&format!("claims.{}.{field}", c.key), m, allowed)
-            })?;
-        }
-    }
-    Ok(())
 }
 
 impl ClaimSpec {

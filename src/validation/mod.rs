@@ -17,6 +17,8 @@
 //!
 //! * [`definition`]: verdict rule, the paper's finding, the two scenes;
 //! * [`claims`]: the paper's quantitative statements as data, each decided by one rule;
+//! * [`measures`]: where a claim finds its numbers, and the check at load that each measure
+//!   a claim names is one its experiment declares;
 //! * [`phrase`]: the paper's wordings, each with the one rule it maps to;
 //! * [`source`]: the built-in definitions and definition folders;
 //! * [`outcome`]: the record of a run;
@@ -30,6 +32,7 @@
 pub mod audit;
 pub mod claims;
 pub mod definition;
+pub mod measures;
 pub mod outcome;
 pub mod phrase;
 pub mod plan;
