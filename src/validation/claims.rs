@@ -45,8 +45,9 @@ pub use super::phrase::{Phrase, Rule, ABOUT, ORDER, PHRASES};
 use crate::error::{Error, Result};
 use crate::stats::{establish, Decision, Estimate, Region};
 
-use super::measures::check_measure;
-pub use super::measures::{check_declared, Measures};
+pub use super::measures::Measures;
+use super::measures::{check_measure, declared};
+use crate::experiments::Keys;
 
 /// A value the claim's test must be able to exclude.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -252,6 +253,40 @@ pub struct ClaimOutcome {
     /// The other readings, judged by the same rule.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub readings: Vec<ReadingOutcome>,
+}
+
+/// Checks that every measure that the claims judged on a scene name (each claim's own, an
+/// ordering's second measure, each other reading's) is one that a run of the scene has by
+/// the keys its experiment declares (`keys`); on the reduced scene (`reduced_scene`) the
+/// claims it does not judge (`reduced = false`) are left out. `fixed_solver`: the scene
+/// fixes its solver, so a run has no cross-checks.
+///
+/// # Errors
+///
+/// A measure the experiment does not declare, naming the claim and the field and listing
+/// the declared keys closest to the one named.
+pub fn check_declared(
+    claims: &[ClaimSpec],
+    keys: &Keys,
+    reduced_scene: bool,
+    fixed_solver: bool,
+) -> Result<()> {
+    for c in claims.iter().filter(|c| c.reduced || !reduced_scene) {
+        let Some(measure) = &c.measure else { continue };
+        let mut named = vec![("measure".to_string(), measure)];
+        if let Rule::Exceeds(other) = &c.rule {
+            named.push(("rule.exceeds".into(), other));
+        }
+        for (k, r) in c.other_readings.iter().enumerate() {
+            named.push((format!("other_readings[{k}].measure"), &r.measure));
+        }
+        for (field, m) in named {
+            declared(m, keys, fixed_solver).map_err(|allowed| {
+                Error::invalid(&format!("claims.{}.{field}", c.key), m, allowed)
+            })?;
+        }
+    }
+    Ok(())
 }
 
 impl ClaimSpec {

@@ -2,9 +2,8 @@
 //! cross-checks), the form of a measure (`headline`, `detail:KEY[@N]`,
 //! `study:STUDY/ROW/COLUMN`, `cross_check:SOLVER`), and the check at load that every
 //! measure a claim names is one its experiment declares for the scene
-//! ([`check_declared`]), so that a mistyped key is an error, not "not measured".
+//! ([`super::claims::check_declared`]), so that a mistyped key is an error, not "not measured".
 
-use super::claims::{ClaimSpec, Rule};
 use crate::engine::solver::SolverKind;
 use crate::error::{Error, Result};
 use crate::experiments::keys::closest;
@@ -80,7 +79,11 @@ pub(super) fn check_measure(field: &str, measure: &str) -> Result<()> {
 /// column (the rows of a study are known from its results only), or the cross-check of a
 /// known solver where the scene does not fix its solver (`fixed_solver`). `Err` says what
 /// is allowed instead.
-fn declared(measure: &str, keys: &Keys, fixed_solver: bool) -> std::result::Result<(), String> {
+pub(super) fn declared(
+    measure: &str,
+    keys: &Keys,
+    fixed_solver: bool,
+) -> std::result::Result<(), String> {
     let (kind, rest) = measure.split_once(':').unwrap_or((measure, ""));
     let listed = |what: &str, name: &str, names: &[String]| {
         format!(
@@ -129,38 +132,4 @@ fn declared(measure: &str, keys: &Keys, fixed_solver: bool) -> std::result::Resu
         )),
         _ => Ok(()),
     }
-}
-
-/// Checks that every measure that the claims judged on a scene name (each claim's own, an
-/// ordering's second measure, each other reading's) is one that a run of the scene has by
-/// the keys its experiment declares (`keys`); on the reduced scene (`reduced_scene`) the
-/// claims it does not judge (`reduced = false`) are left out. `fixed_solver`: the scene
-/// fixes its solver, so a run has no cross-checks.
-///
-/// # Errors
-///
-/// A measure the experiment does not declare, naming the claim and the field and listing
-/// the declared keys closest to the one named.
-pub fn check_declared(
-    claims: &[ClaimSpec],
-    keys: &Keys,
-    reduced_scene: bool,
-    fixed_solver: bool,
-) -> Result<()> {
-    for c in claims.iter().filter(|c| c.reduced || !reduced_scene) {
-        let Some(measure) = &c.measure else { continue };
-        let mut named = vec![("measure".to_string(), measure)];
-        if let Rule::Exceeds(other) = &c.rule {
-            named.push(("rule.exceeds".into(), other));
-        }
-        for (k, r) in c.other_readings.iter().enumerate() {
-            named.push((format!("other_readings[{k}].measure"), &r.measure));
-        }
-        for (field, m) in named {
-            declared(m, keys, fixed_solver).map_err(|allowed| {
-                Error::invalid(&format!("claims.{}.{field}", c.key), m, allowed)
-            })?;
-        }
-    }
-    Ok(())
 }
