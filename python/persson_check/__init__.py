@@ -300,14 +300,17 @@ def _scans(heights, pixel_size, unit):
     return scans, sides, unit
 
 
+_CHECK = _native.CHECK_SURFACE_DEFAULTS
+
+
 def check_surface(
     heights,
     pixel_size=None,
     periodic=False,
     loads=None,
-    solver="cg",
+    solver=_CHECK["solver"],
     cross_check=True,
-    tol=1e-6,
+    tol=_CHECK["tol"],
     out=None,
     threads=None,
     progress=None,
@@ -318,9 +321,9 @@ def check_surface(
     verbose=True,
     cross_check_all=False,
     line=False,
-    line_side=256,
-    line_seeds=4,
-    max_iterations=1000,
+    line_side=_CHECK["line_side"],
+    line_seeds=_CHECK["line_seeds"],
+    max_iterations=_CHECK["max_iterations"],
     despike=None,
 ):
     scans, sides, unit = _scans(heights, pixel_size, unit)
@@ -369,7 +372,7 @@ periodic kernel, as :func:`solve` does. ``loads`` are nominal pressures ``p0 / E
 comparison, and ``cross_check`` also solves with a second solver (CG for GFMD, GFMD for
 any other) at the lowest, the middle
 and the highest load (every load with ``cross_check_all``), within a time budget per
-load; every solve has a budget of ``max_iterations`` iterations (default 1000), and a
+load; every solve has a budget of ``max_iterations`` iterations, and a
 failed solve is listed under ``failures`` with the solver's ``state`` (iterations, residual
 against the tolerance, points in contact), never raised. Spikes and outliers are reported
 before the solves under ``outliers`` (points beyond 6 rms heights, the largest in rms, and

@@ -9,8 +9,8 @@ import numpy.typing as npt
 
 __version__: str
 SOLVERS: tuple[str, ...]
-# The defaults of solve and sweep, read from the library (a test keeps the stubs' defaults
-# below equal to them).
+# The defaults of solve and sweep, and check_surface's, read from the library: the stubs
+# below write them as `...` (a test checks that the runtime signatures take these values).
 DEFAULT_SOLVER: str
 DEFAULT_TOL: float
 DEFAULT_MAX_ITER: int
@@ -118,12 +118,12 @@ def solve(
     heights: npt.ArrayLike,
     p0: Optional[float] = None,
     contact_area: Optional[float] = None,
-    solver: SolverName = "cg",
-    tol: float = 1e-8,
+    solver: SolverName = ...,
+    tol: float = ...,
     lambda_l: Optional[float] = None,
     threads: Optional[int] = None,
     zeta: Optional[float] = None,
-    max_iter: int = 100_000,
+    max_iter: int = ...,
     progress: Optional[Progress] = None,
 ) -> Solution:
     """Hard-wall contact on a square height array at p0 or at a target contact area."""
@@ -135,12 +135,12 @@ def sweep(
     zeta_from: float = 1.0,
     zeta_to: Optional[float] = None,
     zetas: Optional[Sequence[float]] = None,
-    solver: SolverName = "cg",
-    tol: float = 1e-8,
+    solver: SolverName = ...,
+    tol: float = ...,
     lambda_l: Optional[float] = None,
     threads: Optional[int] = None,
     fields: bool = False,
-    max_iter: int = 100_000,
+    max_iter: int = ...,
     progress: Optional[Progress] = None,
 ) -> Sweep:
     """A magnification sweep as an iterator of SweepStep."""
@@ -202,9 +202,9 @@ def check_surface(
     pixel_size: Optional[Union[float, tuple[float, float]]] = None,
     periodic: bool = False,
     loads: Optional[Sequence[float]] = None,
-    solver: SolverName = "cg",
+    solver: SolverName = ...,
     cross_check: bool = True,
-    tol: float = 1e-6,
+    tol: float = ...,
     out: Optional[Path] = None,
     threads: Optional[int] = None,
     progress: Optional[Progress] = None,
@@ -215,9 +215,9 @@ def check_surface(
     verbose: bool = True,
     cross_check_all: bool = False,
     line: bool = False,
-    line_side: int = 256,
-    line_seeds: int = 4,
-    max_iterations: int = 1000,
+    line_side: int = ...,
+    line_seeds: int = ...,
+    max_iterations: int = ...,
     despike: Optional[float] = None,
 ) -> dict[str, Any]:
     """Persson's theory checked on measured height maps or line scans (surface.json as a

@@ -21,6 +21,20 @@ use crate::conversions::record;
 use crate::errors::OrRaise;
 use crate::worker::{run_logged, Hook};
 
+/// `check_surface`'s defaults as the library writes them (the options' defaults and the
+/// line scans'): the Python wrapper's keywords take them from here.
+pub fn defaults(py: Python<'_>) -> PyResult<Bound<'_, pyo3::types::PyDict>> {
+    use persson_check::measured::line::check::{DEFAULT_SEEDS, DEFAULT_SIDE};
+    let opts = CheckOptions::default();
+    let d = pyo3::types::PyDict::new(py);
+    d.set_item("solver", opts.solver.name())?;
+    d.set_item("tol", opts.tol)?;
+    d.set_item("max_iterations", opts.max_iterations)?;
+    d.set_item("line_side", DEFAULT_SIDE)?;
+    d.set_item("line_seeds", DEFAULT_SEEDS)?;
+    Ok(d)
+}
+
 /// What a check's event tells Python: the progress of a solve, and a line per load (and
 /// per scan's outliers) among `count` scans.
 fn log_event(hook: &Hook, count: usize, e: Event) {

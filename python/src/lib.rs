@@ -46,6 +46,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("DEFAULT_SOLVER", SolverKind::default().name())?;
     m.add("DEFAULT_TOL", SolveOptions::DEFAULT_TOL)?;
     m.add("DEFAULT_MAX_ITER", SolveOptions::DEFAULT_MAX_ITER)?;
+    m.add("CHECK_SURFACE_DEFAULTS", check::defaults(m.py())?)?;
     m.add_class::<solve::Solution>()?;
     m.add_class::<sweeps::Sweep>()?;
     m.add_class::<sweeps::SweepStep>()?;

@@ -10,7 +10,7 @@ use persson_check::error::{Error, Result};
 use persson_check::measured::check::{CheckOptions, Event, SurfaceCheck};
 use persson_check::measured::fill::Fill;
 use persson_check::measured::line::check::{LineOptions, DEFAULT_SEEDS, DEFAULT_SIDE};
-use persson_check::measured::options::MAX_ITERATIONS;
+use persson_check::measured::options::{CHECK_SOLVER, CHECK_TOL, MAX_ITERATIONS};
 use persson_check::measured::psd::Boundary;
 use persson_check::tasks::check::{check_line, check_surface, load_line, read_input, Input};
 use persson_check::tasks::SolverKind;
@@ -64,7 +64,7 @@ pub struct Args {
     #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
     loads: Option<Vec<f64>>,
     /// The headline solver.
-    #[arg(long, value_enum, default_value_t = SolverKind::Cg)]
+    #[arg(long, value_enum, default_value_t = CHECK_SOLVER)]
     solver: SolverKind,
     /// Skip the cross-check with a second solver (the first of the list other than the
     /// headline one: CG for GFMD, GFMD for any other).
@@ -77,7 +77,7 @@ pub struct Args {
     #[arg(long = "no-reentry")]
     no_reentry: bool,
     /// Residual tolerance of every solve.
-    #[arg(long, default_value_t = 1e-6, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = CHECK_TOL, allow_negative_numbers = true)]
     tol: f64,
     /// Iteration budget of every solve: a load whose solve has not reached the tolerance
     /// after this many iterations is reported as failed, with the solver's state

@@ -19,6 +19,14 @@ use crate::error::{check_positive, Error, Result};
 /// tolerance after this many is recorded as failed, with its state, and the check goes on.
 pub const MAX_ITERATIONS: usize = 1000;
 
+/// The residual tolerance of every solve unless one is given (looser than the
+/// validations' 1e-8: a scan's curve is read to the digits its page prints).
+pub const CHECK_TOL: f64 = 1e-6;
+
+/// The headline solver unless one is given: CG, the fastest on a measured scan's free
+/// window (its cross-check is GFMD, [`other`]).
+pub const CHECK_SOLVER: SolverKind = SolverKind::Cg;
+
 /// How a surface is checked.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CheckOptions {
@@ -67,10 +75,10 @@ impl Default for CheckOptions {
             unit: None,
             boundary: Boundary::Free,
             loads: None,
-            solver: SolverKind::Cg,
+            solver: CHECK_SOLVER,
             cross_check: true,
             cross_check_all: false,
-            tol: 1e-6,
+            tol: CHECK_TOL,
             fill: Fill::None,
             modulus: None,
             reentry: true,
