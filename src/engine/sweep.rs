@@ -21,11 +21,22 @@
 //! iterations of both solvers (`docs/measured.md` gives the figures). The
 //! prediction costs one inverse transform (of `K dh`; `dh` is the difference of the
 //! heights).
+//!
+//! # What roughness a sweep climbs
+//!
+//! A sweep adds the modes of a [`Roughness`]: a generated [`Surface`], or a measured
+//! scan's truncated spectrum. On a periodic model the modes live on the model's grid; on a
+//! free-boundary model ([`Model::free_window`]) they live on the window's grid, and each
+//! magnification's heights are padded with the model's floor ([`Model::pad_heights`]).
+//! The floor moves with the heights' range, so on a free window the warm start is the
+//! previous solution as it stands, not predicted.
 
 use rayon::prelude::*;
 use rustfft::num_complex::Complex64;
 
 use crate::engine::contact::{ContactProblem, ContactSolution, Model};
+use crate::engine::fft::Fft2;
+use crate::engine::grid::Grid;
 use crate::engine::load::{persson_load_guess, solve_for_area, AreaSearch, AreaTarget};
 use crate::engine::solver::SolverKind;
 use crate::engine::solver::{SolveOptions, Solver, Start};
@@ -33,10 +44,49 @@ use crate::engine::surface::Surface;
 use crate::engine::tolerance::ZETA_SLACK;
 use crate::error::Result;
 
+/// Roughness that a sweep adds magnification by magnification.
+pub trait Roughness: Sync {
+    /// The grid of the modes: the model's grid, or a free-boundary model's window.
+    fn grid(&self) -> &Grid;
+
+    /// The half spectrum of the heights with `|q| <= zeta q_l` (every other mode zero).
+    fn modes_at(&self, zeta: f64, out: &mut [Complex64]);
+
+    /// The magnifications at which its shells holding roughness are resolved, increasing.
+    fn shell_zetas(&self) -> Vec<f64>;
+}
+
+impl Roughness for Surface {
+    fn grid(&self) -> &Grid {
+        Surface::grid(self)
+    }
+
+    fn modes_at(&self, zeta: f64, out: &mut [Complex64]) {
+        Surface::modes_at(self, zeta, out);
+    }
+
+    fn shell_zetas(&self) -> Vec<f64> {
+        let grid = Surface::grid(self);
+        self.shell_sequence()
+            .into_iter()
+            .map(|k2| grid.zeta_of_shell(k2, self.lambda_l()))
+            .collect()
+    }
+}
+
+/// A free-boundary model's window: the transform of the window's grid, and the window's
+/// heights before padding.
+struct Window {
+    fft: Fft2,
+    heights: Vec<f64>,
+}
+
 /// A realization, its model and a solver, stepping through magnifications.
-pub struct Sweep<'a> {
-    surface: &'a Surface,
+pub struct Sweep<'a, R: Roughness = Surface> {
+    surface: &'a R,
     model: &'a Model,
+    /// The window's transform when the model has a free boundary.
+    window: Option<Window>,
     solver: Box<dyn Solver + Send>,
     opts: SolveOptions,
     spec: Vec<Complex64>,
@@ -54,32 +104,55 @@ pub struct Sweep<'a> {
     change: Option<Vec<Complex64>>,
 }
 
-impl<'a> Sweep<'a> {
+impl<'a, R: Roughness> Sweep<'a, R> {
     /// A sweep of `surface` on `model` with a fresh solver of `kind`.
-    pub fn new(
-        surface: &'a Surface,
-        model: &'a Model,
-        kind: SolverKind,
-        opts: SolveOptions,
-    ) -> Self {
+    ///
+    /// # Panics
+    ///
+    /// As [`Sweep::with_solver`].
+    pub fn new(surface: &'a R, model: &'a Model, kind: SolverKind, opts: SolveOptions) -> Self {
         Self::with_solver(surface, model, kind.build(), opts)
     }
 
     /// A sweep of `surface` on `model` with `solver` (for example one wrapped to report
     /// progress or to be cancelled).
+    ///
+    /// # Panics
+    ///
+    /// If the surface's grid is not the model's (periodic) or its window's (free boundary).
     pub fn with_solver(
-        surface: &'a Surface,
+        surface: &'a R,
         model: &'a Model,
         solver: Box<dyn Solver + Send>,
         opts: SolveOptions,
     ) -> Self {
+        let shape = (surface.grid().rows(), surface.grid().cols());
+        let window = match model.window {
+            None => {
+                assert_eq!(
+                    shape,
+                    (model.grid.rows(), model.grid.cols()),
+                    "the surface's grid is the model's"
+                );
+                None
+            }
+            Some(window) => {
+                assert_eq!(shape, window, "the surface's grid is the model's window");
+                Some(Window {
+                    fft: Fft2::new(surface.grid()),
+                    heights: vec![0.0; surface.grid().points()],
+                })
+            }
+        };
+        let fft = window.as_ref().map_or(&model.fft, |w| &w.fft);
         Self {
             surface,
             model,
             solver,
             opts,
-            spec: model.fft.new_spectrum(),
-            work: model.fft.new_spectrum(),
+            spec: fft.new_spectrum(),
+            work: fft.new_spectrum(),
+            window,
             heights: vec![0.0; model.grid.points()],
             dh: Vec::new(),
             response: Vec::new(),
@@ -97,7 +170,7 @@ impl<'a> Sweep<'a> {
         }
         let next = &mut self.work;
         self.surface.modes_at(zeta, next);
-        let track = self.previous.is_some() && self.zeta.is_finite();
+        let track = self.previous.is_some() && self.zeta.is_finite() && self.window.is_none();
         if track {
             if self.change.is_none() {
                 // A change that starts now: dh accumulates from zero.
@@ -121,7 +194,16 @@ impl<'a> Sweep<'a> {
             .par_iter_mut()
             .zip(next.par_iter())
             .for_each(|(s, n)| *s = *n);
-        self.model.fft.inverse_in_place(next, &mut self.heights);
+        match &mut self.window {
+            None => self.model.fft.inverse_in_place(next, &mut self.heights),
+            Some(w) => {
+                w.fft.inverse_in_place(next, &mut w.heights);
+                self.heights = self
+                    .model
+                    .pad_heights(&w.heights)
+                    .expect("the window's heights fill the window");
+            }
+        }
         if track {
             self.dh
                 .par_iter_mut()
@@ -211,7 +293,9 @@ impl<'a> Sweep<'a> {
         self.previous = Some(solution);
         Ok(self.previous.as_ref().expect("just set"))
     }
+}
 
+impl Sweep<'_, Surface> {
     /// Finds the load that gives `contact_area` at magnification `zeta` and keeps that
     /// solution as the warm start; returns `p0`.
     ///
@@ -251,12 +335,10 @@ impl<'a> Sweep<'a> {
 
 /// Magnifications at which each shell of `surface` with `zeta_from < zeta <= zeta_to` is
 /// resolved, in increasing order: the steps of a sweep that adds every shell one at a time.
-pub fn shell_steps(surface: &Surface, zeta_from: f64, zeta_to: f64) -> Vec<f64> {
-    let grid = surface.grid();
+pub fn shell_steps(surface: &impl Roughness, zeta_from: f64, zeta_to: f64) -> Vec<f64> {
     surface
-        .shell_sequence()
+        .shell_zetas()
         .into_iter()
-        .map(|k2| grid.zeta_of_shell(k2, surface.lambda_l()))
         .filter(|&z| z > zeta_from * (1.0 + ZETA_SLACK) && z <= zeta_to * (1.0 + ZETA_SLACK))
         .collect()
 }
@@ -323,6 +405,39 @@ mod tests {
         assert_eq!(it_predicted, 0, "iterations from the prediction");
         assert!(plain.stats.iterations >= 1, "{}", plain.stats.iterations);
         assert!((energy - plain.elastic_energy()).abs() < 1e-9 * energy);
+    }
+
+    #[test]
+    fn a_free_window_sweep_solves_the_padded_heights_of_each_magnification() {
+        // A 32^2 surface swept on the free boundary: every step's heights are the
+        // surface's at that magnification padded with the model's floor, and the warm
+        // solve reaches the cold solution of those heights.
+        let surface = Surface::generate(&SurfaceModel::new(32, 0.8, 32.0, 4.0, 5)).unwrap();
+        let model = Model::free_window(32, 32, 1.0).unwrap();
+        let opts = SolveOptions::with_tol(1e-10);
+        let mut sweep = Sweep::new(&surface, &model, SolverKind::Cg, opts);
+        let p0 = 0.02 * 0.25;
+        let mut cg = SolverKind::Cg.build();
+        let fft = Fft2::new(surface.grid());
+        for zeta in [1.5, 3.0, 6.0, 8.0] {
+            let warm = sweep.solve_at(zeta, p0).unwrap().clone();
+            let window = surface.heights_at(zeta, &fft);
+            let padded = model.pad_heights(&window).unwrap();
+            assert_eq!(sweep.heights(), &padded[..], "zeta = {zeta}");
+            let problem = ContactProblem::new(&model, &padded, p0).unwrap();
+            let cold = cg.solve(&problem, Start::Cold, &opts).unwrap();
+            assert!(warm.stats.warm || zeta == 1.5);
+            let (a, b) = (warm.elastic_energy(), cold.elastic_energy());
+            assert!((a - b).abs() < 1e-7 * b, "zeta = {zeta}: {a} against {b}");
+        }
+    }
+
+    #[test]
+    #[should_panic(expected = "the surface's grid is the model's window")]
+    fn a_free_window_of_another_shape_is_refused() {
+        let surface = Surface::generate(&SurfaceModel::new(32, 0.8, 32.0, 4.0, 5)).unwrap();
+        let model = Model::free_window(16, 32, 1.0).unwrap();
+        let _ = Sweep::new(&surface, &model, SolverKind::Cg, SolveOptions::default());
     }
 
     #[test]

@@ -7,11 +7,11 @@
 //! `L` and `lambda_s` four points of the grid the sweep is solved on ([`REENTRY_ZETA`],
 //! at most a quarter of the scan's points per side). The truncated surface is
 //! band-limited, so it is solved on the grid of `4 zeta_max` points along the longer
-//! side that holds it exactly (its modes placed on that grid's own wavevectors; both
-//! transforms are the engine's). Every distinct shell `|q|` up to `zeta_max` (the scan
-//! grid's integer shells, [`Grid::k2_wide`]) is then added one at a time, from the
-//! first, at the fixed load of the check's middle load, each solve warm-started from the
-//! last; the history of every point of the window ([`History`], the validation's own
+//! side that holds it exactly (its modes placed on that grid's own wavevectors, a
+//! [`Roughness`] of the engine). The engine's [`Sweep`] then adds every distinct shell
+//! `|q|` up to `zeta_max` (the scan grid's integer shells, [`Grid::k2_wide`]) one at a
+//! time, from the first, at the fixed load of the check's middle load, each solve
+//! warm-started from the last as `c_reentry`'s climbs are; the history of every point of the window ([`History`], the validation's own
 //! record) gives the share of the points in contact at `zeta_max` that were out of
 //! contact at a lower magnification (Persson: 0), and the share that left after the
 //! first shell and came back. A free scan is swept on the free boundary, its heights the detrended scan's
@@ -26,10 +26,10 @@ use serde::{Deserialize, Serialize};
 use super::body::window_of;
 use super::psd::{half_spectrum, Boundary, ScanSpectrum, Shape};
 use super::theory::E_STAR;
-use crate::engine::contact::{ContactProblem, ContactSolution, Model};
-use crate::engine::fft::Fft2;
+use crate::engine::contact::Model;
 use crate::engine::grid::Grid;
-use crate::engine::solver::{SolveOptions, SolverKind, Start};
+use crate::engine::solver::{SolveOptions, SolverKind};
+use crate::engine::sweep::{shell_steps, Roughness, Sweep};
 use crate::error::{Error, Result};
 use crate::experiments::history::History;
 
@@ -71,15 +71,40 @@ pub struct Reentry {
 }
 
 /// The modes of `spectrum`'s heights up to `zeta_max`, on the grid that holds them: the
-/// sweep's grid and its transform, and the modes in increasing shells, each `(shell, index
-/// on the sweep's half spectrum, amplitude)`, the shell the scan grid's integer `|k|^2`
+/// sweep's grid, and the modes in increasing shells, each `(shell, index on the sweep's
+/// half spectrum, amplitude)`, the shell the scan grid's integer `|k|^2`
 /// ([`Grid::k2_wide`]); the amplitudes in the sweep's pixels.
 struct Truncated {
     shape: Shape,
-    fft: Fft2,
+    grid: Grid,
     modes: Vec<(u64, usize, Complex64)>,
     /// The scan grid's `|q| / q_l` of shell `k2`, `sqrt(k2) L / L_s`.
     zeta_per_root_k2: f64,
+    /// The scan's grid and its longer side (the `lambda_l` of `zeta`), which turn a
+    /// magnification into the largest shell it resolves.
+    scan_grid: Grid,
+    longer: f64,
+}
+
+impl Roughness for Truncated {
+    fn grid(&self) -> &Grid {
+        &self.grid
+    }
+
+    fn modes_at(&self, zeta: f64, out: &mut [Complex64]) {
+        let limit = self.scan_grid.shell_limit_wide(zeta, self.longer);
+        out.fill(Complex64::default());
+        for &(_, at, amplitude) in self.modes.iter().take_while(|m| m.0 <= limit) {
+            out[at] = amplitude;
+        }
+    }
+
+    fn shell_zetas(&self) -> Vec<f64> {
+        shells(&self.modes)
+            .into_iter()
+            .map(|k2| (k2 as f64).sqrt() * self.zeta_per_root_k2)
+            .collect()
+    }
 }
 
 fn truncate(spectrum: &ScanSpectrum, zeta_max: f64) -> Result<Truncated> {
@@ -111,9 +136,11 @@ fn truncate(spectrum: &ScanSpectrum, zeta_max: f64) -> Result<Truncated> {
     modes.sort_by_key(|&(k2, _, _)| k2);
     Ok(Truncated {
         shape,
-        fft: Fft2::new(&sweep_grid),
+        grid: sweep_grid,
         modes,
         zeta_per_root_k2: longer / grid.length(),
+        longer,
+        scan_grid: grid,
     })
 }
 
@@ -146,40 +173,22 @@ pub fn reentry_share(
         Boundary::Free => Model::free_window(shape.rows, shape.cols, E_STAR)?,
     };
     let share = shape.points() as f64 / model.grid.points() as f64;
-    let steps = shells(&truncated.modes);
+    let steps = shell_steps(&truncated, 0.0, f64::INFINITY);
     let mut history = History::new(shape.points(), (f64::INFINITY, f64::INFINITY));
-    let mut engine = solver.build();
-    let opts = SolveOptions::with_tol(tol);
-    let mut last: Option<ContactSolution> = None;
-    let mut spec = truncated.fft.new_spectrum();
-    let mut window = vec![0.0; shape.points()];
-    let mut work = Vec::new();
-    let mut next = 0;
+    let mut sweep = Sweep::new(&truncated, &model, solver, SolveOptions::with_tol(tol));
     let mut iterations = 0u64;
     let mut failed = None;
-    for (step, &k2) in steps.iter().enumerate() {
-        while next < truncated.modes.len() && truncated.modes[next].0 <= k2 {
-            let (_, at, amplitude) = truncated.modes[next];
-            spec[at] = amplitude;
-            next += 1;
-        }
-        truncated.fft.inverse(&spec, &mut window, &mut work);
-        let heights = model.pad_heights(&window)?;
-        let problem = ContactProblem::new(&model, &heights, p0 * share)?;
-        let start = last.as_ref().map_or(Start::Cold, Start::Warm);
-        match engine.solve(&problem, start, &opts) {
+    for (step, &zeta) in steps.iter().enumerate() {
+        match sweep.solve_at(zeta, p0 * share) {
             Ok(solution) => {
                 iterations += solution.stats.iterations as u64;
-                let window = window_of(&model, shape, &solution.pressure);
-                history.update(step, &window);
-                last = Some(solution);
+                history.update(step, &window_of(&model, shape, &solution.pressure));
             }
             Err(
                 e @ (Error::NotConverged { .. }
                 | Error::NonFinite { .. }
                 | Error::LostContact { .. }),
             ) => {
-                let zeta = (k2 as f64).sqrt() * truncated.zeta_per_root_k2;
                 failed = Some(format!(
                     "re-entry sweep, shell {} of {} (zeta = {zeta:.3}): {e}",
                     step + 1,
@@ -210,6 +219,7 @@ pub fn reentry_share(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::engine::fft::Fft2;
     use crate::engine::surface::{Surface, SurfaceModel};
 
     #[test]
@@ -224,12 +234,11 @@ mod tests {
         let spectrum = ScanSpectrum::new(&h, shape, 1.0, Boundary::Periodic).unwrap();
         let t = truncate(&spectrum, 8.0).unwrap();
         assert_eq!(t.shape, Shape { rows: 32, cols: 32 });
-        let mut spec = t.fft.new_spectrum();
-        for &(_, at, a) in &t.modes {
-            spec[at] = a;
-        }
+        let fft = Fft2::new(&t.grid);
+        let mut spec = fft.new_spectrum();
+        t.modes_at(8.0, &mut spec);
         let mut coarse = vec![0.0; t.shape.points()];
-        t.fft.inverse(&spec, &mut coarse, &mut Vec::new());
+        fft.inverse(&spec, &mut coarse, &mut Vec::new());
         for i in 0..32 {
             for j in 0..32 {
                 let fine = 0.5 * spectrum.heights[2 * i * 64 + 2 * j];
@@ -242,6 +251,12 @@ mod tests {
         assert!(k2.windows(2).all(|w| w[0] < w[1]));
         assert_eq!((k2[0], *k2.last().unwrap()), (1, 64));
         assert!((8.0 * t.zeta_per_root_k2 - 8.0).abs() < 1e-15);
+        // Each shell's magnification resolves that shell and no other.
+        let zetas = t.shell_zetas();
+        assert_eq!(zetas.len(), k2.len());
+        for (&z, &k) in zetas.iter().zip(&k2) {
+            assert_eq!(t.scan_grid.shell_limit_wide(z, t.longer), k);
+        }
     }
 
     #[test]
