@@ -422,6 +422,7 @@ fn unit_open(bits: u64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::engine::tolerance::SHELL_SLACK;
 
     fn params(n: usize, seed: u64) -> SurfaceModel {
         SurfaceModel::new(n, 0.8, n as f64 / 2.0, 4.0, seed)
@@ -464,7 +465,7 @@ mod tests {
         let grid = Grid::new(32, 1.0).unwrap();
         let (q_l, q_s) = (p.spectrum().q_l(), p.spectrum().q_s());
         let power = |q: f64| {
-            if q >= q_l * (1.0 - 1e-9) && q <= q_s * (1.0 + 1e-9) {
+            if q >= q_l * (1.0 - SHELL_SLACK) && q <= q_s * (1.0 + SHELL_SLACK) {
                 3.0 * (q / q_l).powf(-2.0 * (1.0 + p.hurst))
             } else {
                 0.0

@@ -13,7 +13,7 @@ pub struct SpeedOptions {
     pub tols: Vec<f64>,
     /// Tolerance of the reference solve (CG).
     pub reference_tol: f64,
-    /// Tolerance of the size and thread studies.
+    /// Tolerance of the size and thread studies (the solves' default).
     pub size_tol: f64,
     /// Pool sizes of the thread study.
     pub threads: Vec<usize>,
@@ -55,7 +55,7 @@ impl SpeedOptions {
             sizes: vec![n / 4, n / 2, n, 2 * n],
             tols: vec![1e-4, 1e-6, 1e-8, 1e-10],
             reference_tol: 1e-12,
-            size_tol: 1e-8,
+            size_tol: crate::engine::solver::SolveOptions::DEFAULT_TOL,
             threads,
             floor_sizes: vec![n, 2 * n],
             shell_zeta: 32.0,
