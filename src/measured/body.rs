@@ -10,7 +10,7 @@
 //! load that converged: one load never costs the others.
 //!
 //! A time budget stops a solve from its per-iteration monitor: past the deadline the
-//! monitor unwinds out of the solver's loop with a private payload ([`OutOfTime`]), which
+//! monitor unwinds out of the solver's loop with a private payload (`OutOfTime`), which
 //! [`solve_bounded`] catches (the Python package stops a solve on Ctrl-C the same way);
 //! the solver is then built afresh for the next load.
 //!

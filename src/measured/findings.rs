@@ -1,7 +1,7 @@
 //! The check's findings as data: `surface.json` ([`SurfaceCheck`]) and its parts (the load
 //! curve, the comparisons with their verdicts, the pressure distribution, the surface's
 //! statistics, the failures and the solvers' work), with the rule every comparison is
-//! decided by ([`RULE`]). [`super::conclude`] draws them from the scans' measurements.
+//! decided by ([`RULE`]). `conclude` draws them from the scans' measurements.
 
 use serde::{Deserialize, Serialize};
 
@@ -46,7 +46,7 @@ pub struct CurvePoint {
     /// The mean pressure in contact, `p0 / a_r`, in units of `E*`.
     pub contact_pressure: f64,
     /// Whether it is far past the yield of any material
-    /// ([`warnings::CONTACT_PRESSURE`]).
+    /// ([`super::warnings::CONTACT_PRESSURE`]).
     pub past_yield: bool,
     /// Elastic energy per unit area (`E*` times the length unit).
     pub energy: f64,

@@ -6,7 +6,7 @@
 //! where the theory does not apply ([`warnings`]), the check
 //! ([`check`]: its [`options`], its [`curves`], its [`findings`] and how they are drawn from
 //! the measurements, `conclude`) and its page
-//! ([`page`]); line scans, by way of the isotropic surface they imply ([`line`]).
+//! ([`mod@page`]); line scans, by way of the isotropic surface they imply ([`mod@line`]).
 
 pub mod body;
 pub mod check;

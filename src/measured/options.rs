@@ -24,7 +24,8 @@ pub const MAX_ITERATIONS: usize = 1000;
 pub const CHECK_TOL: f64 = 1e-6;
 
 /// The headline solver unless one is given: CG, the fastest on a measured scan's free
-/// window (its cross-check is GFMD, [`other`]).
+/// window (its cross-check is GFMD, the first other solver of
+/// [`SolverKind::ALL`]).
 pub const CHECK_SOLVER: SolverKind = SolverKind::Cg;
 
 /// How a surface is checked.

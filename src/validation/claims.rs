@@ -21,7 +21,7 @@
 //!   never contradicted.
 //!
 //! Each claim states the phrase the paper uses ([`Phrase`]), and each phrase has one rule
-//! ([`Phrase::rule`]): a claim whose rule is not its phrase's is refused at load unless it
+//! ([`Phrase::fits`]): a claim whose rule is not its phrase's is refused at load unless it
 //! says why it departs (`departs`). A claim may name the alternative its test must be
 //! able to exclude (`alternative`: zero for a sign, another scene's value the paper gives,
 //! a floor built into the measure); a rule whose region holds the alternative cannot tell
@@ -34,7 +34,7 @@
 //!
 //! A measure names where the number is: `headline`, `detail:KEY` (or `detail:KEY@N` for
 //! the detail measured on the `N x N` grid), `study:STUDY/ROW/COLUMN` (a cell of a
-//! [`Study`]) or `cross_check:SOLVER`. Beyond its form, each measure a claim judged on a
+//! [`crate::experiments::study::Study`]) or `cross_check:SOLVER`. Beyond its form, each measure a claim judged on a
 //! scene names is checked against the keys its experiment declares for that scene
 //! ([`crate::experiments::Keys`], [`check_declared`]) when the definition loads: a mistyped
 //! key is an error naming the claim and the field, never "not measured".

@@ -29,7 +29,7 @@ pub enum Rule {
     Differs(f64),
 }
 
-/// The wordings of the paper, each with one rule ([`Phrase::rule`]).
+/// The wordings of the paper, each with one rule ([`Phrase::fits`], [`Phrase::rule_text`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Phrase {

@@ -1,5 +1,5 @@
 //! The column pass of the 2D transforms: blocks of a few columns of the half spectrum, in
-//! parallel, each gathered into a small contiguous buffer ([`super::blocks`]), transformed
+//! parallel, each gathered into a small contiguous buffer (`blocks`), transformed
 //! (rustfft) and scattered back; in a convolution the kernel multiplies each block between
 //! its forward and inverse transforms, so the spectrum is gathered and scattered once.
 

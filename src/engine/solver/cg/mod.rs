@@ -150,7 +150,7 @@ pub const DAMPING: f64 = 0.5;
 /// The stagnation window of measured scans ([`ConstrainedCg::stagnation`]). On a scan
 /// whose contact is carried by a few instrument spikes the full step cycles from the
 /// first iteration, and each safeguard waits out its window: two windows of
-/// [`STAGNATION`] cost SurfaceTopography's 640 x 480 interferometer scan `metropro-1.dat`
+/// `STAGNATION` (200) cost SurfaceTopography's 640 x 480 interferometer scan `metropro-1.dat`
 /// some 450 iterations at every load, where the projected load then converges in about
 /// 50. A window of 25 iterations gives 96 to 112 a load there, and 739 rather than 1473
 /// over the eight loads of the 960 x 600 `mnt-1.mnt`, with the same contact areas;
@@ -167,7 +167,7 @@ pub struct ConstrainedCg {
     /// `docs/measured.md`: 104 -> 37 iterations at 256^2, 488 -> 85 at 1024^2).
     pub preconditioned: bool,
     /// Iterations without halving the residual estimate before each safeguard of
-    /// "Stopping" acts ([`STAGNATION`] by default). A solve that never stagnates this long
+    /// "Stopping" acts (`STAGNATION`, 200, by default). A solve that never stagnates this long
     /// takes the same steps whatever the window; a shorter window reaches the damped step
     /// and the projected load sooner where the full step cycles (measured scans with
     /// spikes: [`SCAN_STAGNATION`]).
