@@ -115,7 +115,7 @@ pub fn check_loads(loads: &[f64]) -> Result<()> {
     Ok(())
 }
 
-/// A load curve's loads, increasing: the given ones (checked) or the defaults.
+/// A load curve's loads, increasing: the given ones (checked, each once) or the defaults.
 pub fn loads(theory: &Theory, given: Option<&[f64]>) -> Result<Vec<f64>> {
     let mut loads = match given {
         Some(l) => l.to_vec(),
@@ -125,8 +125,8 @@ pub fn loads(theory: &Theory, given: Option<&[f64]>) -> Result<Vec<f64>> {
             .collect(),
     };
     check_loads(&loads)?;
+    crate::error::check_once("loads", &loads)?;
     loads.sort_by(f64::total_cmp);
-    loads.dedup();
     Ok(loads)
 }
 
@@ -164,13 +164,11 @@ mod tests {
     fn loads_out_of_range_are_refused_by_name() {
         let s = Surface::generate(&SurfaceModel::new(32, 0.8, 32.0, 4.0, 1)).unwrap();
         let theory = Theory::new(&s.shells()).unwrap();
-        for bad in [vec![], vec![0.1, -0.2], vec![f64::NAN], vec![20.0]] {
+        let twice = vec![0.2, 0.1, 0.2];
+        for bad in [vec![], vec![0.1, -0.2], vec![f64::NAN], vec![20.0], twice] {
             let e = loads(&theory, Some(&bad)).unwrap_err().to_string();
             assert!(e.contains("loads"), "{e}");
         }
-        assert_eq!(
-            loads(&theory, Some(&[0.2, 0.1, 0.2])).unwrap(),
-            vec![0.1, 0.2]
-        );
+        assert_eq!(loads(&theory, Some(&[0.2, 0.1])).unwrap(), vec![0.1, 0.2]);
     }
 }
