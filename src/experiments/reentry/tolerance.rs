@@ -29,7 +29,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::engine::sweep::shell_steps;
 use crate::error::{check_positive, Error, Result};
-use crate::experiments::climb::{climb, Checkpointing};
+use crate::experiments::climb::climb_job;
 use crate::experiments::ensemble::check_contact_areas;
 use crate::experiments::history::History;
 use crate::experiments::scene::Base;
@@ -220,18 +220,7 @@ pub fn run(
     let steps = shell_steps(&r.surface, 0.0, r.surface.zeta_max());
     // No flux interval: the study reads the contact at zeta_max only.
     let mut history = History::new(r.model.grid.points(), (f64::INFINITY, f64::INFINITY));
-    let climbed = climb(
-        &b,
-        ctx.solver,
-        &r,
-        job.contact_area,
-        &steps,
-        &mut history,
-        Some(Checkpointing {
-            dir: &ctx.state_dir,
-            seconds,
-        }),
-    )?;
+    let climbed = climb_job(&b, ctx, &r, job.contact_area, &steps, &mut history, seconds)?;
     let (contact_points, reentered, _) = history.counts();
     Ok(ToleranceResult {
         contact_points,

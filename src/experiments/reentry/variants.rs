@@ -25,7 +25,7 @@ use super::stats::Share;
 use crate::engine::contact::ContactSolution;
 use crate::engine::sweep::shell_steps;
 use crate::error::{check_key_name, check_positive, Error, Result};
-use crate::experiments::climb::{climb, Arrays, Checkpointing, Recorder};
+use crate::experiments::climb::{climb_job, Arrays, Recorder};
 use crate::experiments::contact_change::{pack_categories, unpack_categories};
 use crate::experiments::ensemble::check_contact_areas;
 use crate::experiments::history::{self, History};
@@ -294,18 +294,7 @@ pub fn run(
         history: History::new(r.model.grid.points(), (f64::INFINITY, f64::INFINITY)),
         contact_at_start: None,
     };
-    let climbed = climb(
-        &b,
-        ctx.solver,
-        &r,
-        job.contact_area,
-        &steps,
-        &mut rec,
-        Some(Checkpointing {
-            dir: &ctx.state_dir,
-            seconds,
-        }),
-    )?;
+    let climbed = climb_job(&b, ctx, &r, job.contact_area, &steps, &mut rec, seconds)?;
     let categories = rec.history.categories();
     let count = |c: u8| categories.iter().filter(|&&x| x == c).count() as u64;
     let (contact_points, reentered, _) = rec.history.counts();
