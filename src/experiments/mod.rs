@@ -34,7 +34,8 @@
 //! the conclusion) in `findings.rs`, the unit tests' reading of the shipped definitions in
 //! `shipped.rs`; all are re-exported here.
 //!
-//! Shared machinery: [`scene`] (the fields every scene repeats), [`ensemble`] (the
+//! Shared machinery: [`scene`] (the fields every scene repeats), [`other_grid`] (the
+//! fields of a study's own grid and of its jobs, the Hurst exponent the headline's), [`ensemble`] (the
 //! seeds x contact areas job grid and the per-load ensemble statistics), [`climb`] (the
 //! fixed-load magnification climb with optional checkpoints), [`contact_change`] (which
 //! points entered or left contact in a step, and the maps' packing and colours),
@@ -51,6 +52,7 @@ pub mod flux;
 pub mod history;
 pub mod keys;
 pub mod modes;
+pub mod other_grid;
 pub mod reentry;
 pub mod scene;
 pub mod source;

@@ -234,11 +234,14 @@ pub fn check_increasing<T: PartialOrd + std::fmt::Debug>(field: &str, list: &[T]
     }
 }
 
-/// Declares an experiment's scene: the fields of [`Base`] (`n`, `hurst`, `lambda_l`,
-/// `lambda_s`, `seeds`, `tol`) followed by the experiment's own, with serde
-/// derives that refuse unknown keys, and a `base()` accessor.
-macro_rules! scene {
+/// Declares a struct whose first fields are the bracketed ones (each with its docs),
+/// followed by the struct's own, with serde derives that refuse unknown keys and the items
+/// after `impl` in its `impl` block: the one shape of [`scene!`] and of
+/// [`other_grid!`](super::other_grid::other_grid), which name their fields.
+macro_rules! fields_first {
     (
+        [$( $(#[$lmeta:meta])* $lead:ident : $lty:ty, )*]
+        impl { $($items:tt)* }
         $(#[$meta:meta])*
         pub struct $name:ident {
             $( $(#[$fmeta:meta])* pub $field:ident : $ty:ty, )*
@@ -248,33 +251,51 @@ macro_rules! scene {
         #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
         #[serde(deny_unknown_fields)]
         pub struct $name {
-            /// Points per side.
-            pub n: usize,
-            /// Hurst exponent, in (0, 1).
-            pub hurst: f64,
-            /// Long-wavelength cutoff (grid units).
-            pub lambda_l: f64,
-            /// Short-wavelength cutoff (grid units).
-            pub lambda_s: f64,
-            /// Realizations.
-            pub seeds: Vec<u64>,
-            /// Residual tolerance.
-            pub tol: f64,
+            $( $(#[$lmeta])* pub $lead: $lty, )*
             $( $(#[$fmeta])* pub $field: $ty, )*
         }
 
         impl $name {
-            /// The fields every scene shares.
-            pub fn base(&self) -> $crate::experiments::scene::Base<'_> {
-                $crate::experiments::scene::Base::new(
-                    self.n,
-                    self.hurst,
-                    self.lambda_l,
-                    self.lambda_s,
-                    &self.seeds,
-                    self.tol,
-                )
+            $($items)*
+        }
+    };
+}
+pub(crate) use fields_first;
+
+/// Declares an experiment's scene: the fields of [`Base`] (`n`, `hurst`, `lambda_l`,
+/// `lambda_s`, `seeds`, `tol`) followed by the experiment's own, with serde
+/// derives that refuse unknown keys, and a `base()` accessor.
+macro_rules! scene {
+    ($($item:tt)*) => {
+        $crate::experiments::scene::fields_first! {
+            [
+                /// Points per side.
+                n: usize,
+                /// Hurst exponent, in (0, 1).
+                hurst: f64,
+                /// Long-wavelength cutoff (grid units).
+                lambda_l: f64,
+                /// Short-wavelength cutoff (grid units).
+                lambda_s: f64,
+                /// Realizations.
+                seeds: Vec<u64>,
+                /// Residual tolerance.
+                tol: f64,
+            ]
+            impl {
+                /// The fields every scene shares.
+                pub fn base(&self) -> $crate::experiments::scene::Base<'_> {
+                    $crate::experiments::scene::Base::new(
+                        self.n,
+                        self.hurst,
+                        self.lambda_l,
+                        self.lambda_s,
+                        &self.seeds,
+                        self.tol,
+                    )
+                }
             }
+            $($item)*
         }
     };
 }

@@ -551,10 +551,10 @@ impl Experiment for Reentry {
             keys.details(variants::detail_keys(v, &scene.contact_areas));
         }
         if scene.tolerance.is_some() {
-            keys.study(tolerance::STUDY, tolerance::COLUMNS);
+            keys.study(tolerance::STUDY, &tolerance::columns());
         }
         if !scene.variants.is_empty() {
-            keys.study(variants::STUDY, variants::COLUMNS);
+            keys.study(variants::STUDY, &variants::columns());
         }
         keys
     }
