@@ -300,3 +300,53 @@ macro_rules! scene {
     };
 }
 pub(crate) use scene;
+
+/// Declares the scene of one step of magnification at fixed load: the fields of [`scene!`],
+/// then `contact_area`, `zeta` and `dzeta`, then the experiment's own; with
+/// `validate_one_step()` ([`Base::validate_step`] of these three) and `one_step(seed,
+/// solver)` (the realization `seed` and its step, [`Base::step`]).
+macro_rules! step_scene {
+    (
+        $(#[$meta:meta])*
+        pub struct $name:ident { $($own:tt)* }
+    ) => {
+        $crate::experiments::scene::scene! {
+            $(#[$meta])*
+            pub struct $name {
+                /// Relative contact area at `zeta` (sets the load).
+                pub contact_area: f64,
+                /// Magnification before the step.
+                pub zeta: f64,
+                /// The step of magnification.
+                pub dzeta: f64,
+                $($own)*
+            }
+        }
+
+        impl $name {
+            /// Checks the scene's fields and its step; errors name the field
+            /// ([`Base::validate_step`](crate::experiments::scene::Base::validate_step)).
+            pub fn validate_one_step(&self) -> $crate::error::Result<()> {
+                self.base()
+                    .validate_step(self.contact_area, self.zeta, self.dzeta)
+            }
+
+            /// The realization `seed` and its step from `zeta` to `zeta + dzeta` with
+            /// `solver`, at the load that gives `contact_area` at `zeta`.
+            pub fn one_step(
+                &self,
+                seed: u64,
+                solver: $crate::engine::solver::SolverKind,
+            ) -> $crate::error::Result<(
+                $crate::experiments::scene::Realization,
+                $crate::experiments::scene::Step,
+            )> {
+                let base = self.base();
+                let r = base.realization(seed)?;
+                let step = base.step(&r, solver, self.zeta, self.dzeta, self.contact_area)?;
+                Ok((r, step))
+            }
+        }
+    };
+}
+pub(crate) use step_scene;
