@@ -12,13 +12,15 @@
 //! tol = 1e-8         # solver residual (see engine::contact::Residual)
 //! ```
 //!
-//! `scene!` declares a scene struct with these fields followed by the experiment's own,
-//! and gives it [`Base`]: the surface model (the one [`SurfaceModel`] of scene files, the
-//! command line and Python), the realization of a seed, its realization, a sweep, and
-//! the range checks, so that no experiment writes them again. The solver is not part of a
-//! scene: the runner runs every scene with each solver it is asked for (GFMD for the
-//! headline, CG for the cross-check), and a job learns its solver from its
-//! [`JobContext`](super::JobContext). (The fields are written into
+//! `scene!` declares a scene struct with these fields followed by the experiment's own, and
+//! gives it [`Base`]: the surface model (the one [`SurfaceModel`] of scene files, the
+//! command line and Python), the realization of a seed, its realization, a sweep, and the
+//! range checks, so that no experiment writes them again. `step_scene!` adds the fields of
+//! one step of magnification at fixed load (`contact_area`, `zeta`, `dzeta`), with the
+//! check of the step and the step itself ([`Base::validate_step`], [`Base::step`]). The
+//! solver is not part of a scene: the runner runs every scene with each solver it is asked
+//! for (GFMD for the headline, CG for the cross-check), and a job learns its solver from
+//! its [`JobContext`](super::JobContext). (The fields are written into
 //! the struct rather than flattened with `#[serde(flatten)]`: flattening loses the
 //! position of a bad value in the file and the name of its key in the error message.)
 
