@@ -21,6 +21,7 @@ use std::time::Instant;
 use serde::{Deserialize, Serialize};
 
 use super::scene::{Base, Realization};
+use super::JobContext;
 use crate::engine::contact::{ContactSolution, Residual, SolveStats};
 use crate::engine::solver::SolverKind;
 use crate::engine::tolerance::{STEP_MERGE, ZETA_SLACK};
@@ -125,6 +126,32 @@ pub fn step_of(steps: &[f64], zeta: f64) -> usize {
         .iter()
         .position(|&z| (z - zeta).abs() <= STEP_MERGE * zeta)
         .expect("the ladder holds every requested point")
+}
+
+/// A job's climb: [`climb`] with the job's solver, saving its state in the job's state
+/// folder every `seconds` ([`Checkpointing`]), so that a job killed mid-climb resumes.
+pub fn climb_job(
+    base: &Base,
+    ctx: &JobContext,
+    realization: &Realization,
+    contact_area: f64,
+    steps: &[f64],
+    recorder: &mut impl Recorder,
+    seconds: f64,
+) -> Result<Climbed> {
+    let checkpointing = Checkpointing {
+        dir: &ctx.state_dir,
+        seconds,
+    };
+    climb(
+        base,
+        ctx.solver,
+        realization,
+        contact_area,
+        steps,
+        recorder,
+        Some(checkpointing),
+    )
 }
 
 /// Climbs `realization` through the magnifications `steps` with `solver`, at the load that

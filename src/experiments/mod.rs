@@ -34,13 +34,15 @@
 //! the conclusion) in `findings.rs`, the unit tests' reading of the shipped definitions in
 //! `shipped.rs`; all are re-exported here.
 //!
-//! Shared machinery: [`scene`] (the fields every scene repeats), [`ensemble`] (the
-//! seeds x contact areas job grid and the per-load ensemble statistics), [`climb`] (the
-//! fixed-load magnification climb with optional checkpoints), [`contact_change`] (which
-//! points entered or left contact in a step, and the maps' packing and colours),
-//! [`history`] (every point's contact history over a climb, and the flux over an interval)
-//! and [`study`] (the generic table of rows an experiment adds beside its headline);
-//! [`keys`] holds the measures an experiment declares for a scene, which claims name.
+//! Shared machinery: [`scene`] (the fields every scene repeats, and those of a scene of one
+//! step of magnification), [`other_grid`] (the fields of a study's own grid and of its
+//! jobs, the Hurst exponent the headline's), [`ensemble`] (the seeds x contact areas job
+//! grid and the per-load ensemble statistics), [`climb`] (the fixed-load magnification
+//! climb with optional checkpoints), [`contact_change`] (which points entered or left
+//! contact in a step, and the maps' packing and colours), [`history`] (every point's
+//! contact history over a climb, and the flux over an interval) and [`study`] (the generic
+//! table of rows an experiment adds beside its headline); [`keys`] holds the measures an
+//! experiment declares for a scene, which claims name.
 //! No experiment imports another: what two share lives here.
 
 pub mod climb;
@@ -51,6 +53,7 @@ pub mod flux;
 pub mod history;
 pub mod keys;
 pub mod modes;
+pub mod other_grid;
 pub mod reentry;
 pub mod scene;
 pub mod source;

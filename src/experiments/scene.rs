@@ -12,13 +12,15 @@
 //! tol = 1e-8         # solver residual (see engine::contact::Residual)
 //! ```
 //!
-//! `scene!` declares a scene struct with these fields followed by the experiment's own,
-//! and gives it [`Base`]: the surface model (the one [`SurfaceModel`] of scene files, the
-//! command line and Python), the realization of a seed, its realization, a sweep, and
-//! the range checks, so that no experiment writes them again. The solver is not part of a
-//! scene: the runner runs every scene with each solver it is asked for (GFMD for the
-//! headline, CG for the cross-check), and a job learns its solver from its
-//! [`JobContext`](super::JobContext). (The fields are written into
+//! `scene!` declares a scene struct with these fields followed by the experiment's own, and
+//! gives it [`Base`]: the surface model (the one [`SurfaceModel`] of scene files, the
+//! command line and Python), the realization of a seed, its realization, a sweep, and the
+//! range checks, so that no experiment writes them again. `step_scene!` adds the fields of
+//! one step of magnification at fixed load (`contact_area`, `zeta`, `dzeta`), with the
+//! check of the step and the step itself ([`Base::validate_step`], [`Base::step`]). The
+//! solver is not part of a scene: the runner runs every scene with each solver it is asked
+//! for (GFMD for the headline, CG for the cross-check), and a job learns its solver from
+//! its [`JobContext`](super::JobContext). (The fields are written into
 //! the struct rather than flattened with `#[serde(flatten)]`: flattening loses the
 //! position of a bad value in the file and the name of its key in the error message.)
 
@@ -234,11 +236,14 @@ pub fn check_increasing<T: PartialOrd + std::fmt::Debug>(field: &str, list: &[T]
     }
 }
 
-/// Declares an experiment's scene: the fields of [`Base`] (`n`, `hurst`, `lambda_l`,
-/// `lambda_s`, `seeds`, `tol`) followed by the experiment's own, with serde
-/// derives that refuse unknown keys, and a `base()` accessor.
-macro_rules! scene {
+/// Declares a struct whose first fields are the bracketed ones (each with its docs),
+/// followed by the struct's own, with serde derives that refuse unknown keys and the items
+/// after `impl` in its `impl` block: the one shape of [`scene!`] and of
+/// [`other_grid!`](super::other_grid::other_grid), which name their fields.
+macro_rules! fields_first {
     (
+        [$( $(#[$lmeta:meta])* $lead:ident : $lty:ty, )*]
+        impl { $($items:tt)* }
         $(#[$meta:meta])*
         pub struct $name:ident {
             $( $(#[$fmeta:meta])* pub $field:ident : $ty:ty, )*
@@ -248,34 +253,102 @@ macro_rules! scene {
         #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
         #[serde(deny_unknown_fields)]
         pub struct $name {
-            /// Points per side.
-            pub n: usize,
-            /// Hurst exponent, in (0, 1).
-            pub hurst: f64,
-            /// Long-wavelength cutoff (grid units).
-            pub lambda_l: f64,
-            /// Short-wavelength cutoff (grid units).
-            pub lambda_s: f64,
-            /// Realizations.
-            pub seeds: Vec<u64>,
-            /// Residual tolerance.
-            pub tol: f64,
+            $( $(#[$lmeta])* pub $lead: $lty, )*
             $( $(#[$fmeta])* pub $field: $ty, )*
         }
 
         impl $name {
-            /// The fields every scene shares.
-            pub fn base(&self) -> $crate::experiments::scene::Base<'_> {
-                $crate::experiments::scene::Base::new(
-                    self.n,
-                    self.hurst,
-                    self.lambda_l,
-                    self.lambda_s,
-                    &self.seeds,
-                    self.tol,
-                )
+            $($items)*
+        }
+    };
+}
+pub(crate) use fields_first;
+
+/// Declares an experiment's scene: the fields of [`Base`] (`n`, `hurst`, `lambda_l`,
+/// `lambda_s`, `seeds`, `tol`) followed by the experiment's own, with serde
+/// derives that refuse unknown keys, and a `base()` accessor.
+macro_rules! scene {
+    ($($item:tt)*) => {
+        $crate::experiments::scene::fields_first! {
+            [
+                /// Points per side.
+                n: usize,
+                /// Hurst exponent, in (0, 1).
+                hurst: f64,
+                /// Long-wavelength cutoff (grid units).
+                lambda_l: f64,
+                /// Short-wavelength cutoff (grid units).
+                lambda_s: f64,
+                /// Realizations.
+                seeds: Vec<u64>,
+                /// Residual tolerance.
+                tol: f64,
+            ]
+            impl {
+                /// The fields every scene shares.
+                pub fn base(&self) -> $crate::experiments::scene::Base<'_> {
+                    $crate::experiments::scene::Base::new(
+                        self.n,
+                        self.hurst,
+                        self.lambda_l,
+                        self.lambda_s,
+                        &self.seeds,
+                        self.tol,
+                    )
+                }
             }
+            $($item)*
         }
     };
 }
 pub(crate) use scene;
+
+/// Declares the scene of one step of magnification at fixed load: the fields of [`scene!`],
+/// then `contact_area`, `zeta` and `dzeta`, then the experiment's own; with
+/// `validate_one_step()` ([`Base::validate_step`] of these three) and `one_step(seed,
+/// solver)` (the realization `seed` and its step, [`Base::step`]).
+macro_rules! step_scene {
+    (
+        $(#[$meta:meta])*
+        pub struct $name:ident { $($own:tt)* }
+    ) => {
+        $crate::experiments::scene::scene! {
+            $(#[$meta])*
+            pub struct $name {
+                /// Relative contact area at `zeta` (sets the load).
+                pub contact_area: f64,
+                /// Magnification before the step.
+                pub zeta: f64,
+                /// The step of magnification.
+                pub dzeta: f64,
+                $($own)*
+            }
+        }
+
+        impl $name {
+            /// Checks the scene's fields and its step; errors name the field
+            /// ([`Base::validate_step`](crate::experiments::scene::Base::validate_step)).
+            pub fn validate_one_step(&self) -> $crate::error::Result<()> {
+                self.base()
+                    .validate_step(self.contact_area, self.zeta, self.dzeta)
+            }
+
+            /// The realization `seed` and its step from `zeta` to `zeta + dzeta` with
+            /// `solver`, at the load that gives `contact_area` at `zeta`.
+            pub fn one_step(
+                &self,
+                seed: u64,
+                solver: $crate::engine::solver::SolverKind,
+            ) -> $crate::error::Result<(
+                $crate::experiments::scene::Realization,
+                $crate::experiments::scene::Step,
+            )> {
+                let base = self.base();
+                let r = base.realization(seed)?;
+                let step = base.step(&r, solver, self.zeta, self.dzeta, self.contact_area)?;
+                Ok((r, step))
+            }
+        }
+    };
+}
+pub(crate) use step_scene;

@@ -168,6 +168,43 @@ impl Study {
     }
 }
 
+/// The columns that say what a row ran (its grid, surface, first magnification, load,
+/// tolerance and realizations), each key with its one label, so that every study showing
+/// a setting names and labels it alike.
+pub const SETTINGS: &[(&str, &str)] = &[
+    ("n", "points per side"),
+    ("hurst", "Hurst exponent"),
+    ("lambda_l", "lambda_l (grid units)"),
+    ("lambda_s", "lambda_s (grid units)"),
+    ("zeta_from", "first magnification (0: the first shell)"),
+    ("contact_area", "a_r at zeta_max"),
+    ("tol", "residual tolerance"),
+    ("realizations", "realizations"),
+];
+
+/// Columns as [`Study::new`] takes them: the settings `settings` (keys of [`SETTINGS`], in
+/// the order given), then the study's `own`.
+///
+/// # Panics
+///
+/// If a key of `settings` is not one of [`SETTINGS`].
+pub fn with_settings(
+    settings: &[&str],
+    own: &[(&'static str, &'static str)],
+) -> Vec<(&'static str, &'static str)> {
+    let setting = |key: &&str| {
+        *SETTINGS
+            .iter()
+            .find(|(k, _)| k == key)
+            .unwrap_or_else(|| panic!("{key} is not a setting of study::SETTINGS"))
+    };
+    settings
+        .iter()
+        .map(setting)
+        .chain(own.iter().copied())
+        .collect()
+}
+
 /// The study with key `key` among `studies`.
 pub fn find<'a>(studies: &'a [Study], key: &str) -> Option<&'a Study> {
     studies.iter().find(|s| s.key == key)
@@ -200,6 +237,25 @@ mod tests {
         assert_eq!(back.cell("none", "n"), Some(Cell::Empty));
         assert_eq!(back.cell("none", "a_r").unwrap().estimate(), None);
         assert!(back.cell("fine", "b").is_none() && back.cell("x", "n").is_none());
+    }
+
+    #[test]
+    fn settings_keep_their_labels_and_order_before_a_study_s_own_columns() {
+        let c = with_settings(&["tol", "n"], &[("share", "re-entry share")]);
+        assert_eq!(
+            c,
+            [
+                ("tol", "residual tolerance"),
+                ("n", "points per side"),
+                ("share", "re-entry share")
+            ]
+        );
+    }
+
+    #[test]
+    #[should_panic(expected = "not a setting")]
+    fn an_unknown_setting_is_refused() {
+        with_settings(&["grid"], &[]);
     }
 
     #[test]

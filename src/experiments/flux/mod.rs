@@ -55,22 +55,16 @@ use self::study::reading::{self, PaperFlux};
 use self::study::sensitivity::{self, SensitivityPlan, SensitivityRow, StudyJob, StudyResult};
 use self::study::waterfall::{self, WaterfallPlan, WaterfallResult};
 use super::contact_change::{categories, pack_categories, ENTERED, LEFT};
-use super::scene::{scene, Step};
+use super::scene::{step_scene, Step};
 use super::study::Study;
 use super::{Check, Detail, Experiment, JobContext, Jobs, Keys, Work};
 use crate::error::{Error, Result};
 use crate::plot::{Figure, Raster, Waterfall};
 use crate::stats::Estimate;
 
-scene! {
+step_scene! {
     /// Scene of the one-step flux.
     pub struct FluxScene {
-        /// Relative contact area at `zeta` (sets the load).
-        pub contact_area: f64,
-        /// Magnification before the step.
-        pub zeta: f64,
-        /// The step.
-        pub dzeta: f64,
         /// The sensitivity study (none: not run).
         #[serde(default, skip_serializing_if = "Option::is_none")]
         pub sensitivity: Option<SensitivityPlan>,
@@ -162,8 +156,7 @@ impl Jobs for FluxScene {
     type JobResult = FluxOutput;
 
     fn validate(&self) -> Result<()> {
-        self.base()
-            .validate_step(self.contact_area, self.zeta, self.dzeta)?;
+        self.validate_one_step()?;
         if let Some(plan) = &self.sensitivity {
             plan.validate(self.hurst, self.relative_step())?;
         }
@@ -341,13 +334,14 @@ fn same_step(scene: &FluxScene, rows: &[SensitivityRow]) -> Option<usize> {
 
 /// One realization's step at the scene's settings.
 fn step(scene: &FluxScene, seed: u64, ctx: &JobContext) -> Result<FluxResult> {
-    let base = scene.base();
-    let r = base.realization(seed)?;
-    let Step {
-        p0,
-        before: old,
-        after: new,
-    } = base.step(&r, ctx.solver, scene.zeta, scene.dzeta, scene.contact_area)?;
+    let (
+        _,
+        Step {
+            p0,
+            before: old,
+            after: new,
+        },
+    ) = scene.one_step(seed, ctx.solver)?;
     let categories = categories(&old.pressure, &new.pressure);
     let (flux_in, flux_out) = fluxes(&categories);
     Ok(FluxResult {

@@ -58,7 +58,7 @@ use self::range::{range_gains, RangeGain};
 use self::stats::{ReentryStats, Share};
 use self::tolerance::{RowSamples, Sample, ToleranceJob, TolerancePlan, ToleranceResult};
 use self::variants::{Variant, VariantJob, VariantResult, VariantStats};
-use super::climb::{climb, Checkpointing};
+use super::climb::climb_job;
 use super::contact_change::{net_over_gross, pack_categories, unpack_categories};
 use super::ensemble::{by_load, check_contact_areas, seed_load_jobs, SeedLoad};
 use super::history::{self, History};
@@ -194,17 +194,14 @@ fn run_history(
     let steps = shell_steps(&r.surface, 0.0, zeta_max);
     let interval = (scene.flux_zeta, scene.flux_zeta + scene.flux_dzeta);
     let mut history = History::new(r.model.grid.points(), interval);
-    let climbed = climb(
+    let climbed = climb_job(
         &base,
-        ctx.solver,
+        ctx,
         &r,
         job.contact_area,
         &steps,
         &mut history,
-        Some(Checkpointing {
-            dir: &ctx.state_dir,
-            seconds: scene.checkpoint_seconds,
-        }),
+        scene.checkpoint_seconds,
     )?;
     history.close_flux();
     let flux = history.flux.as_ref().ok_or_else(|| {
@@ -554,10 +551,10 @@ impl Experiment for Reentry {
             keys.details(variants::detail_keys(v, &scene.contact_areas));
         }
         if scene.tolerance.is_some() {
-            keys.study(tolerance::STUDY, tolerance::COLUMNS);
+            keys.study(tolerance::STUDY, &tolerance::columns());
         }
         if !scene.variants.is_empty() {
-            keys.study(variants::STUDY, variants::COLUMNS);
+            keys.study(variants::STUDY, &variants::columns());
         }
         keys
     }

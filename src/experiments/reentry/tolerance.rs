@@ -29,11 +29,11 @@ use serde::{Deserialize, Serialize};
 
 use crate::engine::sweep::shell_steps;
 use crate::error::{check_positive, Error, Result};
-use crate::experiments::climb::{climb, Checkpointing};
+use crate::experiments::climb::climb_job;
 use crate::experiments::ensemble::check_contact_areas;
 use crate::experiments::history::History;
-use crate::experiments::scene::Base;
-use crate::experiments::study::{Cell, Study};
+use crate::experiments::other_grid::other_grid;
+use crate::experiments::study::{with_settings, Cell, Study};
 use crate::experiments::{JobContext, Work};
 use crate::stats::Estimate;
 
@@ -54,38 +54,26 @@ pub struct TolerancePlan {
     pub grids: Vec<ToleranceGrid>,
 }
 
-/// One grid of the study with its realizations and loads.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ToleranceGrid {
-    /// Points per side.
-    pub n: usize,
-    /// Long-wavelength cutoff (grid units).
-    pub lambda_l: f64,
-    /// Short-wavelength cutoff (grid units).
-    pub lambda_s: f64,
-    /// Realizations.
-    pub seeds: Vec<u64>,
-    /// Contact areas at `zeta_max` (the loads).
-    pub contact_areas: Vec<f64>,
+other_grid! {
+    /// One grid of the study with its realizations and loads.
+    pub struct ToleranceGrid {
+        /// Realizations.
+        pub seeds: Vec<u64>,
+        /// Contact areas at `zeta_max` (the loads).
+        pub contact_areas: Vec<f64>,
+    }
 }
 
-/// One history of the study: everything it depends on besides the Hurst exponent.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ToleranceJob {
-    /// Points per side.
-    pub n: usize,
-    /// Long-wavelength cutoff (grid units).
-    pub lambda_l: f64,
-    /// Short-wavelength cutoff (grid units).
-    pub lambda_s: f64,
-    /// Realization.
-    pub seed: u64,
-    /// Contact area at `zeta_max`.
-    pub contact_area: f64,
-    /// Residual tolerance.
-    pub tol: f64,
+other_grid! {
+    /// One history of the study: everything it depends on besides the Hurst exponent.
+    pub struct ToleranceJob {
+        /// Realization.
+        pub seed: u64,
+        /// Contact area at `zeta_max`.
+        pub contact_area: f64,
+        /// Residual tolerance.
+        pub tol: f64,
+    }
 }
 
 /// What one history of the study measured.
@@ -141,14 +129,6 @@ impl ToleranceGrid {
             tol,
         }
     }
-
-    /// The grid in words.
-    fn label(&self) -> String {
-        format!(
-            "{}^2, lambda_l = {}, lambda_s = {}",
-            self.n, self.lambda_l, self.lambda_s
-        )
-    }
 }
 
 impl TolerancePlan {
@@ -172,8 +152,7 @@ impl TolerancePlan {
             return Err(Error::invalid("tolerance.grids", "[]", "at least one grid"));
         }
         for g in &self.grids {
-            let base = Base::new(g.n, hurst, g.lambda_l, g.lambda_s, &g.seeds, self.tols[0]);
-            base.validate()?;
+            g.base(hurst, &g.seeds, self.tols[0]).validate()?;
             check_contact_areas(&g.contact_areas)?;
         }
         Ok(())
@@ -195,14 +174,9 @@ impl TolerancePlan {
     }
 }
 
-/// The base of a job: its grid and tolerance at `hurst`.
-fn base<'a>(job: &ToleranceJob, hurst: f64, seeds: &'a [u64]) -> Base<'a> {
-    Base::new(job.n, hurst, job.lambda_l, job.lambda_s, seeds, job.tol)
-}
-
 /// What a job costs: a load search and every shell.
 pub fn work(job: &ToleranceJob, hurst: f64) -> Work {
-    let b = base(job, hurst, &[]);
+    let b = job.base(hurst, &[], job.tol);
     Work::search_then(job.n, 0, b.shells(0.0, b.zeta_max()))
 }
 
@@ -215,23 +189,12 @@ pub fn run(
 ) -> Result<ToleranceResult> {
     check_positive("tolerance.tol", job.tol)?;
     let seeds = [job.seed];
-    let b = base(job, hurst, &seeds);
+    let b = job.base(hurst, &seeds, job.tol);
     let r = b.realization(job.seed)?;
     let steps = shell_steps(&r.surface, 0.0, r.surface.zeta_max());
     // No flux interval: the study reads the contact at zeta_max only.
     let mut history = History::new(r.model.grid.points(), (f64::INFINITY, f64::INFINITY));
-    let climbed = climb(
-        &b,
-        ctx.solver,
-        &r,
-        job.contact_area,
-        &steps,
-        &mut history,
-        Some(Checkpointing {
-            dir: &ctx.state_dir,
-            seconds,
-        }),
-    )?;
+    let climbed = climb_job(&b, ctx, &r, job.contact_area, &steps, &mut history, seconds)?;
     let (contact_points, reentered, _) = history.counts();
     Ok(ToleranceResult {
         contact_points,
@@ -297,25 +260,27 @@ pub struct Choice {
 
 /// The tolerance study: its key and columns, `(key, label)`.
 pub const STUDY: &str = "tolerance";
+
 /// The columns of [`STUDY`].
-pub const COLUMNS: &[(&str, &str)] = &[
-    ("n", "points per side"),
-    ("contact_area", "a_r at zeta_max"),
-    ("tol", "residual tolerance"),
-    ("realizations", "realizations"),
-    ("share", "re-entry share"),
-    (
-        "shift_se",
-        "share minus the tightest's (same realization), in standard errors",
-    ),
-    (
-        "contact_differs",
-        "points whose contact at zeta_max differs from the tightest's",
-    ),
-    ("iterations_per_shell", "solver iterations a shell"),
-    ("seconds_per_shell", "wall seconds a shell"),
-    ("accepted", "accepted (1) or not (0)"),
-];
+pub fn columns() -> Vec<(&'static str, &'static str)> {
+    with_settings(
+        &["n", "contact_area", "tol", "realizations"],
+        &[
+            ("share", "re-entry share"),
+            (
+                "shift_se",
+                "share minus the tightest's (same realization), in standard errors",
+            ),
+            (
+                "contact_differs",
+                "points whose contact at zeta_max differs from the tightest's",
+            ),
+            ("iterations_per_shell", "solver iterations a shell"),
+            ("seconds_per_shell", "wall seconds a shell"),
+            ("accepted", "accepted (1) or not (0)"),
+        ],
+    )
+}
 
 /// The study's table from its rows (every grid, load and tolerance, tolerances in the
 /// plan's order), with the standard error of the headline's share at each load of the
@@ -328,7 +293,7 @@ pub fn study(
     let mut study = Study::new(
         STUDY,
         "Speed against error of a history: the same climbs at several solver tolerances",
-        COLUMNS,
+        &columns(),
     )
     .about(format!(
         "Each row: one grid, one load, one tolerance, the climbs of every realization \
@@ -405,7 +370,7 @@ pub fn study(
             format!("n{}_ar{}_tol{:e}", row.grid.n, row.contact_area, row.tol),
             format!(
                 "{}, a_r {}, tol {:e}",
-                row.grid.label(),
+                row.grid.grid_label(),
                 row.contact_area,
                 row.tol
             ),

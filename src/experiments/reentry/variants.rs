@@ -25,42 +25,32 @@ use super::stats::Share;
 use crate::engine::contact::ContactSolution;
 use crate::engine::sweep::shell_steps;
 use crate::error::{check_key_name, check_positive, Error, Result};
-use crate::experiments::climb::{climb, Arrays, Checkpointing, Recorder};
+use crate::experiments::climb::{climb_job, Arrays, Recorder};
 use crate::experiments::contact_change::{pack_categories, unpack_categories};
 use crate::experiments::ensemble::check_contact_areas;
 use crate::experiments::history::{self, History};
-use crate::experiments::scene::Base;
-use crate::experiments::study::{Cell, Study};
+use crate::experiments::scene::{scene, Base};
+use crate::experiments::study::{with_settings, Cell, Study};
 use crate::experiments::{Detail, JobContext, Work};
 use crate::io::checkpoint::Checkpoints;
 use crate::plot::Raster;
 use crate::stats::Estimate;
 
-/// A scene beside the headline's, as a definition states it (`[[full.variants]]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Variant {
-    /// Short name: the prefix of its statistics' keys.
-    pub name: String,
-    /// What differs from the headline, in words.
-    pub what: String,
-    /// Points per side.
-    pub n: usize,
-    /// Hurst exponent.
-    pub hurst: f64,
-    /// Long-wavelength cutoff (grid units).
-    pub lambda_l: f64,
-    /// Short-wavelength cutoff (grid units).
-    pub lambda_s: f64,
-    /// Magnification of the first step (0: from the flat interface, the first shell).
-    #[serde(default)]
-    pub zeta_from: f64,
-    /// Realizations.
-    pub seeds: Vec<u64>,
-    /// Contact areas at `zeta_max` (the loads).
-    pub contact_areas: Vec<f64>,
-    /// Residual tolerance.
-    pub tol: f64,
+scene! {
+    /// A scene beside the headline's, as a definition states it (`[[full.variants]]`): the
+    /// fields of every scene (its own Hurst exponent, grid, realizations and tolerance),
+    /// then its own.
+    pub struct Variant {
+        /// Short name: the prefix of its statistics' keys.
+        pub name: String,
+        /// What differs from the headline, in words.
+        pub what: String,
+        /// Magnification of the first step (0: from the flat interface, the first shell).
+        #[serde(default)]
+        pub zeta_from: f64,
+        /// Contact areas at `zeta_max` (the loads).
+        pub contact_areas: Vec<f64>,
+    }
 }
 
 /// One history of a variant: everything it depends on.
@@ -157,17 +147,6 @@ impl Variant {
             .iter()
             .flat_map(|&a| self.seeds.iter().map(move |&s| self.job(s, a)))
             .collect()
-    }
-
-    fn base(&self) -> Base<'_> {
-        Base::new(
-            self.n,
-            self.hurst,
-            self.lambda_l,
-            self.lambda_s,
-            &self.seeds,
-            self.tol,
-        )
     }
 
     /// Checks the variant: a valid scene, loads in (0, 1), `zeta_from` in `[0,
@@ -294,18 +273,7 @@ pub fn run(
         history: History::new(r.model.grid.points(), (f64::INFINITY, f64::INFINITY)),
         contact_at_start: None,
     };
-    let climbed = climb(
-        &b,
-        ctx.solver,
-        &r,
-        job.contact_area,
-        &steps,
-        &mut rec,
-        Some(Checkpointing {
-            dir: &ctx.state_dir,
-            seconds,
-        }),
-    )?;
+    let climbed = climb_job(&b, ctx, &r, job.contact_area, &steps, &mut rec, seconds)?;
     let categories = rec.history.categories();
     let count = |c: u8| categories.iter().filter(|&&x| x == c).count() as u64;
     let (contact_points, reentered, _) = rec.history.counts();
@@ -404,30 +372,37 @@ pub fn stats(variants: &[Variant], results: &[(VariantJob, VariantResult)]) -> V
 
 /// The variants' study: its key and columns, `(key, label)`.
 pub const STUDY: &str = "variants";
+
 /// The columns of [`STUDY`].
-pub const COLUMNS: &[(&str, &str)] = &[
-    ("n", "points per side"),
-    ("hurst", "Hurst exponent"),
-    ("lambda_l", "lambda_l (grid units)"),
-    ("lambda_s", "lambda_s (grid units)"),
-    ("zeta_from", "first magnification (0: the first shell)"),
-    ("contact_area", "a_r at zeta_max"),
-    ("realizations", "realizations"),
-    ("tol", "residual tolerance"),
-    ("share", "re-entry share"),
-    ("headline_share", "the headline's share at this load"),
-    ("a_r_start", "a_r at the first step"),
-    (
-        "remained_of_start",
-        "contact at the first step in contact throughout",
-    ),
-    (
-        "coloured_over_grey",
-        "re-entered (red, blue) over always in contact (grey)",
-    ),
-    ("shells", "shells added one at a time"),
-    ("iterations_per_shell", "solver iterations a shell"),
-];
+pub fn columns() -> Vec<(&'static str, &'static str)> {
+    with_settings(
+        &[
+            "n",
+            "hurst",
+            "lambda_l",
+            "lambda_s",
+            "zeta_from",
+            "contact_area",
+            "realizations",
+            "tol",
+        ],
+        &[
+            ("share", "re-entry share"),
+            ("headline_share", "the headline's share at this load"),
+            ("a_r_start", "a_r at the first step"),
+            (
+                "remained_of_start",
+                "contact at the first step in contact throughout",
+            ),
+            (
+                "coloured_over_grey",
+                "re-entered (red, blue) over always in contact (grey)",
+            ),
+            ("shells", "shells added one at a time"),
+            ("iterations_per_shell", "solver iterations a shell"),
+        ],
+    )
+}
 
 /// The variants' table: one row per variant and load, beside the headline's share at
 /// that load.
@@ -435,7 +410,7 @@ pub fn study(variants: &[VariantStats], headline: &[Share]) -> Study {
     let mut study = Study::new(
         STUDY,
         "Re-entry histories of scenes beside the headline's",
-        COLUMNS,
+        &columns(),
     )
     .about(
         "Each row: one variant scene at one load, the mean over its realizations with the \

@@ -412,7 +412,7 @@ impl Experiment for TotalEnergy {
         keys.details(stats::detail_keys(scene));
         keys.details(resolutions::detail_keys(&scene.resolutions));
         if !scene.resolutions.is_empty() {
-            keys.study(resolutions::STUDY, resolutions::COLUMNS);
+            keys.study(resolutions::STUDY, &resolutions::columns());
         }
         keys
     }

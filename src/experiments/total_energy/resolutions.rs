@@ -19,43 +19,33 @@ use serde::{Deserialize, Serialize};
 use super::{EnergyResult, EnergyScene};
 use crate::error::{check_key_name, check_seeds, Error, Result};
 use crate::experiments::ensemble::{check_contact_areas, SeedLoad};
-use crate::experiments::study::{Cell, Study};
+use crate::experiments::other_grid::other_grid;
+use crate::experiments::study::{with_settings, Cell, Study};
 use crate::experiments::Detail;
 use crate::stats::Estimate;
 
-/// The headline's scene on another grid, as a definition states it
-/// (`[[full.resolutions]]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Resolution {
-    /// Short name: the prefix of its statistics' keys.
-    pub name: String,
-    /// Points per side.
-    pub n: usize,
-    /// Long-wavelength cutoff (grid units): `lambda_l / n` as the headline's.
-    pub lambda_l: f64,
-    /// Short-wavelength cutoff (grid units): `lambda_l / lambda_s` as the headline's.
-    pub lambda_s: f64,
-    /// Realizations.
-    pub seeds: Vec<u64>,
-    /// Loads, a subset of the headline's contact areas.
-    pub contact_areas: Vec<f64>,
+other_grid! {
+    /// The headline's scene on another grid, as a definition states it
+    /// (`[[full.resolutions]]`): `lambda_l / n` and `lambda_l / lambda_s` as the
+    /// headline's.
+    pub struct Resolution {
+        /// Short name: the prefix of its statistics' keys.
+        pub name: String,
+        /// Realizations.
+        pub seeds: Vec<u64>,
+        /// Loads, a subset of the headline's contact areas.
+        pub contact_areas: Vec<f64>,
+    }
 }
 
-/// One sweep on a finer grid: everything it depends on besides the headline's scene.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ResolutionJob {
-    /// Points per side.
-    pub n: usize,
-    /// Long-wavelength cutoff (grid units).
-    pub lambda_l: f64,
-    /// Short-wavelength cutoff (grid units).
-    pub lambda_s: f64,
-    /// Realization.
-    pub seed: u64,
-    /// Load: the contact area at `zeta_max`.
-    pub contact_area: f64,
+other_grid! {
+    /// One sweep on a finer grid: everything it depends on besides the headline's scene.
+    pub struct ResolutionJob {
+        /// Realization.
+        pub seed: u64,
+        /// Load: the contact area at `zeta_max`.
+        pub contact_area: f64,
+    }
 }
 
 /// Relative slack of the size-scaling checks (ratios of grid lengths written in decimal).
@@ -83,10 +73,8 @@ impl Resolution {
     pub fn validate(&self, headline: &EnergyScene) -> Result<()> {
         check_key_name("resolutions.name", &self.name)?;
         // Its grid's ranges (n, lambda_l, lambda_s), under the headline's own names.
-        let mut grid = headline.base();
-        (grid.surface.n, grid.surface.lambda_l, grid.surface.lambda_s) =
-            (self.n, self.lambda_l, self.lambda_s);
-        grid.validate()?;
+        self.base(headline.hurst, &headline.seeds, headline.tol)
+            .validate()?;
         check_seeds(&self.seeds).map_err(|e| e.with_field("resolutions.seeds"))?;
         check_contact_areas(&self.contact_areas)
             .map_err(|e| e.with_field("resolutions.contact_areas"))?;
@@ -264,16 +252,18 @@ pub fn detail_keys(resolutions: &[Resolution]) -> Vec<String> {
 
 /// The study of the resolutions: its key and columns, `(key, label)`.
 pub const STUDY: &str = "resolutions";
+
 /// The columns of [`STUDY`].
-pub const COLUMNS: &[(&str, &str)] = &[
-    ("n", "points per side"),
-    ("lambda_s", "lambda_s (grid units)"),
-    ("contact_area", "a_r at zeta_max"),
-    ("realizations", "realizations"),
-    ("s_tilde", "S~, windows averaged"),
-    ("headline", "the same on the headline's grid"),
-    ("shift", "this grid minus the headline's"),
-];
+pub fn columns() -> Vec<(&'static str, &'static str)> {
+    with_settings(
+        &["n", "lambda_s", "contact_area", "realizations"],
+        &[
+            ("s_tilde", "S~, windows averaged"),
+            ("headline", "the same on the headline's grid"),
+            ("shift", "this grid minus the headline's"),
+        ],
+    )
+}
 
 /// The windows' `S~` of each resolution and load, and its shift from the headline grid's.
 pub fn details(stats: &[ResolutionStats]) -> Vec<Detail> {
@@ -308,7 +298,7 @@ pub fn details(stats: &[ResolutionStats]) -> Vec<Detail> {
 
 /// The table of the resolutions: one row per grid and load.
 pub fn study(stats: &[ResolutionStats], headline_n: usize) -> Study {
-    let mut study = Study::new(STUDY, "S~ on finer grids, size-scaled", COLUMNS).about(format!(
+    let mut study = Study::new(STUDY, "S~ on finer grids, size-scaled", &columns()).about(format!(
         "Each row: the headline's scene on another grid with lambda_l / L and lambda_l / \
          lambda_s unchanged, so that every increment window holds the same shells; S~ of each \
          window (eq. S_q_numerical) averaged over the windows per realization, then over the \

@@ -50,22 +50,16 @@ pub use drift::{contact_drift, Drift, DriftStats};
 
 use serde::{Deserialize, Serialize};
 
-use super::scene::{scene, Step};
+use super::scene::{step_scene, Step};
 use super::{JobContext, Jobs, Work};
 use crate::engine::solver::SolverKind;
 use crate::error::{check_positive, Error, Result};
 use crate::persson::Broadening;
 use crate::stats::{Bins, Histogram};
 
-scene! {
+step_scene! {
     /// Scene of the transition experiment.
     pub struct TransitionScene {
-        /// Relative contact area at `zeta` (sets the load).
-        pub contact_area: f64,
-        /// Old magnification.
-        pub zeta: f64,
-        /// Magnification step.
-        pub dzeta: f64,
         /// Number of pressure bins.
         pub bins: usize,
         /// Bin width, in units of `p0 / a_r`.
@@ -137,8 +131,7 @@ impl Jobs for TransitionScene {
     type JobResult = TransitionResult;
 
     fn validate(&self) -> Result<()> {
-        self.base()
-            .validate_step(self.contact_area, self.zeta, self.dzeta)?;
+        self.validate_one_step()?;
         if self.bins < 2 {
             return Err(Error::invalid("bins", self.bins, ">= 2"));
         }
@@ -183,13 +176,14 @@ fn run_transition(
     seed: u64,
     solver: SolverKind,
 ) -> Result<TransitionResult> {
-    let base = scene.base();
-    let r = base.realization(seed)?;
-    let Step {
-        p0,
-        before: old,
-        after: new,
-    } = base.step(&r, solver, scene.zeta, scene.dzeta, scene.contact_area)?;
+    let (
+        r,
+        Step {
+            p0,
+            before: old,
+            after: new,
+        },
+    ) = scene.one_step(seed, solver)?;
     let a_r_old = old.contact_area();
     let walkers = Walkers::binned(scene, p0 / a_r_old, &old.pressure, &new.pressure);
     let broadening = Broadening::new(&r.surface.shells(), r.model.halfspace.e_star())?;
