@@ -7,7 +7,7 @@
 //! that a magnification `zeta = q / q_l` names the same shell `k2 = mx^2 + my^2` on every
 //! grid and every increment window holds the same shells; only the points per shortest
 //! wavelength (`lambda_s` in grid units) grow with the grid. Each job is one realization at
-//! one load, climbed exactly as the headline's sweep ([`super::run_sweep`]).
+//! one load, climbed exactly as the headline's sweep (`run_sweep` of the module above).
 //!
 //! Per load, the statistic is the windows' `S~` averaged per realization (the mean of
 //! [`EnergyResult::window_mean`] over the scene's increment windows), then over realizations; its shift
