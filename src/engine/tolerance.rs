@@ -18,7 +18,9 @@ pub const SHELL_SLACK: f64 = 1e-9;
 
 /// Relative slack when a magnification (or a wavevector) is compared with the end of a
 /// range: `zeta <= zeta_max (1 + ZETA_SLACK)` counts a `zeta` computed as `zeta_max` as
-/// inside, and `zeta > from (1 + ZETA_SLACK)` counts it as not past `from`.
+/// inside, and `zeta > from (1 + ZETA_SLACK)` counts it as not past `from`. Two scenes'
+/// ratios of lengths written in decimal (`lambda_l / n`, `lambda_l / lambda_s` of a finer
+/// grid against its headline's) are one ratio to this slack too.
 pub const ZETA_SLACK: f64 = 1e-12;
 
 /// Relative distance below which two magnification steps are one step: the points of a

@@ -17,6 +17,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::{EnergyResult, EnergyScene};
+use crate::engine::tolerance::ZETA_SLACK;
 use crate::error::{check_key_name, check_seeds, Error, Result};
 use crate::experiments::ensemble::{check_contact_areas, SeedLoad};
 use crate::experiments::other_grid::other_grid;
@@ -48,9 +49,6 @@ other_grid! {
     }
 }
 
-/// Relative slack of the size-scaling checks (ratios of grid lengths written in decimal).
-const RATIO_SLACK: f64 = 1e-12;
-
 impl Resolution {
     /// Every sweep, loads outermost.
     pub fn jobs(&self) -> Vec<ResolutionJob> {
@@ -78,7 +76,7 @@ impl Resolution {
         check_seeds(&self.seeds).map_err(|e| e.with_field("resolutions.seeds"))?;
         check_contact_areas(&self.contact_areas)
             .map_err(|e| e.with_field("resolutions.contact_areas"))?;
-        let same = |a: f64, b: f64| (a - b).abs() <= RATIO_SLACK * b.abs();
+        let same = |a: f64, b: f64| (a - b).abs() <= ZETA_SLACK * b.abs();
         let (l, z) = (
             headline.lambda_l / headline.n as f64,
             headline.lambda_l / headline.lambda_s,
