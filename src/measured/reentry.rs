@@ -11,7 +11,8 @@
 //! [`Roughness`] of the engine). The engine's [`Sweep`] then adds every distinct shell
 //! `|q|` up to `zeta_max` (the scan grid's integer shells, [`Grid::k2_wide`]) one at a
 //! time, from the first, at the fixed load of the check's middle load, each solve
-//! warm-started from the last as `c_reentry`'s climbs are; the history of every point of the window ([`History`], the validation's own
+//! warm-started from the last: the fixed-load steps of `c_reentry`'s climbs
+//! ([`climb_steps`]); the history of every point of the window ([`History`], the validation's own
 //! record) gives the share of the points in contact at `zeta_max` that were out of
 //! contact at a lower magnification (Persson: 0), and the share that left after the
 //! first shell and came back. A free scan is swept on the free boundary, its heights the detrended scan's
@@ -26,11 +27,12 @@ use serde::{Deserialize, Serialize};
 use super::body::window_of;
 use super::psd::{half_spectrum, Boundary, ScanSpectrum, Shape};
 use super::theory::E_STAR;
-use crate::engine::contact::Model;
+use crate::engine::contact::{ContactSolution, Model};
 use crate::engine::grid::Grid;
 use crate::engine::solver::{SolveOptions, SolverKind};
 use crate::engine::sweep::{shell_steps, Roughness, Sweep};
 use crate::error::{Error, Result};
+use crate::experiments::climb::{climb_steps, Recorder, Stepped};
 use crate::experiments::history::History;
 
 /// The magnification the sweep climbs to, `L / lambda_s`: the reduced `c_reentry` scene's
@@ -144,6 +146,22 @@ fn truncate(spectrum: &ScanSpectrum, zeta_max: f64) -> Result<Truncated> {
     })
 }
 
+/// The history of the window's points on a free boundary's padded grid (or of every
+/// point of a periodic one), recorded step by step.
+struct WindowHistory<'m> {
+    history: History,
+    model: &'m Model,
+    shape: Shape,
+}
+
+impl Recorder for WindowHistory<'_> {
+    fn record(&mut self, step: usize, _zeta: f64, solution: &ContactSolution) -> Result<()> {
+        let pressure = window_of(self.model, self.shape, &solution.pressure);
+        self.history.update(step, &pressure);
+        Ok(())
+    }
+}
+
 /// The index of signed wavenumber `m` on a side of `n` points.
 fn wrap(m: i64, n: usize) -> usize {
     m.rem_euclid(n as i64) as usize
@@ -174,31 +192,39 @@ pub fn reentry_share(
     };
     let share = shape.points() as f64 / model.grid.points() as f64;
     let steps = shell_steps(&truncated, 0.0, f64::INFINITY);
-    let mut history = History::new(shape.points(), (f64::INFINITY, f64::INFINITY));
+    let mut window = WindowHistory {
+        history: History::new(shape.points(), (f64::INFINITY, f64::INFINITY)),
+        model: &model,
+        shape,
+    };
     let mut sweep = Sweep::new(&truncated, &model, solver, SolveOptions::with_tol(tol));
-    let mut iterations = 0u64;
-    let mut failed = None;
-    for (step, &zeta) in steps.iter().enumerate() {
-        match sweep.solve_at(zeta, p0 * share) {
-            Ok(solution) => {
-                iterations += solution.stats.iterations as u64;
-                history.update(step, &window_of(&model, shape, &solution.pressure));
-            }
-            Err(
-                e @ (Error::NotConverged { .. }
-                | Error::NonFinite { .. }
-                | Error::LostContact { .. }),
-            ) => {
-                failed = Some(format!(
-                    "re-entry sweep, shell {} of {} (zeta = {zeta:.3}): {e}",
-                    step + 1,
-                    steps.len()
-                ));
-                break;
-            }
-            Err(e) => return Err(e),
+    let mut reached = Stepped::default();
+    let climbed = climb_steps(
+        &mut sweep,
+        p0 * share,
+        &steps,
+        Stepped::default(),
+        &mut window,
+        |_, _, done| {
+            reached = *done;
+            Ok(())
+        },
+    );
+    let failed = match climbed {
+        Ok(_) => None,
+        Err(
+            e @ (Error::NotConverged { .. } | Error::NonFinite { .. } | Error::LostContact { .. }),
+        ) => {
+            let zeta = steps[reached.step];
+            Some(format!(
+                "re-entry sweep, shell {} of {} (zeta = {zeta:.3}): {e}",
+                reached.step + 1,
+                steps.len()
+            ))
         }
-    }
+        Err(e) => return Err(e),
+    };
+    let (history, iterations) = (window.history, reached.iterations);
     let (contact_points, reentered, after_first) = history.counts();
     let of = |k: u64| k as f64 / contact_points.max(1) as f64;
     Ok(Reentry {
