@@ -112,6 +112,12 @@ mod tests {
     use super::*;
 
     #[test]
+    fn net_over_gross_is_the_net_flux_over_the_mean_one_way_flux() {
+        assert!((net_over_gross(0.00675, 0.00597) - 0.12264).abs() < 1e-5);
+        assert_eq!(net_over_gross(0.0, 0.0), 0.0);
+    }
+
+    #[test]
     fn categories_pack_and_unpack() {
         let c: Vec<u8> = (0..37).map(|k| (k * 7 % 4) as u8).collect();
         assert_eq!(unpack_categories(&pack_categories(&c), c.len()), c);

@@ -31,19 +31,21 @@
 //!
 //! # Files
 //!
-//! * `mod.rs`: the scene, its jobs (one history sweep each) and the [`Experiment`]
-//!   implementation;
-//! * `history.rs`: the contact history of every point of a climb, what a job measures;
+//! * `mod.rs`: the scene, its jobs and the [`Experiment`] implementation;
+//! * `history_job.rs`: one history of the headline (the sweep and the counts it ends
+//!   with); the contact history of every point of a climb is
+//!   [`crate::experiments::history`];
 //! * `stats.rs`: the re-entry shares and the flux, means over realizations;
 //! * `figures.rs`: the table and the contact maps;
 //! * `tolerance.rs`: the speed-against-error study of a history (the same climbs at
-//!   several solver tolerances), run where the scene states a plan;
+//!   several solver tolerances), run where the scene states a plan, and its table;
 //! * `range.rs`: the share against the range of magnification (the headline against the
 //!   tolerance study's smaller range);
 //! * `variants.rs`: histories of scenes beside the headline's (another Hurst exponent,
 //!   `eps_c` or range of magnification), for the paper's statements that compare scenes.
 
 mod figures;
+mod history_job;
 pub mod range;
 pub mod stats;
 pub mod tolerance;
@@ -54,19 +56,17 @@ use std::collections::BTreeMap;
 use serde::{Deserialize, Serialize};
 
 use self::figures::{maps, table};
+use self::history_job::run_history;
+pub use self::history_job::ReentryResult;
 use self::range::{range_gains, RangeGain};
 use self::stats::{ReentryStats, Share};
-use self::tolerance::{RowSamples, Sample, ToleranceJob, TolerancePlan, ToleranceResult};
+use self::tolerance::{ToleranceJob, TolerancePlan, ToleranceResult};
 use self::variants::{Variant, VariantJob, VariantResult, VariantStats};
-use super::climb::climb_job;
-use super::contact_change::{net_over_gross, pack_categories, unpack_categories};
 use super::ensemble::{by_load, check_contact_areas, seed_load_jobs, SeedLoad};
-use super::history::{self, History};
 use super::scene::scene;
 use super::study::Study;
 use super::{Check, Detail, Experiment, JobContext, Jobs, Keys, Table, Work};
 use crate::engine::scene::check_zeta;
-use crate::engine::sweep::shell_steps;
 use crate::error::{check_positive, Error, Result};
 use crate::plot::Raster;
 use crate::stats::{decide, round_sig, Claim, Decision, Estimate};
@@ -116,123 +116,8 @@ pub enum ReentryOutput {
     History(ReentryResult),
 }
 
-/// What one history sweep measured.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct ReentryResult {
-    /// Load.
-    pub p0: f64,
-    /// Contact area at `zeta_max` from the sweep.
-    pub a_r: f64,
-    /// Points in contact at `zeta_max`.
-    pub contact_points: u64,
-    /// Of those, points that were out of contact at some step (first shell included).
-    pub reentered: u64,
-    /// Of those, points that left contact after the first shell and came back.
-    pub reentered_after_first: u64,
-    /// Fraction of the nominal area entering contact over the flux interval.
-    pub flux_in: f64,
-    /// Fraction of the nominal area leaving contact over the flux interval.
-    pub flux_out: f64,
-    /// Share of the non-contact at `flux_zeta` in contact at `flux_zeta + flux_dzeta`.
-    // Serialised as "zero_bin_reentry": the stored name is kept for the committed results.
-    #[serde(rename = "zero_bin_reentry")]
-    pub flux_in_of_noncontact: f64,
-    /// Shells added.
-    pub shells: usize,
-    /// Solver iterations over the sweep.
-    pub iterations: u64,
-    /// Wall time of the sweep (seconds, resumed runs included).
-    pub wall_s: f64,
-    /// Largest residual.
-    pub max_residual: f64,
-    /// Map categories at `zeta_max` (2 bits a point, hex), for the first seed only.
-    pub map: Option<String>,
-    /// Flux categories over the flux interval (2 bits a point, hex), first seed only.
-    pub flux_map: Option<String>,
-}
-
-impl ReentryResult {
-    /// The re-entry share: points in contact at `zeta_max` that were ever out, over the
-    /// points in contact.
-    pub fn share(&self) -> f64 {
-        self.reentered as f64 / self.contact_points.max(1) as f64
-    }
-
-    /// The share that left contact after the first shell and came back.
-    pub fn share_after_first(&self) -> f64 {
-        self.reentered_after_first as f64 / self.contact_points.max(1) as f64
-    }
-
-    /// The share of the final contact that was out of contact at the first shell
-    /// (`zeta = 1`) and in contact at every later one: `(reentered -
-    /// reentered_after_first) / contact_points`, a lower bound on the final contact's share
-    /// out of contact at `zeta = 1`.
-    pub fn share_out_at_first(&self) -> f64 {
-        self.reentered.saturating_sub(self.reentered_after_first) as f64
-            / self.contact_points.max(1) as f64
-    }
-
-    /// The net flux over the mean one-way flux, `|out - in| / ((out + in) / 2)`.
-    pub fn net_over_gross(&self) -> f64 {
-        net_over_gross(self.flux_in, self.flux_out)
-    }
-}
-
 /// The experiment.
 pub struct Reentry;
-
-/// Runs (or resumes) one history sweep.
-fn run_history(
-    scene: &ReentryScene,
-    job: &SeedLoad,
-    ctx: &JobContext,
-    keep_maps: bool,
-) -> Result<ReentryResult> {
-    let base = scene.base();
-    let r = base.realization(job.seed)?;
-    let zeta_max = r.surface.zeta_max();
-    let steps = shell_steps(&r.surface, 0.0, zeta_max);
-    let interval = (scene.flux_zeta, scene.flux_zeta + scene.flux_dzeta);
-    let mut history = History::new(r.model.grid.points(), interval);
-    let climbed = climb_job(
-        &base,
-        ctx,
-        &r,
-        job.contact_area,
-        &steps,
-        &mut history,
-        scene.checkpoint_seconds,
-    )?;
-    history.close_flux();
-    let flux = history.flux.as_ref().ok_or_else(|| {
-        Error::invalid(
-            "flux_zeta",
-            scene.flux_zeta,
-            format!("below zeta_max = {zeta_max}"),
-        )
-    })?;
-    let (contact_points, reentered, reentered_after_first) = history.counts();
-    // The climb ends in contact at every point that is in contact now.
-    let a_r = contact_points as f64 / history.in_contact.len() as f64;
-    // The checkpoints stay until the runner has stored the result (it then removes them):
-    // a run killed in between still resumes from the last one.
-    Ok(ReentryResult {
-        p0: climbed.p0,
-        a_r,
-        contact_points,
-        reentered,
-        reentered_after_first,
-        flux_in: flux.into,
-        flux_out: flux.out_of,
-        flux_in_of_noncontact: flux.into_of_noncontact,
-        shells: steps.len(),
-        iterations: climbed.iterations,
-        wall_s: climbed.wall_s,
-        max_residual: climbed.max_residual,
-        map: keep_maps.then(|| pack_categories(&history.categories())),
-        flux_map: keep_maps.then(|| pack_categories(&flux.map)),
-    })
-}
 
 impl Jobs for ReentryScene {
     const FAMILY: &'static str = "reentry";
@@ -409,91 +294,6 @@ impl std::ops::Deref for RunStats {
     }
 }
 
-/// The tolerance study's table: its own histories and, where a row repeats the headline's
-/// grid, tolerance and loads, the headline's.
-fn tolerance_study(
-    scene: &ReentryScene,
-    plan: &TolerancePlan,
-    results: &[(ReentryJob, ReentryOutput)],
-    histories: &[(SeedLoad, ReentryResult)],
-    stats: &ReentryStats,
-) -> Study {
-    let own: Vec<(ToleranceJob, Sample)> = results
-        .iter()
-        .filter_map(|(j, r)| match (j, r) {
-            (ReentryJob::Tolerance(j), ReentryOutput::Tolerance(r)) => Some((
-                j.clone(),
-                Sample {
-                    share: r.share(),
-                    contact: tolerance::unpack_bits(&r.contact, j.n * j.n),
-                    iterations: r.iterations,
-                    wall_s: r.wall_s,
-                    shells: r.shells,
-                },
-            )),
-            _ => None,
-        })
-        .collect();
-    let n2 = scene.n * scene.n;
-    let headline: Vec<(SeedLoad, Sample)> = histories
-        .iter()
-        .filter_map(|(j, r)| {
-            let map = r.map.as_deref()?;
-            let contact = unpack_categories(map, n2)
-                .into_iter()
-                .map(|c| u8::from(c == history::IN_THROUGHOUT || c == history::REENTERED))
-                .collect();
-            Some((
-                j.clone(),
-                Sample {
-                    share: r.share(),
-                    contact,
-                    iterations: r.iterations,
-                    wall_s: r.wall_s,
-                    shells: r.shells,
-                },
-            ))
-        })
-        .collect();
-    let mut rows = Vec::new();
-    for grid in &plan.grids {
-        for &a in &grid.contact_areas {
-            for &t in &plan.tols {
-                let samples = grid
-                    .seeds
-                    .iter()
-                    .map(|&seed| {
-                        let job = grid.job(seed, a, t);
-                        match scene.headline_job(&job) {
-                            Some(h) => headline.iter().find(|(j, _)| *j == h).map(|(_, s)| s),
-                            None => own.iter().find(|(j, _)| *j == job).map(|(_, s)| s),
-                        }
-                    })
-                    .collect();
-                rows.push(RowSamples {
-                    grid,
-                    contact_area: a,
-                    tol: t,
-                    samples,
-                });
-            }
-        }
-    }
-    tolerance::study(&plan.tols, &rows, |grid, a| {
-        let on_scene =
-            (grid.n, grid.lambda_l, grid.lambda_s) == (scene.n, scene.lambda_l, scene.lambda_s);
-        on_scene
-            .then(|| {
-                stats
-                    .shares
-                    .iter()
-                    .find(|s| s.load == a)
-                    .map(|s| s.share.std_error)
-            })
-            .flatten()
-    })
-}
-
 impl Experiment for Reentry {
     type Scene = ReentryScene;
     type Stats = RunStats;
@@ -501,11 +301,10 @@ impl Experiment for Reentry {
     fn stats(run: &Run) -> Result<RunStats> {
         let histories = ReentryScene::histories(run.results);
         let stats = ReentryStats::of(&by_load(&run.scene.contact_areas, &histories));
-        let tolerance = run
-            .scene
-            .tolerance
-            .as_ref()
-            .map(|plan| tolerance_study(run.scene, plan, run.results, &histories, &stats));
+        let tolerance =
+            run.scene.tolerance.as_ref().map(|plan| {
+                tolerance::of_results(run.scene, plan, run.results, &histories, &stats)
+            });
         Ok(RunStats {
             range_gain: range_gains(run.scene, run.results, &stats),
             variants: variants::stats(
@@ -749,32 +548,10 @@ mod tests {
     use super::*;
 
     #[test]
-    fn net_over_gross_is_the_net_flux_over_the_mean_one_way_flux() {
-        assert!((net_over_gross(0.00675, 0.00597) - 0.12264).abs() < 1e-5);
-        assert_eq!(net_over_gross(0.0, 0.0), 0.0);
-    }
-
-    #[test]
-    fn out_at_first_is_the_reentered_that_never_left_after_the_first_shell() {
-        let r = ReentryResult {
-            p0: 0.1,
-            a_r: 0.14,
-            contact_points: 1000,
-            reentered: 640,
-            reentered_after_first: 615,
-            flux_in: 0.0,
-            flux_out: 0.0,
-            flux_in_of_noncontact: 0.0,
-            shells: 4355,
-            iterations: 0,
-            wall_s: 0.0,
-            max_residual: 0.0,
-            map: None,
-            flux_map: None,
-        };
-        assert!((r.share_out_at_first() - 0.025).abs() < 1e-15);
-        assert!((r.share() - r.share_after_first() - r.share_out_at_first()).abs() < 1e-15);
+    fn detail_keys_name_the_load() {
         assert_eq!(out_at_first_key(0.14), "out_at_first_ar0.14");
+        assert_eq!(share_key(0.14), "share_ar0.14");
+        assert_eq!(after_first_key(0.14), "share_after_first_ar0.14");
     }
 
     #[test]

@@ -27,11 +27,14 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::stats::ReentryStats;
+use super::{ReentryJob, ReentryOutput, ReentryResult, ReentryScene};
 use crate::engine::sweep::shell_steps;
 use crate::error::{check_positive, Error, Result};
 use crate::experiments::climb::climb_job;
-use crate::experiments::ensemble::check_contact_areas;
-use crate::experiments::history::History;
+use crate::experiments::contact_change::unpack_categories;
+use crate::experiments::ensemble::{check_contact_areas, SeedLoad};
+use crate::experiments::history::{self, History};
 use crate::experiments::other_grid::other_grid;
 use crate::experiments::study::{with_settings, Cell, Study};
 use crate::experiments::{JobContext, Work};
@@ -452,6 +455,91 @@ fn notes(choice: &Choice, accepted_at: &[(f64, Option<bool>)]) -> Vec<String> {
         ),
     };
     vec![chosen, verdicts]
+}
+
+/// The tolerance study's table: its own histories and, where a row repeats the headline's
+/// grid, tolerance and loads, the headline's.
+pub(super) fn of_results(
+    scene: &ReentryScene,
+    plan: &TolerancePlan,
+    results: &[(ReentryJob, ReentryOutput)],
+    histories: &[(SeedLoad, ReentryResult)],
+    stats: &ReentryStats,
+) -> Study {
+    let own: Vec<(ToleranceJob, Sample)> = results
+        .iter()
+        .filter_map(|(j, r)| match (j, r) {
+            (ReentryJob::Tolerance(j), ReentryOutput::Tolerance(r)) => Some((
+                j.clone(),
+                Sample {
+                    share: r.share(),
+                    contact: unpack_bits(&r.contact, j.n * j.n),
+                    iterations: r.iterations,
+                    wall_s: r.wall_s,
+                    shells: r.shells,
+                },
+            )),
+            _ => None,
+        })
+        .collect();
+    let n2 = scene.n * scene.n;
+    let headline: Vec<(SeedLoad, Sample)> = histories
+        .iter()
+        .filter_map(|(j, r)| {
+            let map = r.map.as_deref()?;
+            let contact = unpack_categories(map, n2)
+                .into_iter()
+                .map(|c| u8::from(c == history::IN_THROUGHOUT || c == history::REENTERED))
+                .collect();
+            Some((
+                j.clone(),
+                Sample {
+                    share: r.share(),
+                    contact,
+                    iterations: r.iterations,
+                    wall_s: r.wall_s,
+                    shells: r.shells,
+                },
+            ))
+        })
+        .collect();
+    let mut rows = Vec::new();
+    for grid in &plan.grids {
+        for &a in &grid.contact_areas {
+            for &t in &plan.tols {
+                let samples = grid
+                    .seeds
+                    .iter()
+                    .map(|&seed| {
+                        let job = grid.job(seed, a, t);
+                        match scene.headline_job(&job) {
+                            Some(h) => headline.iter().find(|(j, _)| *j == h).map(|(_, s)| s),
+                            None => own.iter().find(|(j, _)| *j == job).map(|(_, s)| s),
+                        }
+                    })
+                    .collect();
+                rows.push(RowSamples {
+                    grid,
+                    contact_area: a,
+                    tol: t,
+                    samples,
+                });
+            }
+        }
+    }
+    study(&plan.tols, &rows, |grid, a| {
+        let on_scene =
+            (grid.n, grid.lambda_l, grid.lambda_s) == (scene.n, scene.lambda_l, scene.lambda_s);
+        on_scene
+            .then(|| {
+                stats
+                    .shares
+                    .iter()
+                    .find(|s| s.load == a)
+                    .map(|s| s.share.std_error)
+            })
+            .flatten()
+    })
 }
 
 #[cfg(test)]
