@@ -250,14 +250,23 @@ impl Experiment for Flux {
     fn keys(scene: &FluxScene) -> Keys {
         let mut keys = Keys::default();
         keys.details(stats::DETAILS);
+        if scene.waterfall.is_some() {
+            keys.details(waterfall::DETAILS);
+        }
         if scene.sensitivity.is_some() {
             keys.study(sensitivity::KEY, sensitivity::COLUMNS);
         }
         keys
     }
 
-    fn details(_run: &Run, s: &FluxStats) -> Vec<Detail> {
-        stats::details(&s.steps)
+    /// The steps' details, then the waterfall's (where the scene draws one).
+    fn details(run: &Run, s: &FluxStats) -> Vec<Detail> {
+        let mut details = stats::details(&s.steps);
+        details.extend(run.results.iter().flat_map(|(_, r)| match r {
+            FluxOutput::Waterfall(w) => waterfall::details(w),
+            _ => Vec::new(),
+        }));
+        details
     }
 
     fn checks(run: &Run, s: &FluxStats) -> Vec<Check> {
