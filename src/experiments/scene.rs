@@ -305,8 +305,8 @@ pub(crate) use scene;
 
 /// Declares the scene of one step of magnification at fixed load: the fields of [`scene!`],
 /// then `contact_area`, `zeta` and `dzeta`, then the experiment's own; with
-/// `validate_one_step()` ([`Base::validate_step`] of these three) and `one_step(seed,
-/// solver)` (the realization `seed` and its step, [`Base::step`]).
+/// `validate_one_step()` ([`Base::validate_step`] of these three) and `one_step(r,
+/// solver)` (the step of realization `r`, [`Base::step`]).
 macro_rules! step_scene {
     (
         $(#[$meta:meta])*
@@ -333,20 +333,15 @@ macro_rules! step_scene {
                     .validate_step(self.contact_area, self.zeta, self.dzeta)
             }
 
-            /// The realization `seed` and its step from `zeta` to `zeta + dzeta` with
-            /// `solver`, at the load that gives `contact_area` at `zeta`.
+            /// The step of realization `r` from `zeta` to `zeta + dzeta` with `solver`, at
+            /// the load that gives `contact_area` at `zeta`.
             pub fn one_step(
                 &self,
-                seed: u64,
+                r: &$crate::experiments::scene::Realization,
                 solver: $crate::engine::solver::SolverKind,
-            ) -> $crate::error::Result<(
-                $crate::experiments::scene::Realization,
-                $crate::experiments::scene::Step,
-            )> {
-                let base = self.base();
-                let r = base.realization(seed)?;
-                let step = base.step(&r, solver, self.zeta, self.dzeta, self.contact_area)?;
-                Ok((r, step))
+            ) -> $crate::error::Result<$crate::experiments::scene::Step> {
+                self.base()
+                    .step(r, solver, self.zeta, self.dzeta, self.contact_area)
             }
         }
     };

@@ -343,14 +343,12 @@ fn same_step(scene: &FluxScene, rows: &[SensitivityRow]) -> Option<usize> {
 
 /// One realization's step at the scene's settings.
 fn step(scene: &FluxScene, seed: u64, ctx: &JobContext) -> Result<FluxResult> {
-    let (
-        _,
-        Step {
-            p0,
-            before: old,
-            after: new,
-        },
-    ) = scene.one_step(seed, ctx.solver)?;
+    let r = scene.base().realization(seed)?;
+    let Step {
+        p0,
+        before: old,
+        after: new,
+    } = scene.one_step(&r, ctx.solver)?;
     let categories = categories(&old.pressure, &new.pressure);
     let (flux_in, flux_out) = fluxes(&categories);
     Ok(FluxResult {

@@ -176,14 +176,12 @@ fn run_transition(
     seed: u64,
     solver: SolverKind,
 ) -> Result<TransitionResult> {
-    let (
-        r,
-        Step {
-            p0,
-            before: old,
-            after: new,
-        },
-    ) = scene.one_step(seed, solver)?;
+    let r = scene.base().realization(seed)?;
+    let Step {
+        p0,
+        before: old,
+        after: new,
+    } = scene.one_step(&r, solver)?;
     let a_r_old = old.contact_area();
     let walkers = Walkers::binned(scene, p0 / a_r_old, &old.pressure, &new.pressure);
     let broadening = Broadening::new(&r.surface.shells(), r.model.halfspace.e_star())?;
