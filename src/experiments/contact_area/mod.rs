@@ -37,9 +37,13 @@
 //!   law and its shape, as pure functions of the curves;
 //! * `study.rs`: the readings of the law's deviation, the order of the grid error and the
 //!   fall of `a_r / p~0` at low load per grid;
-//! * `figures.rs`: the table and the figures.
+//! * `figures.rs`: the table and the figures;
+//! * `scaling.rs`: the solvers' iterations against the system size (paper section 2.3),
+//!   where the scene plans it (`[full.scaling]`): cold solves of one scene shape on
+//!   several grids.
 
 mod figures;
+pub mod scaling;
 pub mod stats;
 mod study;
 
@@ -48,6 +52,7 @@ use std::collections::BTreeMap;
 use serde::{Deserialize, Serialize};
 
 use self::figures::{area_figures, area_table};
+use self::scaling::{ScalingJob, ScalingPlan, ScalingResult};
 use self::stats::{AreaStats, NEAR_FULL_CONTACT};
 use super::scene::{check_increasing, increasing, list_error};
 use super::study::Study;
@@ -92,6 +97,9 @@ pub struct AreaScene {
     /// (what the extrapolation assumes).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub finer_grid: Option<FinerGrid>,
+    /// The solvers' iterations against the system size (none: not run).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scaling: Option<ScalingPlan>,
 }
 
 /// A grid finer than the scene's finest, run for a subset of its Hurst exponents and loads.
@@ -115,6 +123,27 @@ pub struct AreaJob {
     pub seed: u64,
     /// Refinement factor.
     pub refine: usize,
+}
+
+/// A job: one realization's load ladder (stored bare, as before the scaling study
+/// existed), or one cold solve of the scaling study.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum ContactAreaJob {
+    /// A cold solve of the scaling study.
+    Scaling(ScalingJob),
+    /// A load ladder.
+    #[serde(untagged)]
+    Ladder(AreaJob),
+}
+
+/// What a job measured.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum ContactAreaOutput {
+    /// A cold solve of the scaling study.
+    Scaling(ScalingResult),
+    /// A load ladder.
+    #[serde(untagged)]
+    Ladder(AreaResult),
 }
 
 /// Contact area at each load of one realization.
@@ -197,8 +226,8 @@ impl AreaScene {
 
 impl Jobs for AreaScene {
     const FAMILY: &'static str = "contact_area";
-    type Job = AreaJob;
-    type JobResult = AreaResult;
+    type Job = ContactAreaJob;
+    type JobResult = ContactAreaOutput;
 
     fn validate(&self) -> Result<()> {
         if self.hursts.is_empty() {
@@ -248,10 +277,59 @@ impl Jobs for AreaScene {
         if let Some(f) = &self.finer_grid {
             self.validate_finer_grid(f)?;
         }
+        if let Some(plan) = &self.scaling {
+            plan.validate()?;
+        }
         SolveOptions::with_tol(self.tol).validate()
     }
 
-    fn jobs(&self) -> Vec<AreaJob> {
+    /// The ladders, then the scaling study's solves.
+    fn jobs(&self) -> Vec<ContactAreaJob> {
+        let mut jobs: Vec<ContactAreaJob> = self
+            .ladders()
+            .into_iter()
+            .map(ContactAreaJob::Ladder)
+            .collect();
+        if let Some(plan) = &self.scaling {
+            jobs.extend(plan.jobs().into_iter().map(ContactAreaJob::Scaling));
+        }
+        jobs
+    }
+
+    /// The ladders depend on the scene without the scaling study: their keys are those of
+    /// the scenes that had none.
+    fn key_scene(&self) -> serde_json::Value {
+        let mut scene = self.clone();
+        scene.scaling = None;
+        serde_json::to_value(scene).expect("scenes serialise")
+    }
+
+    fn work(&self, job: &ContactAreaJob) -> Work {
+        match job {
+            ContactAreaJob::Ladder(j) => self.ladder_work(j),
+            ContactAreaJob::Scaling(j) => j.work(),
+        }
+    }
+
+    fn run_job(&self, job: &ContactAreaJob, ctx: &JobContext) -> Result<ContactAreaOutput> {
+        match job {
+            ContactAreaJob::Ladder(j) => self.run_ladder(j, ctx).map(ContactAreaOutput::Ladder),
+            ContactAreaJob::Scaling(j) => j.run(ctx).map(ContactAreaOutput::Scaling),
+        }
+    }
+
+    fn residual(result: &ContactAreaOutput) -> f64 {
+        match result {
+            ContactAreaOutput::Ladder(r) => r.max_residual,
+            ContactAreaOutput::Scaling(r) => r.max_residual,
+        }
+    }
+}
+
+impl AreaScene {
+    /// The load ladders: every refinement, Hurst exponent and realization, then the finer
+    /// grid's.
+    fn ladders(&self) -> Vec<AreaJob> {
         let mut jobs = Vec::new();
         for &refine in &self.refinements {
             for &hurst in &self.hursts {
@@ -278,7 +356,7 @@ impl Jobs for AreaScene {
         jobs
     }
 
-    fn work(&self, job: &AreaJob) -> Work {
+    fn ladder_work(&self, job: &AreaJob) -> Work {
         // One solve per load, each from the previous one (the first from cold).
         let n = self.n * job.refine;
         Work {
@@ -289,7 +367,7 @@ impl Jobs for AreaScene {
         }
     }
 
-    fn run_job(&self, job: &AreaJob, ctx: &JobContext) -> Result<AreaResult> {
+    fn run_ladder(&self, job: &AreaJob, ctx: &JobContext) -> Result<AreaResult> {
         let surface = Surface::generate(&self.params(job))?;
         let model = Model::new(surface.grid().clone(), 1.0)?;
         let g_bar = surface.rms_gradient(f64::INFINITY);
@@ -311,10 +389,6 @@ impl Jobs for AreaScene {
             contact_area,
             max_residual,
         })
-    }
-
-    fn residual(result: &AreaResult) -> f64 {
-        result.max_residual
     }
 }
 
@@ -355,7 +429,27 @@ impl Experiment for ContactArea {
     type Stats = AreaStats;
 
     fn stats(run: &Run) -> Result<AreaStats> {
-        Ok(AreaStats::of(run.scene, run.results))
+        let ladders: Vec<(AreaJob, AreaResult)> = run
+            .results
+            .iter()
+            .filter_map(|(j, r)| match (j, r) {
+                (ContactAreaJob::Ladder(j), ContactAreaOutput::Ladder(r)) => {
+                    Some((j.clone(), r.clone()))
+                }
+                _ => None,
+            })
+            .collect();
+        let solves: Vec<(&ScalingJob, &ScalingResult)> = run
+            .results
+            .iter()
+            .filter_map(|(j, r)| match (j, r) {
+                (ContactAreaJob::Scaling(j), ContactAreaOutput::Scaling(r)) => Some((j, r)),
+                _ => None,
+            })
+            .collect();
+        let mut stats = AreaStats::of(run.scene, &ladders);
+        stats.iteration_exponent = scaling::exponent(&solves);
+        Ok(stats)
     }
 
     fn headline(s: &AreaStats) -> (Estimate, f64) {
@@ -369,6 +463,9 @@ impl Experiment for ContactArea {
         }
         keys.details(scene.hursts.iter().map(|&h| hurst_key(h)));
         keys.details(LAW_DETAILS);
+        if scene.scaling.is_some() {
+            keys.details([scaling::EXPONENT]);
+        }
         study::keys(scene, &mut keys);
         keys
     }
@@ -422,6 +519,9 @@ impl Experiment for ContactArea {
             s.complement.estimate(),
         ));
         details.extend(shape_details(scene, s));
+        if let (Some(plan), Some(k)) = (&scene.scaling, s.iteration_exponent) {
+            details.push(scaling::detail(plan, k));
+        }
         details
     }
 
@@ -588,7 +688,7 @@ mod tests {
             .clone()
             .expect("the full scene has a finer grid");
         let finer: Vec<AreaJob> = full
-            .jobs()
+            .ladders()
             .into_iter()
             .filter(|j| j.refine == f.refine)
             .collect();

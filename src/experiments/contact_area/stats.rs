@@ -530,6 +530,9 @@ pub struct AreaStats {
     pub shape: LawShape,
     /// The fall of `a_r / p~0` at low load on every grid.
     pub fall: Vec<KappaFall>,
+    /// The exponent of the solver's iterations against the system size, where the scene
+    /// plans the scaling study ([`super::scaling`]).
+    pub iteration_exponent: Option<Estimate>,
 }
 
 /// Loads at and above this `a_r` are near full contact, where the law's complementary
@@ -648,6 +651,7 @@ impl AreaStats {
             hursts,
             shape,
             fall,
+            iteration_exponent: None,
         }
     }
 }
