@@ -6,7 +6,7 @@ use std::collections::BTreeMap;
 
 use super::figures::{asymptote_figure, asymptote_table, curve_figures, curve_table};
 use super::stats::{onset_key, FrozenStats, MODE_WINDOW, PANEL_LOADS};
-use super::ModeScene;
+use super::{sweeps, ModeScene};
 use crate::engine::tolerance::ZETA_SLACK;
 use crate::error::{Error, Result};
 use crate::experiments::ensemble::by_load;
@@ -88,7 +88,8 @@ impl Experiment for ModeFrozen {
     }
 
     fn stats(run: &Run) -> Result<FrozenStats> {
-        let loads = by_load(&run.scene.contact_areas, run.results);
+        let sweeps = sweeps(run.results);
+        let loads = by_load(&run.scene.contact_areas, &sweeps);
         Ok(FrozenStats::of(run.scene, &loads))
     }
 
@@ -360,7 +361,8 @@ impl Experiment for ModeFrozen {
     }
 
     fn tables(run: &Run, s: &FrozenStats) -> Vec<Table> {
-        let loads = by_load(&run.scene.contact_areas, run.results);
+        let sweeps = sweeps(run.results);
+        let loads = by_load(&run.scene.contact_areas, &sweeps);
         vec![
             curve_table(&run.criteria.name, run.scene, &loads),
             asymptote_table(run.scene, s),
@@ -368,7 +370,8 @@ impl Experiment for ModeFrozen {
     }
 
     fn figures(run: &Run, s: &FrozenStats) -> Vec<Figure> {
-        let loads = by_load(&run.scene.contact_areas, run.results);
+        let sweeps = sweeps(run.results);
+        let loads = by_load(&run.scene.contact_areas, &sweeps);
         let mut figures = curve_figures("e_norm", run.scene, &loads);
         figures.push(asymptote_figure(run.scene, s, paper_k(run.criteria)));
         figures
@@ -514,7 +517,7 @@ mod tests {
             .unwrap();
         let f = |z: f64| b / z;
         let expect = f(zm) - (f(za) + (f(zb) - f(za)) * (zm - za) / (zb - za));
-        assert!((mid_chord(&scene, &results[0].1, 0) - expect).abs() < 1e-12);
+        assert!((mid_chord(&scene, &sweeps(&results)[0].1, 0) - expect).abs() < 1e-12);
         assert!(expect < 0.0);
         // The shortest target peaks on resolution, K1 exp(-K2 x_l) + b / zeta_t, at the
         // loads in partial contact there (synthetic a_r = a_l (zeta / zeta_end)^-x_l).
@@ -559,7 +562,7 @@ mod tests {
         assert!((k1.value.value - k.0).abs() < 1e-9, "{k1:?}");
         assert!((k2.value.value - k.1).abs() < 1e-9, "{k2:?}");
         // The asymptote of each run is the intercept against 1/zeta: K1 exp(-K2 x).
-        let (e_inf, _) = asymptote(&scene, &results[0].1, 0).unwrap();
+        let (e_inf, _) = asymptote(&scene, &sweeps(&results)[0].1, 0).unwrap();
         assert!(
             (e_inf - k.0 * (-k.1 * 0.1f64).exp()).abs() < 1e-9,
             "{e_inf}"

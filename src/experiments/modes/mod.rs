@@ -126,10 +126,84 @@ scene! {
         /// The correction factor `S(a_r)` of the prediction line.
         #[serde(default)]
         pub correction: Correction,
+        /// A narrower relative half-width: every sweep again with bands this wide, for
+        /// the part of the peak's shift that the band's averaging makes (none: not run).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        pub narrow_band: Option<f64>,
     }
 }
 
+/// A job: one realization's sweep at one load (stored bare, as before the narrow bands
+/// existed), or the same sweep with the narrow bands.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum ModeJob {
+    /// A sweep with bands of relative half-width `band`.
+    Narrow(NarrowJob),
+    /// A sweep with the scene's bands.
+    #[serde(untagged)]
+    Sweep(SeedLoad),
+}
+
+/// A sweep with narrow bands.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NarrowJob {
+    /// Relative half-width of the bands.
+    pub band: f64,
+    /// Seed.
+    pub seed: u64,
+    /// Load, as the relative contact area at full resolution.
+    pub contact_area: f64,
+}
+
+/// What a job measured.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum ModeOutput {
+    /// A sweep with narrow bands.
+    Narrow(ModeResult),
+    /// A sweep with the scene's bands.
+    #[serde(untagged)]
+    Sweep(ModeResult),
+}
+
+/// The sweeps with the scene's bands among the results.
+pub(super) fn sweeps(results: &[(ModeJob, ModeOutput)]) -> Vec<(SeedLoad, ModeResult)> {
+    results
+        .iter()
+        .filter_map(|(j, r)| match (j, r) {
+            (ModeJob::Sweep(j), ModeOutput::Sweep(r)) => Some((j.clone(), r.clone())),
+            _ => None,
+        })
+        .collect()
+}
+
+/// The sweeps with the narrow bands among the results.
+pub(super) fn narrow_sweeps(results: &[(ModeJob, ModeOutput)]) -> Vec<(SeedLoad, ModeResult)> {
+    results
+        .iter()
+        .filter_map(|(j, r)| match (j, r) {
+            (ModeJob::Narrow(j), ModeOutput::Narrow(r)) => Some((
+                SeedLoad {
+                    seed: j.seed,
+                    contact_area: j.contact_area,
+                },
+                r.clone(),
+            )),
+            _ => None,
+        })
+        .collect()
+}
+
 impl ModeScene {
+    /// The scene with bands of relative half-width `band` (the narrow bands' sweeps).
+    pub fn with_band(&self, band: f64) -> Self {
+        Self {
+            band,
+            narrow_band: None,
+            ..self.clone()
+        }
+    }
+
     /// The sweep's magnifications.
     pub fn steps(&self) -> Vec<f64> {
         let mut extra = Vec::new();
@@ -147,8 +221,8 @@ impl ModeScene {
 
 impl Jobs for ModeScene {
     const FAMILY: &'static str = "modes";
-    type Job = SeedLoad;
-    type JobResult = ModeResult;
+    type Job = ModeJob;
+    type JobResult = ModeOutput;
 
     fn validate(&self) -> Result<()> {
         let base = self.base();
@@ -194,23 +268,66 @@ impl Jobs for ModeScene {
                 ));
             }
         }
+        if let Some(narrow) = self.narrow_band {
+            check_open("narrow_band", narrow, 0.0, self.band)?;
+        }
         self.correction.validate()
     }
 
-    fn jobs(&self) -> Vec<SeedLoad> {
-        seed_load_jobs(&self.contact_areas, &self.seeds)
+    /// The sweeps, then the same sweeps with the narrow bands.
+    fn jobs(&self) -> Vec<ModeJob> {
+        let sweeps = seed_load_jobs(&self.contact_areas, &self.seeds);
+        let mut jobs: Vec<ModeJob> = sweeps.iter().cloned().map(ModeJob::Sweep).collect();
+        if let Some(band) = self.narrow_band {
+            jobs.extend(sweeps.into_iter().map(|j| {
+                ModeJob::Narrow(NarrowJob {
+                    band,
+                    seed: j.seed,
+                    contact_area: j.contact_area,
+                })
+            }));
+        }
+        jobs
     }
 
-    fn work(&self, _job: &SeedLoad) -> Work {
-        Work::search_then(self.n, self.steps().len(), 0)
+    /// The narrow bands' sweeps read the headline solver's peaks only.
+    fn headline_only(job: &ModeJob) -> bool {
+        matches!(job, ModeJob::Narrow(_))
     }
 
-    fn run_job(&self, job: &SeedLoad, ctx: &JobContext) -> Result<ModeResult> {
-        run_sweep(self, job, ctx.solver)
+    /// The sweeps depend on the scene without the narrow bands: their keys are those of
+    /// the scenes that had none.
+    fn key_scene(&self) -> serde_json::Value {
+        let mut scene = self.clone();
+        scene.narrow_band = None;
+        serde_json::to_value(scene).expect("scenes serialise")
     }
 
-    fn residual(result: &ModeResult) -> f64 {
-        result.max_residual
+    fn work(&self, job: &ModeJob) -> Work {
+        let scene = match job {
+            ModeJob::Sweep(_) => self.clone(),
+            ModeJob::Narrow(j) => self.with_band(j.band),
+        };
+        Work::search_then(self.n, scene.steps().len(), 0)
+    }
+
+    fn run_job(&self, job: &ModeJob, ctx: &JobContext) -> Result<ModeOutput> {
+        match job {
+            ModeJob::Sweep(j) => run_sweep(self, j, ctx.solver).map(ModeOutput::Sweep),
+            ModeJob::Narrow(j) => {
+                let at = SeedLoad {
+                    seed: j.seed,
+                    contact_area: j.contact_area,
+                };
+                run_sweep(&self.with_band(j.band), &at, ctx.solver).map(ModeOutput::Narrow)
+            }
+        }
+    }
+
+    fn residual(result: &ModeOutput) -> f64 {
+        match result {
+            ModeOutput::Sweep(r) | ModeOutput::Narrow(r) => r.max_residual,
+        }
     }
 }
 
@@ -356,7 +473,7 @@ pub(crate) mod tests {
         k: (f64, f64),
         b: f64,
         onset: f64,
-    ) -> Vec<(SeedLoad, ModeResult)> {
+    ) -> Vec<(ModeJob, ModeOutput)> {
         let zetas = scene.steps();
         let mut out = Vec::new();
         for (l, &a_l) in scene.contact_areas.iter().enumerate() {
@@ -386,18 +503,18 @@ pub(crate) mod tests {
                     })
                     .collect();
                 out.push((
-                    SeedLoad {
+                    ModeJob::Sweep(SeedLoad {
                         seed,
                         contact_area: a_l,
-                    },
-                    ModeResult {
+                    }),
+                    ModeOutput::Sweep(ModeResult {
                         p0: 0.1,
                         zetas: zetas.clone(),
                         contact_area: area.clone(),
                         band_energy,
                         band_nominal: vec![2.0; scene.targets.len()],
                         max_residual: 1e-9,
-                    },
+                    }),
                 ));
             }
         }

@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 
 use super::figures::{curve_figures, curve_table};
 use super::stats::{golden, mean_onset, Load, ModeEnsemble, PARTIAL};
-use super::ModeScene;
+use super::{narrow_sweeps, sweeps, ModeScene};
 use crate::error::Result;
 use crate::experiments::climb::step_of;
 use crate::experiments::ensemble::{by_load, group, load_range};
@@ -46,6 +46,8 @@ pub struct OnsetStats {
     /// `zeta_t`, over bands, realizations and the loads still in partial contact at
     /// `zeta_t` (measured `a_r` below [`PARTIAL`]).
     pub peak: Estimate,
+    /// The same with the narrow bands, where the scene runs them: `(band, peak)`.
+    pub narrow_peak: Option<(f64, Estimate)>,
 }
 
 /// `zeta_peak / zeta_t` of every band of every realization at the loads in partial contact.
@@ -94,6 +96,7 @@ impl OnsetStats {
             lowest,
             highest,
             peak: Estimate::mean_of(&peak_ratios(scene, loads)),
+            narrow_peak: None,
         }
     }
 
@@ -118,6 +121,11 @@ fn onset_at_key(load: f64, zeta_t: f64) -> String {
 
 /// The key of the detail of where the bands peak.
 const PEAK_OVER_ZETA_T: &str = "peak_over_zeta_t";
+/// The key of where the narrow bands peak.
+const PEAK_NARROW_BAND: &str = "peak_over_zeta_t_narrow";
+/// The key of the peak's shift that the band's width makes: the scene's bands' peak
+/// minus the narrow bands'.
+const PEAK_BAND_SHIFT: &str = "peak_band_shift";
 
 type Run<'a> = crate::experiments::Run<'a, ModeOnset>;
 
@@ -126,8 +134,16 @@ impl Experiment for ModeOnset {
     type Stats = OnsetStats;
 
     fn stats(run: &Run) -> Result<OnsetStats> {
-        let loads = by_load(&run.scene.contact_areas, run.results);
-        Ok(OnsetStats::of(run.scene, &loads))
+        let sweeps = sweeps(run.results);
+        let loads = by_load(&run.scene.contact_areas, &sweeps);
+        let mut stats = OnsetStats::of(run.scene, &loads);
+        let narrow = narrow_sweeps(run.results);
+        if let (Some(band), false) = (run.scene.narrow_band, narrow.is_empty()) {
+            let loads = by_load(&run.scene.contact_areas, &narrow);
+            let ratios = peak_ratios(&run.scene.with_band(band), &loads);
+            stats.narrow_peak = Some((band, Estimate::mean_of(&ratios)));
+        }
+        Ok(stats)
     }
 
     fn headline(s: &OnsetStats) -> (Estimate, f64) {
@@ -140,6 +156,9 @@ impl Experiment for ModeOnset {
             keys.details(scene.targets.iter().map(|&zt| onset_at_key(load, zt)));
         }
         keys.detail(PEAK_OVER_ZETA_T);
+        if scene.narrow_band.is_some() {
+            keys.details([PEAK_NARROW_BAND, PEAK_BAND_SHIFT]);
+        }
         keys
     }
 
@@ -174,6 +193,29 @@ impl Experiment for ModeOnset {
                 .persson(0.0)
             })
             .chain(std::iter::once(peak))
+            .chain(s.narrow_peak.into_iter().flat_map(|(band, narrow)| {
+                [
+                    Detail::new(
+                        PEAK_NARROW_BAND,
+                        format!(
+                            "as peak_over_zeta_t with bands of |q/q_t - 1| <= {band} (the same \
+                             realizations and loads, swept again)"
+                        ),
+                        narrow,
+                    )
+                    .persson(1.0),
+                    Detail::new(
+                        PEAK_BAND_SHIFT,
+                        format!(
+                            "peak_over_zeta_t with bands of +-{} minus with bands of +-{band} \
+                             (errors combined as independent)",
+                            scene.band
+                        ),
+                        Estimate::difference(s.peak, narrow),
+                    )
+                    .persson(0.0),
+                ]
+            }))
             .collect()
     }
 
@@ -261,12 +303,14 @@ impl Experiment for ModeOnset {
     }
 
     fn tables(run: &Run, _s: &OnsetStats) -> Vec<Table> {
-        let loads = by_load(&run.scene.contact_areas, run.results);
+        let sweeps = sweeps(run.results);
+        let loads = by_load(&run.scene.contact_areas, &sweeps);
         vec![curve_table(&run.criteria.name, run.scene, &loads)]
     }
 
     fn figures(run: &Run, _s: &OnsetStats) -> Vec<Figure> {
-        let loads = by_load(&run.scene.contact_areas, run.results);
+        let sweeps = sweeps(run.results);
+        let loads = by_load(&run.scene.contact_areas, &sweeps);
         curve_figures("e_norm", run.scene, &loads)
     }
 }
