@@ -31,6 +31,19 @@ pub struct Onset {
     pub contact_area: Estimate,
 }
 
+/// Where the narrow bands peak, against the scene's bands.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NarrowPeak {
+    /// The narrow bands' relative half-width.
+    pub band: f64,
+    /// Their `zeta_peak / zeta_t`, as [`OnsetStats::peak`].
+    pub peak: Estimate,
+    /// The scene's bands' ratio minus the narrow bands', band by band: the same
+    /// realizations, loads and solves (the band changes what is recorded, not the
+    /// climb), so the differences pair up one to one.
+    pub shift: Estimate,
+}
+
 /// The statistics of assumption (d).
 #[derive(Debug, Clone)]
 pub struct OnsetStats {
@@ -46,8 +59,8 @@ pub struct OnsetStats {
     /// `zeta_t`, over bands, realizations and the loads still in partial contact at
     /// `zeta_t` (measured `a_r` below [`PARTIAL`]).
     pub peak: Estimate,
-    /// The same with the narrow bands, where the scene runs them: `(band, peak)`.
-    pub narrow_peak: Option<(f64, Estimate)>,
+    /// The same with the narrow bands, where the scene runs them.
+    pub narrow: Option<NarrowPeak>,
 }
 
 /// `zeta_peak / zeta_t` of every band of every realization at the loads in partial contact.
@@ -96,7 +109,7 @@ impl OnsetStats {
             lowest,
             highest,
             peak: Estimate::mean_of(&peak_ratios(scene, loads)),
-            narrow_peak: None,
+            narrow: None,
         }
     }
 
@@ -139,9 +152,21 @@ impl Experiment for ModeOnset {
         let mut stats = OnsetStats::of(run.scene, &loads);
         let narrow = narrow_sweeps(run.results);
         if let (Some(band), false) = (run.scene.narrow_band, narrow.is_empty()) {
-            let loads = by_load(&run.scene.contact_areas, &narrow);
-            let ratios = peak_ratios(&run.scene.with_band(band), &loads);
-            stats.narrow_peak = Some((band, Estimate::mean_of(&ratios)));
+            let narrow_loads = by_load(&run.scene.contact_areas, &narrow);
+            let ratios = peak_ratios(&run.scene.with_band(band), &narrow_loads);
+            let wide = peak_ratios(run.scene, &loads);
+            let shift = if wide.len() == ratios.len() {
+                let d: Vec<f64> = wide.iter().zip(&ratios).map(|(w, n)| w - n).collect();
+                Estimate::mean_of(&d)
+            } else {
+                // Not the same bands (a partial run): compared as independent.
+                Estimate::difference(stats.peak, Estimate::mean_of(&ratios))
+            };
+            stats.narrow = Some(NarrowPeak {
+                band,
+                peak: Estimate::mean_of(&ratios),
+                shift,
+            });
         }
         Ok(stats)
     }
@@ -193,7 +218,8 @@ impl Experiment for ModeOnset {
                 .persson(0.0)
             })
             .chain(std::iter::once(peak))
-            .chain(s.narrow_peak.into_iter().flat_map(|(band, narrow)| {
+            .chain(s.narrow.into_iter().flat_map(|n| {
+                let band = n.band;
                 [
                     Detail::new(
                         PEAK_NARROW_BAND,
@@ -201,17 +227,17 @@ impl Experiment for ModeOnset {
                             "as peak_over_zeta_t with bands of |q/q_t - 1| <= {band} (the same \
                              realizations and loads, swept again)"
                         ),
-                        narrow,
+                        n.peak,
                     )
                     .persson(1.0),
                     Detail::new(
                         PEAK_BAND_SHIFT,
                         format!(
-                            "peak_over_zeta_t with bands of +-{} minus with bands of +-{band} \
-                             (errors combined as independent)",
+                            "peak_over_zeta_t with bands of +-{} minus with bands of +-{band}, \
+                             band by band (the same solves)",
                             scene.band
                         ),
-                        Estimate::difference(s.peak, narrow),
+                        n.shift,
                     )
                     .persson(0.0),
                 ]
@@ -342,6 +368,42 @@ mod tests {
     #[test]
     fn shipped_scenes_are_valid_at_both_scales() {
         crate::experiments::shipped_valid::<ModeOnset>("d_onset");
+    }
+
+    #[test]
+    fn narrow_bands_pair_up_with_the_scene_bands() {
+        use super::super::{ModeJob, ModeOutput, NarrowJob};
+        let (mut scene, _, criteria) = shipped("d_onset");
+        scene.narrow_band = Some(0.02);
+        let mut results = synthetic(&scene, (0.9, 1.0), 0.8, 0.25);
+        // The same sweeps as if recorded with narrow bands: no shift, and paired exactly.
+        let narrow: Vec<_> = results
+            .iter()
+            .map(|(j, r)| match (j, r) {
+                (ModeJob::Sweep(j), ModeOutput::Sweep(r)) => (
+                    ModeJob::Narrow(NarrowJob {
+                        band: 0.02,
+                        seed: j.seed,
+                        contact_area: j.contact_area,
+                    }),
+                    ModeOutput::Narrow(r.clone()),
+                ),
+                _ => unreachable!("synthetic sweeps"),
+            })
+            .collect();
+        results.extend(narrow);
+        let c = ModeOnset::conclude(&criteria, &scene, &results).unwrap();
+        let shift = c.detail(PEAK_BAND_SHIFT).unwrap().value;
+        assert_eq!((shift.value, shift.std_error), (0.0, 0.0));
+        let (wide, narrow) = (
+            c.detail(PEAK_OVER_ZETA_T).unwrap().value,
+            c.detail(PEAK_NARROW_BAND).unwrap().value,
+        );
+        assert_eq!(wide, narrow);
+        // Without narrow results the details are absent, not zero.
+        results.retain(|(j, _)| matches!(j, ModeJob::Sweep(_)));
+        let c = ModeOnset::conclude(&criteria, &scene, &results).unwrap();
+        assert!(c.detail(PEAK_BAND_SHIFT).is_none());
     }
 
     #[test]
