@@ -62,7 +62,9 @@ const ONE_SEED_SCENES: &[(&str, &str)] = &[
         "contact_area",
         "n = 32\nhursts = [0.5, 0.8]\nlambda_l = 16\nlambda_s = 4\nseeds = [1]\n\
          refinements = [1, 2]\nreduced_pressures = [0.01, 0.03, 0.1, 0.3, 0.8]\n\
-         low_load = 0.03\nlaw_range = [0.01, 0.9]\nlaw_tolerance = 0.10\ntol = 1e-8\n",
+         low_load = 0.03\nlaw_range = [0.01, 0.9]\nlaw_tolerance = 0.10\ntol = 1e-8\n\n\
+         [reduced.scaling]\nns = [16, 32]\nhurst = 0.8\nlambda_s = 4\nseeds = [1]\n\
+         reduced_pressure = 0.1\ntol = 1e-8\n",
     ),
     ("a_diffusion", TRANSITION),
     ("b_drift", TRANSITION),
@@ -88,7 +90,7 @@ const ONE_SEED_SCENES: &[(&str, &str)] = &[
         "n = 64\nhurst = 0.8\nlambda_l = 32\nlambda_s = 4\nseeds = [1]\n\
          contact_areas = [0.1, 0.9]\nheadline_contact_area = 0.1\ntargets = [2.0]\n\
          band = 0.1\nzeta_start = 1.0\nzeta_end = 8.0\nsteps_per_octave = 2\n\
-         onset_ratio = 0.8\nfrozen_from = 2.0\ntol = 1e-8\n",
+         onset_ratio = 0.8\nfrozen_from = 2.0\ntol = 1e-8\nnarrow_band = 0.05\n",
     ),
     (
         "e_frozen",
