@@ -25,9 +25,9 @@
 //!   of contact and never back; blue, out of contact after having come back at least once.
 //!
 //! The climb ([`crate::experiments::climb`]) checkpoints its state, with the history of
-//! every point ([`history`]), every `checkpoint_seconds`; a run killed mid-sweep resumes
-//! (`--resume`) from the last checkpoint and ends with the same numbers as an
-//! uninterrupted run. A run without `--resume` starts every sweep afresh.
+//! every point ([`crate::experiments::history`]), every `checkpoint_seconds`; a run killed
+//! mid-sweep resumes (`--resume`) from the last checkpoint and ends with the same numbers
+//! as an uninterrupted run. A run without `--resume` starts every sweep afresh.
 //!
 //! # Files
 //!
