@@ -156,6 +156,16 @@ pub struct NarrowJob {
     pub contact_area: f64,
 }
 
+impl NarrowJob {
+    /// The realization and load it sweeps again.
+    pub fn at(&self) -> SeedLoad {
+        SeedLoad {
+            seed: self.seed,
+            contact_area: self.contact_area,
+        }
+    }
+}
+
 /// What a job measured.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub enum ModeOutput {
@@ -182,13 +192,7 @@ pub(super) fn narrow_sweeps(results: &[(ModeJob, ModeOutput)]) -> Vec<(SeedLoad,
     results
         .iter()
         .filter_map(|(j, r)| match (j, r) {
-            (ModeJob::Narrow(j), ModeOutput::Narrow(r)) => Some((
-                SeedLoad {
-                    seed: j.seed,
-                    contact_area: j.contact_area,
-                },
-                r.clone(),
-            )),
+            (ModeJob::Narrow(j), ModeOutput::Narrow(r)) => Some((j.at(), r.clone())),
             _ => None,
         })
         .collect()
@@ -303,23 +307,16 @@ impl Jobs for ModeScene {
         serde_json::to_value(scene).expect("scenes serialise")
     }
 
-    fn work(&self, job: &ModeJob) -> Work {
-        let scene = match job {
-            ModeJob::Sweep(_) => self.clone(),
-            ModeJob::Narrow(j) => self.with_band(j.band),
-        };
-        Work::search_then(self.n, scene.steps().len(), 0)
+    /// Every sweep climbs the same steps (the band changes what is recorded, not where).
+    fn work(&self, _job: &ModeJob) -> Work {
+        Work::search_then(self.n, self.steps().len(), 0)
     }
 
     fn run_job(&self, job: &ModeJob, ctx: &JobContext) -> Result<ModeOutput> {
         match job {
             ModeJob::Sweep(j) => run_sweep(self, j, ctx.solver).map(ModeOutput::Sweep),
             ModeJob::Narrow(j) => {
-                let at = SeedLoad {
-                    seed: j.seed,
-                    contact_area: j.contact_area,
-                };
-                run_sweep(&self.with_band(j.band), &at, ctx.solver).map(ModeOutput::Narrow)
+                run_sweep(&self.with_band(j.band), &j.at(), ctx.solver).map(ModeOutput::Narrow)
             }
         }
     }
