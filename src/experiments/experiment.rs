@@ -95,6 +95,14 @@ pub trait Jobs: Serialize + DeserializeOwned + Sync + fmt::Debug {
         serde_json::to_value(self).expect("scenes serialise")
     }
 
+    /// The scene (as its keys see it) and the job whose stored result `job` shares, when
+    /// `job` is another scene's job run here for comparison (a reference surface's sweep):
+    /// it is keyed and stored as that job, so both validations read one result and neither
+    /// runs it twice. `None` (the default): the job is this scene's own.
+    fn shared_job(&self, _job: &Self::Job) -> Option<(serde_json::Value, Self::Job)> {
+        None
+    }
+
     /// What one job costs (its grid and its solves), for splitting a run into shares
     /// before anything runs.
     fn work(&self, job: &Self::Job) -> Work;

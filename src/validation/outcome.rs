@@ -64,7 +64,8 @@ pub struct Outcome {
     pub scene: serde_json::Value,
     /// Hash of the definition file (SHA-256, hex).
     pub definition_sha256: String,
-    /// Wall time of the whole validation, seconds.
+    /// Wall time of the whole validation, seconds (of a merge: the time during which at
+    /// least one of its jobs ran).
     #[serde(deserialize_with = "null_as_nan", default = "nan")]
     pub wall_s: f64,
     /// Largest solver residual over all solves.

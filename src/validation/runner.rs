@@ -112,7 +112,10 @@ type Results<E> = Vec<(JobOf<E>, ResultOf<E>)>;
 pub(crate) struct Unit<J> {
     pub solver: SolverKind,
     pub job: J,
-    /// The job as JSON (what its key hashes, beside the scale and the scene).
+    /// The job as its key and its stored result name it: the job itself, or the other
+    /// scene's job it shares its result with ([`Jobs::shared_job`]).
+    pub keyed: J,
+    /// `keyed` as JSON (what the key hashes, beside the scale and the scene).
     pub job_json: String,
     /// The stored result's file.
     pub path: PathBuf,
@@ -167,11 +170,18 @@ pub(crate) fn prepare<E: Experiment>(source: &Source, opts: &RunOptions) -> Resu
             if k > 0 && <E::Scene as Jobs>::headline_only(job) {
                 continue;
             }
-            let job_json = serde_json::to_string(job).expect("jobs serialise");
-            let key = job_key(opts.scale, &key_json, solver, &job_json);
+            // A job shared with another scene is keyed and stored as that scene's job.
+            let shared = scene.shared_job(job);
+            let (key_scene, keyed) = match &shared {
+                Some((s, j)) => (s, j),
+                None => (&key_json, job),
+            };
+            let job_json = serde_json::to_string(keyed).expect("jobs serialise");
+            let key = job_key(opts.scale, key_scene, solver, &job_json);
             units.push(Unit {
                 solver,
                 job: job.clone(),
+                keyed: keyed.clone(),
                 job_json,
                 path: state.join(format!("{key}.json")),
                 state_dir: state.join(format!("{key}.checkpoint")),
@@ -253,7 +263,7 @@ fn execute<E: Experiment>(
     let ended = SystemTime::now();
     let stored = Stored {
         solver: unit.solver,
-        job: unit.job.clone(),
+        job: unit.keyed.clone(),
         result,
         run: Some(JobRun {
             host: crate::io::host_name(),
@@ -321,18 +331,38 @@ pub fn run_experiment<E: Experiment>(
                 .iter()
                 .filter_map(|u| store::load_run(&u.path).and_then(|s| s.run))
                 .collect::<Vec<_>>();
-            let first = runs.iter().map(|r| r.span.0).fold(f64::INFINITY, f64::min);
-            let last = runs.iter().map(|r| r.span.1).fold(0.0, f64::max);
             let record = MergeRecord {
                 commit: crate::provenance::commit_label(),
                 other_commits_accepted: *other_commits_accepted,
                 shards: ShardRecord::from_runs(&runs),
             };
-            ((last - first).max(0.0), Some(record))
+            (busy_seconds(runs.iter().map(|r| r.span)), Some(record))
         }
         _ => (timer.elapsed().as_secs_f64(), None),
     };
     conclude::<E>(source, &prepared, results, opts, wall_s, merge).map(Some)
+}
+
+/// The time during which at least one of the jobs ran: the length of the union of their
+/// spans `(start, end)`, epoch seconds. A merge's wall time: results gathered from runs
+/// days apart (or shared with another validation) count the hours their jobs ran, not the
+/// days between them.
+fn busy_seconds(spans: impl IntoIterator<Item = (f64, f64)>) -> f64 {
+    let mut spans: Vec<(f64, f64)> = spans.into_iter().filter(|(a, b)| b > a).collect();
+    spans.sort_by(|x, y| x.0.total_cmp(&y.0));
+    let mut busy = 0.0;
+    let mut open: Option<(f64, f64)> = None;
+    for (a, b) in spans {
+        open = match open {
+            Some((s, e)) if a <= e => Some((s, e.max(b))),
+            Some((s, e)) => {
+                busy += e - s;
+                Some((a, b))
+            }
+            None => Some((a, b)),
+        };
+    }
+    busy + open.map_or(0.0, |(s, e)| e - s)
 }
 
 /// The headline and the cross-checks from the units' results (in unit order), the verdict,
@@ -618,4 +648,26 @@ fn progress_bar(show: bool, name: &str, len: usize) -> ProgressBar {
     bar.set_prefix(name.to_string());
     bar.tick();
     bar
+}
+
+#[cfg(test)]
+mod tests {
+    use super::busy_seconds;
+
+    #[test]
+    fn busy_time_is_the_union_of_the_job_spans() {
+        // Two jobs side by side, one nested in another, and a run two days later: the
+        // overlaps count once and the gap not at all.
+        let day = 86_400.0;
+        let spans = [
+            (0.0, 100.0),
+            (10.0, 50.0),
+            (60.0, 130.0),
+            (2.0 * day, 2.0 * day + 20.0),
+        ];
+        assert_eq!(busy_seconds(spans), 150.0);
+        assert_eq!(busy_seconds([]), 0.0);
+        // A span that ends before it starts (a clock step) counts nothing.
+        assert_eq!(busy_seconds([(5.0, 1.0), (0.0, 1.0)]), 1.0);
+    }
 }

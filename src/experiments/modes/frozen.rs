@@ -6,7 +6,7 @@ use std::collections::BTreeMap;
 
 use super::figures::{asymptote_figure, asymptote_table, curve_figures, curve_table};
 use super::stats::{onset_key, FrozenStats, MODE_WINDOW, PANEL_LOADS};
-use super::{sweeps, ModeScene};
+use super::{reference_sweeps, sweeps, ModeScene};
 use crate::engine::tolerance::ZETA_SLACK;
 use crate::error::{Error, Result};
 use crate::experiments::ensemble::by_load;
@@ -42,7 +42,8 @@ const CHANGE_FULL_CONTACT_MAX: &str = "change_full_contact_max";
 const E_END_LONG_MINUS_SHORT_CD: &str = "e_end_long_minus_short_cd";
 const PEAK_SHORT_PARTIAL: &str = "peak_short_partial";
 const FALLOFF_MID_CHORD_ZETA: &str = "falloff_mid_chord_zeta";
-const OTHER_DETAILS: [&str; 7] = [
+const R2_X_MINUS_R2_AR: &str = "r2_x_minus_r2_ar";
+const OTHER_DETAILS: [&str; 8] = [
     ASYMPTOTE_LONG_MINUS_SHORT,
     K1,
     K2,
@@ -50,7 +51,12 @@ const OTHER_DETAILS: [&str; 7] = [
     E_END_LONG_MINUS_SHORT_CD,
     PEAK_SHORT_PARTIAL,
     FALLOFF_MID_CHORD_ZETA,
+    R2_X_MINUS_R2_AR,
 ];
+/// The details of a scene with a reference surface.
+const K1_MINUS_REFERENCE: &str = "k1_minus_reference";
+const K2_MINUS_REFERENCE: &str = "k2_minus_reference";
+const REFERENCE_DETAILS: [&str; 2] = [K1_MINUS_REFERENCE, K2_MINUS_REFERENCE];
 
 /// The study of the asymptote law's readings: its key and columns, `(key, label)`.
 const ASYMPTOTE_LAW: &str = "asymptote_law";
@@ -90,7 +96,15 @@ impl Experiment for ModeFrozen {
     fn stats(run: &Run) -> Result<FrozenStats> {
         let sweeps = sweeps(run.results);
         let loads = by_load(&run.scene.contact_areas, &sweeps);
-        Ok(FrozenStats::of(run.scene, &loads))
+        let stats = FrozenStats::of(run.scene, &loads);
+        Ok(match run.scene.reference_scene() {
+            Some(reference) => {
+                let sweeps = reference_sweeps(run.results);
+                let loads = by_load(&reference.contact_areas, &sweeps);
+                stats.with_reference(&FrozenStats::of(&reference, &loads))
+            }
+            None => stats,
+        })
     }
 
     fn headline(s: &FrozenStats) -> (Estimate, f64) {
@@ -106,6 +120,9 @@ impl Experiment for ModeFrozen {
             keys.detail(onset_key(load));
         }
         keys.details(OTHER_DETAILS);
+        if scene.reference.is_some() {
+            keys.details(REFERENCE_DETAILS);
+        }
         keys.study(ASYMPTOTE_LAW, LAW_COLUMNS);
         keys
     }
@@ -442,6 +459,37 @@ fn new_details(scene: &ModeScene, s: &FrozenStats) -> Vec<Detail> {
             .persson(0.0),
         );
     }
+    if let Some(r) = s.r2_x_minus_r2_ar {
+        details.push(Detail::new(
+            R2_X_MINUS_R2_AR,
+            "over the partial-contact points of the asymptote law (x at the mode's own \
+             magnification): r^2 of ln E_inf with x minus r^2 of ln E_inf with ln a_r(zeta_t), \
+             the shares of its variance a line in each explains (jackknife error over \
+             realizations)",
+            r,
+        ));
+    }
+    if let (Some((d1, d2)), Some(reference)) = (s.k_mode_minus_reference(), &scene.reference) {
+        for (key, name, d) in [
+            (K1_MINUS_REFERENCE, "K1", d1),
+            (K2_MINUS_REFERENCE, "K2", d2),
+        ] {
+            details.push(Detail::new(
+                key,
+                format!(
+                    "{name} of the asymptote law (x at the mode's own magnification) at \
+                         H = {} minus {name} of the reference surface's law, H = {} ({} \
+                         realizations at a_r = {:?}), fitted on the same grid and sweep; \
+                         errors of independent surfaces combined",
+                    scene.hurst,
+                    reference.hurst,
+                    reference.seeds.len(),
+                    reference.contact_areas
+                ),
+                d,
+            ));
+        }
+    }
     for &(load, onset) in &s.onsets {
         details.push(
             Detail::new(
@@ -463,7 +511,9 @@ fn new_details(scene: &ModeScene, s: &FrozenStats) -> Vec<Detail> {
 mod tests {
     use super::super::stats::asymptote;
     use super::super::tests::{shipped, synthetic};
+    use super::super::ModeJob;
     use super::*;
+    use crate::experiments::Jobs;
 
     #[test]
     fn shipped_scenes_are_valid_and_ranges_are_named() {
@@ -544,6 +594,81 @@ mod tests {
             .collect();
         let se = Estimate::mean_of(&x).std_error;
         assert!((jackknife_error(&loo) - se).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_reference_sweeps_are_e_frozens_own_jobs() {
+        // e_frozen_h03's reference surface is e_frozen's full scene: its sweeps are keyed
+        // as e_frozen's, so the committed results serve both and none runs twice.
+        let (_, h03, _) = shipped("e_frozen_h03");
+        let (_, h08, _) = shipped("e_frozen");
+        let reference = h03.reference_scene().expect("a reference at full scale");
+        assert_eq!(reference.key_scene(), h08.key_scene());
+        let own = h08.jobs();
+        let shared: Vec<ModeJob> = h03
+            .jobs()
+            .iter()
+            .filter_map(|j| {
+                let (scene, job) = h03.shared_job(j)?;
+                assert_eq!(scene, h08.key_scene());
+                Some(job)
+            })
+            .collect();
+        assert_eq!(shared, own);
+        // The H = 0.3 sweeps keep the keys they had before the reference existed.
+        let mut without = h03.clone();
+        without.reference = None;
+        assert_eq!(h03.key_scene(), without.key_scene());
+        // A reference surface out of range is named by its field.
+        let mut bad = h03;
+        bad.reference.as_mut().unwrap().hurst = 1.2;
+        let e = ModeFrozen::validate(&bad).unwrap_err().to_string();
+        assert!(e.contains("reference.hurst"), "{e}");
+    }
+
+    #[test]
+    fn the_reference_law_and_the_variance_shares_follow_their_formulas() {
+        let (mut scene, _, criteria) = shipped("e_frozen");
+        scene.reference = Some(super::super::ReferenceSurface {
+            hurst: 0.5,
+            seeds: scene.seeds.clone(),
+            contact_areas: scene.contact_areas.clone(),
+            headline_contact_area: scene.headline_contact_area,
+        });
+        let (k, k_ref) = ((0.9, 1.0), (0.7, 1.4));
+        let mut results = synthetic(&scene, k, 0.8, 0.0);
+        let reference = synthetic(&scene.reference_scene().unwrap(), k_ref, 0.8, 0.0);
+        results.extend(reference.into_iter().map(|(j, r)| match j {
+            ModeJob::Sweep(j) => (ModeJob::Reference(j), r),
+            j => (j, r),
+        }));
+        let c = ModeFrozen::conclude(&criteria, &scene, &results).unwrap();
+        let d1 = c.detail("k1_minus_reference").unwrap().value;
+        let d2 = c.detail("k2_minus_reference").unwrap().value;
+        assert!((d1.value - (k.0 - k_ref.0)).abs() < 1e-9, "{d1:?}");
+        assert!((d2.value - (k.1 - k_ref.1)).abs() < 1e-9, "{d2:?}");
+        // ln E_inf is a line in x (each load's area falls as a power of zeta, so x is the
+        // same at every magnification): x explains all of its variance, ln a_r(zeta_t),
+        // which also varies with the target at one load, less. Identical realizations
+        // leave no jackknife spread.
+        let r = c.detail("r2_x_minus_r2_ar").unwrap().value;
+        assert!(r.value > 0.0 && r.value < 1.0, "{r:?}");
+        assert!(r.std_error.abs() < 1e-9, "{r:?}");
+        let stats = ModeFrozen::stats(&crate::experiments::Run {
+            criteria: &criteria,
+            scene: &scene,
+            results: &results,
+        })
+        .unwrap();
+        let points: Vec<&super::super::stats::AfterResolution> = stats
+            .after
+            .iter()
+            .filter(|a| a.asymptote.value > 0.0 && a.a_end < super::super::stats::FULL_CONTACT)
+            .collect();
+        let ln_e: Vec<f64> = points.iter().map(|a| a.asymptote.value.ln()).collect();
+        let ln_a: Vec<f64> = points.iter().map(|a| a.a_t.ln()).collect();
+        let expect = 1.0 - crate::stats::pearson(&ln_e, &ln_a).powi(2);
+        assert!((r.value - expect).abs() < 1e-9, "{r:?} against {expect}");
     }
 
     #[test]

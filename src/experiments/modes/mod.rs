@@ -66,7 +66,10 @@
 //!   `x = -d ln a_r / d ln zeta` (positive while the contact area shrinks), the slope of a
 //!   line through `(ln zeta, ln a_r)` over the same window, and the points of all
 //!   partial-contact loads and targets are fitted to the paper's `K1 exp(-K2 x)` by a line
-//!   through `(x, ln E_inf)`.
+//!   through `(x, ln E_inf)`. A scene may name a reference surface (another Hurst
+//!   exponent, `reference`): the same sweeps on it, fitted to the same law, give the
+//!   difference of the constants; those sweeps are the reference validation's own jobs
+//!   and share their stored results.
 //!
 //! # Files
 //!
@@ -130,7 +133,27 @@ scene! {
         /// the part of the peak's shift that the band's averaging makes (none: not run).
         #[serde(default, skip_serializing_if = "Option::is_none")]
         pub narrow_band: Option<f64>,
+        /// Another surface swept the same way, whose fitted law the constants are set
+        /// against (another Hurst exponent; none: no comparison). Its sweeps are its own
+        /// validation's jobs and share their stored results ([`Jobs::shared_job`]).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        pub reference: Option<ReferenceSurface>,
     }
+}
+
+/// The surface of a reference scene: the scene itself with these fields in place of its
+/// own (every other field, the grid, the bands and the sweep, is the scene's).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ReferenceSurface {
+    /// Hurst exponent, in (0, 1).
+    pub hurst: f64,
+    /// Realizations.
+    pub seeds: Vec<u64>,
+    /// Loads, as the relative contact area at full resolution, in (0, 1).
+    pub contact_areas: Vec<f64>,
+    /// The load of the onset headline (one of `contact_areas`).
+    pub headline_contact_area: f64,
 }
 
 /// A job: one realization's sweep at one load (stored bare, as before the narrow bands
@@ -139,6 +162,8 @@ scene! {
 pub enum ModeJob {
     /// A sweep with bands of relative half-width `band`.
     Narrow(NarrowJob),
+    /// A sweep of the reference surface (keyed and stored as that scene's own sweep).
+    Reference(SeedLoad),
     /// A sweep with the scene's bands.
     #[serde(untagged)]
     Sweep(SeedLoad),
@@ -187,6 +212,17 @@ pub(super) fn sweeps(results: &[(ModeJob, ModeOutput)]) -> Vec<(SeedLoad, ModeRe
         .collect()
 }
 
+/// The reference surface's sweeps among the results.
+pub(super) fn reference_sweeps(results: &[(ModeJob, ModeOutput)]) -> Vec<(SeedLoad, ModeResult)> {
+    results
+        .iter()
+        .filter_map(|(j, r)| match (j, r) {
+            (ModeJob::Reference(j), ModeOutput::Sweep(r)) => Some((j.clone(), r.clone())),
+            _ => None,
+        })
+        .collect()
+}
+
 /// The sweeps with the narrow bands among the results.
 pub(super) fn narrow_sweeps(results: &[(ModeJob, ModeOutput)]) -> Vec<(SeedLoad, ModeResult)> {
     results
@@ -206,6 +242,21 @@ impl ModeScene {
             narrow_band: None,
             ..self.clone()
         }
+    }
+
+    /// The reference scene: this one on the reference surface, as its own validation
+    /// states it (no narrow bands, no reference of its own).
+    pub fn reference_scene(&self) -> Option<Self> {
+        let r = self.reference.as_ref()?;
+        Some(Self {
+            hurst: r.hurst,
+            seeds: r.seeds.clone(),
+            contact_areas: r.contact_areas.clone(),
+            headline_contact_area: r.headline_contact_area,
+            narrow_band: None,
+            reference: None,
+            ..self.clone()
+        })
     }
 
     /// The sweep's magnifications.
@@ -275,6 +326,20 @@ impl Jobs for ModeScene {
         if let Some(narrow) = self.narrow_band {
             check_open("narrow_band", narrow, 0.0, self.band)?;
         }
+        if let Some(reference) = self.reference_scene() {
+            reference.validate().map_err(|e| match e {
+                Error::InvalidInput {
+                    field,
+                    value,
+                    allowed,
+                } => Error::InvalidInput {
+                    field: format!("reference.{field}"),
+                    value,
+                    allowed,
+                },
+                e => e,
+            })?;
+        }
         self.correction.validate()
     }
 
@@ -291,20 +356,40 @@ impl Jobs for ModeScene {
                 })
             }));
         }
+        if let Some(r) = &self.reference {
+            jobs.extend(
+                seed_load_jobs(&r.contact_areas, &r.seeds)
+                    .into_iter()
+                    .map(ModeJob::Reference),
+            );
+        }
         jobs
     }
 
-    /// The narrow bands' sweeps read the headline solver's peaks only.
+    /// The narrow bands' sweeps read the headline solver's peaks only, and the reference
+    /// surface's law is fitted on the headline solver's sweeps.
     fn headline_only(job: &ModeJob) -> bool {
-        matches!(job, ModeJob::Narrow(_))
+        matches!(job, ModeJob::Narrow(_) | ModeJob::Reference(_))
     }
 
-    /// The sweeps depend on the scene without the narrow bands: their keys are those of
-    /// the scenes that had none.
+    /// The sweeps depend on the scene without the narrow bands and the reference: their
+    /// keys are those of the scenes that had neither.
     fn key_scene(&self) -> serde_json::Value {
         let mut scene = self.clone();
         scene.narrow_band = None;
+        scene.reference = None;
         serde_json::to_value(scene).expect("scenes serialise")
+    }
+
+    /// A reference sweep is the reference scene's own sweep.
+    fn shared_job(&self, job: &ModeJob) -> Option<(serde_json::Value, ModeJob)> {
+        match job {
+            ModeJob::Reference(j) => Some((
+                self.reference_scene()?.key_scene(),
+                ModeJob::Sweep(j.clone()),
+            )),
+            _ => None,
+        }
     }
 
     /// Every sweep climbs the same steps (the band changes what is recorded, not where).
@@ -317,6 +402,12 @@ impl Jobs for ModeScene {
             ModeJob::Sweep(j) => run_sweep(self, j, ctx.solver).map(ModeOutput::Sweep),
             ModeJob::Narrow(j) => {
                 run_sweep(&self.with_band(j.band), &j.at(), ctx.solver).map(ModeOutput::Narrow)
+            }
+            ModeJob::Reference(j) => {
+                let reference = self.reference_scene().ok_or_else(|| {
+                    Error::invalid("reference", "none", "a reference surface for its sweeps")
+                })?;
+                run_sweep(&reference, j, ctx.solver).map(ModeOutput::Sweep)
             }
         }
     }

@@ -9,7 +9,7 @@ use super::{ModeResult, ModeScene};
 use crate::engine::tolerance::ZETA_SLACK;
 use crate::experiments::climb::step_of;
 use crate::experiments::ensemble::{group, load_range, LoadGroup};
-use crate::stats::{round_sig, Estimate, LineFit};
+use crate::stats::{pearson, round_sig, Estimate, LineFit};
 
 /// One realization's onset: the mean over targets of `E_norm` at `onset_ratio zeta_t`.
 pub fn mean_onset(scene: &ModeScene, run: &ModeResult) -> f64 {
@@ -119,6 +119,9 @@ pub struct AfterResolution {
     pub x: Estimate,
     /// `x` at the mode's own magnification ([`MODE_WINDOW`]), over realizations.
     pub x_mode: Estimate,
+    /// The measured contact area at `zeta_t` (the mode's own resolution), over
+    /// realizations.
+    pub a_t: f64,
     /// The correction factor `S(a_r(zeta_t))` (Persson's asymptote).
     pub s: f64,
     /// The measured contact area at the end of the sweep.
@@ -137,6 +140,7 @@ fn after_resolution(scene: &ModeScene, steps: &[f64], load: &Load, t: usize) -> 
         .collect();
     let mean =
         |f: fn(&(f64, f64)) -> f64| Estimate::mean_of(&fits.iter().map(f).collect::<Vec<_>>());
+    let a_t = load.contact_area_at(step_of(steps, zt)).value;
     AfterResolution {
         load: load.contact_area,
         target: t,
@@ -151,9 +155,8 @@ fn after_resolution(scene: &ModeScene, steps: &[f64], load: &Load, t: usize) -> 
                 .filter_map(|r| slope_over(r, zt / MODE_WINDOW, MODE_WINDOW * zt))
                 .collect::<Vec<_>>(),
         ),
-        s: scene
-            .correction
-            .factor(load.contact_area_at(step_of(steps, zt)).value),
+        a_t,
+        s: scene.correction.factor(a_t),
         a_end: load.contact_area_at(end).value,
     }
 }
@@ -178,6 +181,13 @@ pub struct FrozenStats {
     pub k_mode_points: Vec<(f64, f64)>,
     /// The line through `k_mode_points`.
     pub k_mode_fit: Option<LineFit>,
+    /// Over the same points, the share of the variance of `ln E_inf` a line in `x` (at
+    /// the mode's own magnification) explains minus the share a line in `ln a_r(zeta_t)`
+    /// explains, with its jackknife error over realizations.
+    pub r2_x_minus_r2_ar: Option<Estimate>,
+    /// `(K1, K2)` of the reference surface's law, `x` at the mode's own magnification
+    /// (none without a reference; set by [`FrozenStats::with_reference`]).
+    pub k_mode_reference: Option<(Estimate, Estimate)>,
     /// The change of largest magnitude over the targets at the highest load.
     pub change_full_contact_max: Option<Estimate>,
     /// End-of-sweep `E_norm` of the first target minus that of the last, at the loads of
@@ -202,17 +212,11 @@ impl FrozenStats {
                 (0..scene.targets.len()).map(move |t| after_resolution(scene, steps, load, t))
             })
             .collect();
-        let fitted = || {
-            after
-                .iter()
-                .filter(|a| a.asymptote.value > 0.0 && a.a_end < FULL_CONTACT)
-        };
-        let k_points: Vec<(f64, f64)> = fitted()
+        let k_points: Vec<(f64, f64)> = fitted(&after)
             .map(|a| (a.x.value, a.asymptote.value.ln()))
             .collect();
-        let k_mode_points: Vec<(f64, f64)> = fitted()
+        let k_mode_points: Vec<(f64, f64)> = mode_points(&after)
             .map(|a| (a.x_mode.value, a.asymptote.value.ln()))
-            .filter(|p| p.0.is_finite())
             .collect();
         let line = |points: &[(f64, f64)]| {
             let (xs, ys): (Vec<f64>, Vec<f64>) = points.iter().copied().unzip();
@@ -231,6 +235,8 @@ impl FrozenStats {
             long_minus_short: long_minus_short(scene, group(loads, lowest)),
             k_fit: line(&k_points),
             k_mode_fit: line(&k_mode_points),
+            r2_x_minus_r2_ar: r2_x_minus_r2_ar(scene, loads),
+            k_mode_reference: None,
             k_points,
             k_mode_points,
             after,
@@ -263,6 +269,75 @@ impl FrozenStats {
     pub fn k_mode(&self) -> Option<(Estimate, Estimate)> {
         self.k_mode_fit.map(law_constants)
     }
+
+    /// These statistics with the reference surface's law (its statistics `reference`).
+    pub fn with_reference(self, reference: &FrozenStats) -> Self {
+        Self {
+            k_mode_reference: reference.k_mode(),
+            ..self
+        }
+    }
+
+    /// `(K1, K2)` of this surface's law minus the reference surface's, `x` at the mode's
+    /// own magnification; errors combined as of independent surfaces.
+    pub fn k_mode_minus_reference(&self) -> Option<(Estimate, Estimate)> {
+        let ((k1, k2), (r1, r2)) = (self.k_mode()?, self.k_mode_reference?);
+        Some((Estimate::difference(k1, r1), Estimate::difference(k2, r2)))
+    }
+}
+
+/// The partial-contact points of the asymptote law: a positive asymptote, and contact
+/// still partial at the end of the sweep.
+fn fitted(after: &[AfterResolution]) -> impl Iterator<Item = &AfterResolution> {
+    after
+        .iter()
+        .filter(|a| a.asymptote.value > 0.0 && a.a_end < FULL_CONTACT)
+}
+
+/// The points of the law with `x` at the mode's own magnification: those of [`fitted`]
+/// where that `x` is measured.
+fn mode_points(after: &[AfterResolution]) -> impl Iterator<Item = &AfterResolution> {
+    fitted(after).filter(|a| a.x_mode.value.is_finite())
+}
+
+/// Which of the two variables tracks the asymptotes: over the law's points with `x` at
+/// the mode's own magnification, `r^2(ln E_inf, x) - r^2(ln E_inf, ln a_r(zeta_t))`, the
+/// squared Pearson correlations (the shares of the variance of `ln E_inf` that a line in
+/// each explains). The value from all realizations, the standard error by jackknife over
+/// realizations (the `i`-th run of every load left out in turn, every asymptote and slope
+/// fitted again). None with fewer than three points.
+pub fn r2_x_minus_r2_ar(scene: &ModeScene, loads: &[Load]) -> Option<Estimate> {
+    let steps = scene.steps();
+    let stat = |skip: Option<usize>| {
+        let after: Vec<AfterResolution> = loads
+            .iter()
+            .flat_map(|l| {
+                let kept = Load {
+                    contact_area: l.contact_area,
+                    runs: l
+                        .runs
+                        .iter()
+                        .enumerate()
+                        .filter(|(i, _)| Some(*i) != skip)
+                        .map(|(_, r)| *r)
+                        .collect(),
+                };
+                (0..scene.targets.len())
+                    .map(|t| after_resolution(scene, &steps, &kept, t))
+                    .collect::<Vec<_>>()
+            })
+            .collect();
+        let (x, (ln_a, ln_e)): (Vec<f64>, (Vec<f64>, Vec<f64>)) = mode_points(&after)
+            .map(|a| (a.x_mode.value, (a.a_t.ln(), a.asymptote.value.ln())))
+            .unzip();
+        if x.len() < 3 {
+            return f64::NAN;
+        }
+        pearson(&ln_e, &x).powi(2) - pearson(&ln_e, &ln_a).powi(2)
+    };
+    let n = loads.iter().map(|l| l.runs.len()).min()?;
+    let e = Estimate::jackknife(n, stat);
+    e.value.is_finite().then_some(e)
 }
 
 /// `(K1, K2)` of a line `ln K1 - K2 x`, with their standard errors.

@@ -21,7 +21,7 @@ use crate::error::{check_open, Error, Result};
 use crate::experiments::flux::FluxScene;
 use crate::experiments::Detail;
 use crate::plot::{CutPanel, Waterfall};
-use crate::stats::Estimate;
+use crate::stats::{pearson, Estimate};
 
 /// The key of the shape change of the cut between the last two panels.
 pub const SHAPE_CHANGE: &str = "waterfall_shape_change";
@@ -170,20 +170,6 @@ pub fn run(scene: &FluxScene, plan: &WaterfallPlan) -> Result<WaterfallResult> {
         })
         .collect();
     Ok(WaterfallResult { row, p0, cuts })
-}
-
-/// The Pearson correlation of two equally long profiles (NaN where either is flat).
-pub fn pearson(a: &[f64], b: &[f64]) -> f64 {
-    let n = a.len().min(b.len()) as f64;
-    let (ma, mb) = (a.iter().sum::<f64>() / n, b.iter().sum::<f64>() / n);
-    let (mut ab, mut aa, mut bb) = (0.0, 0.0, 0.0);
-    for (x, y) in a.iter().zip(b) {
-        let (dx, dy) = (x - ma, y - mb);
-        ab += dx * dy;
-        aa += dx * dx;
-        bb += dy * dy;
-    }
-    ab / (aa * bb).sqrt()
 }
 
 /// The shape change of the cut between its last two panels, `1 - r` with `r` the
