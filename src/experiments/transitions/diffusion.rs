@@ -9,7 +9,7 @@ use super::stats::{
     lowest_minus_top_unsuited, mean_of, mean_where, over_realizations, region_mean,
     small_pressure_exponent, unsuited_minus_suited, BinRow, SMALL_PRESSURE,
 };
-use super::{TransitionResult, TransitionScene};
+use super::{others, own, TransitionResult, TransitionScene};
 use crate::error::Result;
 use crate::experiments::{Check, Detail, Experiment, Keys, Table};
 use crate::persson::moments;
@@ -39,6 +39,9 @@ const DETAILS: [&str; 9] = [
     MIRROR_MOMENT_ERROR,
 ];
 
+/// The other scene's headline (with an other scene).
+const OTHER_D_RATIO_LOW: &str = "other_scene_d_ratio_low";
+
 /// The diffusion validation, assumption (a).
 pub struct Diffusion;
 
@@ -66,6 +69,9 @@ pub struct DiffusionStats {
     pub bin_spread_over_half_width: Estimate,
     /// Mean over suited bins of `dp_n^2 / Dp_n^2`.
     pub bin_broadening_share: Estimate,
+    /// The other scene's `D_n / D_P` in its low-pressure region and its contact area at
+    /// `zeta` (none without an other scene).
+    pub other: Option<(Estimate, Estimate)>,
 }
 
 impl DiffusionStats {
@@ -99,6 +105,7 @@ impl DiffusionStats {
                 bin_spread_over_half_width(scene, r)
             }),
             bin_broadening_share: mean_where(results, |r| bin_broadening_share(scene, r)),
+            other: None,
         }
     }
 
@@ -118,22 +125,30 @@ impl Experiment for Diffusion {
     type Stats = DiffusionStats;
 
     fn stats(run: &Run) -> Result<DiffusionStats> {
-        Ok(DiffusionStats::of(run.scene, run.results))
+        let mut s = DiffusionStats::of(run.scene, &own(run.results));
+        if let Some(other) = run.scene.other_step_scene() {
+            let o = DiffusionStats::of(&other, &others(run.results));
+            s.other = Some((o.low, o.a_r));
+        }
+        Ok(s)
     }
 
     fn headline(s: &DiffusionStats) -> (Estimate, f64) {
         (s.low, 1.0)
     }
 
-    fn keys(_scene: &TransitionScene) -> Keys {
+    fn keys(scene: &TransitionScene) -> Keys {
         let mut keys = Keys::default();
         keys.details(DETAILS);
+        if scene.other_scene.is_some() {
+            keys.detail(OTHER_D_RATIO_LOW);
+        }
         keys
     }
 
     /// The high-pressure ratio and the corrected theory's `S(a_r)` beside it.
     fn details(run: &Run, s: &DiffusionStats) -> Vec<Detail> {
-        vec![
+        let mut details = vec![
             Detail::new(
                 D_RATIO_HIGH,
                 format!("D_n / D_P at p >= {} p0/a_r", run.scene.high_pressure),
@@ -193,7 +208,27 @@ impl Experiment for Diffusion {
                  1e3 (exact: no error bar)",
                 Estimate::new(moments::mirror_moment_largest_error(ERROR_POINTS), 0.0),
             ),
-        ]
+        ];
+        if let (Some((low, a_r)), Some(other)) = (s.other, &run.scene.other_scene) {
+            details.push(
+                Detail::new(
+                    OTHER_D_RATIO_LOW,
+                    format!(
+                        "D_n / D_P at p < {} p0/a_r in the other scene: H = {}, a_r = {} at zeta {} \
+                         -> {} (measured a_r {})",
+                        run.scene.low_pressure,
+                        other.hurst,
+                        other.contact_area,
+                        other.zeta,
+                        other.zeta + other.dzeta,
+                        a_r.text(1.0, 4, "")
+                    ),
+                    low,
+                )
+                .persson(1.0),
+            );
+        }
+        details
     }
 
     /// The paper's finding at high pressure: `D_n / D_P ~ 1`, the original theory's value
@@ -243,7 +278,7 @@ impl Experiment for Diffusion {
              the moment analysis is D_n / D_P = {} times Persson's; at p >= {} p0/a_r it is {} \
              (the corrected theory's S(a_r) would be {:.2}). {} of the analysed bins have a \
              mean below the broadening and are not used for diffusion.",
-            common_account(run.scene, run.results),
+            common_account(run.scene, &own(run.results)),
             run.scene.low_pressure,
             s.low.text(1.0, 2, ""),
             run.scene.high_pressure,
@@ -254,7 +289,10 @@ impl Experiment for Diffusion {
     }
 
     fn tables(run: &Run, s: &DiffusionStats) -> Vec<Table> {
-        vec![bin_table(&s.rows), transition_table(run.scene, run.results)]
+        vec![
+            bin_table(&s.rows),
+            transition_table(run.scene, &own(run.results)),
+        ]
     }
 
     fn figures(run: &Run, s: &DiffusionStats) -> Vec<Figure> {

@@ -8,7 +8,7 @@ use super::stats::{
     bin_rows, lost_over_persson, mean_of, mean_where, over_realizations, region_mean,
     share_walkers_negative_drift, BinRow, MEAN_CONTACT_PRESSURE,
 };
-use super::{TransitionResult, TransitionScene};
+use super::{others, own, TransitionResult, TransitionScene};
 use crate::error::Result;
 use crate::experiments::{Check, Detail, Experiment, Keys, Table};
 use crate::plot::{Figure, Series, Style};
@@ -29,6 +29,9 @@ const DETAILS: [&str; 6] = [
     LOST_OVER_PERSSON,
     SHARE_WALKERS_NEGATIVE_DRIFT,
 ];
+
+/// The other scene's headline (with an other scene).
+const OTHER_MU_C: &str = "other_scene_mu_c";
 
 /// The drift validation, assumption (b).
 pub struct Drift;
@@ -51,6 +54,8 @@ pub struct DriftStats {
     pub lost_over_persson: Estimate,
     /// Share of the walkers below `p0 / a_r` that sit in bins of negative drift.
     pub share_negative_drift: Estimate,
+    /// The other scene's `mu_c` (none without an other scene).
+    pub other_mu_c: Option<Estimate>,
 }
 
 /// `mu_c` of one realization: the mean change of pressure of the walkers in contact at
@@ -91,6 +96,7 @@ impl DriftStats {
             rows: bin_rows(scene, results),
             lost_over_persson: mean_where(results, |r| lost_over_persson(scene, r)),
             share_negative_drift: mean_where(results, |r| share_walkers_negative_drift(scene, r)),
+            other_mu_c: None,
         }
     }
 }
@@ -102,16 +108,23 @@ impl Experiment for Drift {
     type Stats = DriftStats;
 
     fn stats(run: &Run) -> Result<DriftStats> {
-        Ok(DriftStats::of(run.scene, run.results))
+        let mut s = DriftStats::of(run.scene, &own(run.results));
+        if let Some(other) = run.scene.other_step_scene() {
+            s.other_mu_c = Some(DriftStats::of(&other, &others(run.results)).mu_c);
+        }
+        Ok(s)
     }
 
     fn headline(s: &DriftStats) -> (Estimate, f64) {
         (s.mu_c, 0.0)
     }
 
-    fn keys(_scene: &TransitionScene) -> Keys {
+    fn keys(scene: &TransitionScene) -> Keys {
         let mut keys = Keys::default();
         keys.details(DETAILS);
+        if scene.other_scene.is_some() {
+            keys.detail(OTHER_MU_C);
+        }
         keys
     }
 
@@ -144,7 +157,7 @@ impl Experiment for Drift {
                 scene.zeta,
                 scene.zeta + scene.dzeta
             ),
-            relative_area_change(run.results),
+            relative_area_change(&own(run.results)),
         )))
         .chain([
             Detail::new(
@@ -163,6 +176,24 @@ impl Experiment for Drift {
                 s.share_negative_drift,
             ),
         ])
+        .chain(
+            s.other_mu_c
+                .zip(scene.other_scene.as_ref())
+                .map(|(mu, other)| {
+                    Detail::new(
+                        OTHER_MU_C,
+                        format!(
+                            "mu_c in the other scene: H = {}, a_r = {} at zeta {} -> {}",
+                            other.hurst,
+                            other.contact_area,
+                            other.zeta,
+                            other.zeta + other.dzeta
+                        ),
+                        mu,
+                    )
+                    .persson(0.0)
+                }),
+        )
         .collect()
     }
 
@@ -208,7 +239,7 @@ impl Experiment for Drift {
             "{} The contact-averaged drift is mu_c = {} (p0/a_r per unit zeta; Persson: 0). \
              By region: {} below {} p0/a_r, {} above {} p0/a_r, and {} in the lowest \
              analysed bin.",
-            common_account(run.scene, run.results),
+            common_account(run.scene, &own(run.results)),
             s.mu_c.text(1.0, 4, ""),
             s.low.text(1.0, 4, ""),
             run.scene.low_pressure,

@@ -31,6 +31,11 @@
 //! Error bars are standard errors over realizations: walkers of one realization are
 //! correlated (neighbouring points feel the same added roughness), realizations are not.
 //!
+//! A scene may carry the paper's other scene of the same analysis (`other_scene`: its
+//! first, fig. broadening, at another Hurst exponent, load and step): its realizations
+//! run as jobs of their own, keyed as that scene's, and both validations report its
+//! headline beside their own.
+//!
 //! Both validations share the scene and its jobs (one realization each), here in `mod.rs`.
 //! The files:
 //!
@@ -70,7 +75,62 @@ step_scene! {
         pub high_pressure: f64,
         /// Bins with fewer walkers in a realization are not analysed for it.
         pub min_walkers: usize,
+        /// The paper's other scene of the same analysis (none: not run): the same grid,
+        /// bins and solver settings at another roughness, load and step.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        pub other_scene: Option<OtherStep>,
     }
+}
+
+/// The step of the other scene: the scene itself with these fields in place of its own.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OtherStep {
+    /// Hurst exponent, in (0, 1).
+    pub hurst: f64,
+    /// Relative contact area at `zeta` (sets the load).
+    pub contact_area: f64,
+    /// Magnification before the step.
+    pub zeta: f64,
+    /// The step of magnification.
+    pub dzeta: f64,
+    /// Realizations.
+    pub seeds: Vec<u64>,
+}
+
+/// A job: one realization of the scene (stored bare, as before the other scene existed),
+/// or one of the other scene.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum TransitionJob {
+    /// A realization of the other scene.
+    Other(u64),
+    /// A realization of the scene.
+    #[serde(untagged)]
+    Realization(u64),
+}
+
+/// The scene's own realizations among the results, by seed.
+pub(super) fn own(results: &[(TransitionJob, TransitionResult)]) -> Vec<(u64, TransitionResult)> {
+    results
+        .iter()
+        .filter_map(|(j, r)| match j {
+            TransitionJob::Realization(seed) => Some((*seed, r.clone())),
+            TransitionJob::Other(_) => None,
+        })
+        .collect()
+}
+
+/// The other scene's realizations among the results, by seed.
+pub(super) fn others(
+    results: &[(TransitionJob, TransitionResult)],
+) -> Vec<(u64, TransitionResult)> {
+    results
+        .iter()
+        .filter_map(|(j, r)| match j {
+            TransitionJob::Other(seed) => Some((*seed, r.clone())),
+            TransitionJob::Realization(_) => None,
+        })
+        .collect()
 }
 
 /// Sums over the walkers of one bin.
@@ -127,7 +187,7 @@ pub struct TransitionResult {
 
 impl Jobs for TransitionScene {
     const FAMILY: &'static str = "transition";
-    type Job = u64;
+    type Job = TransitionJob;
     type JobResult = TransitionResult;
 
     fn validate(&self) -> Result<()> {
@@ -141,20 +201,71 @@ impl Jobs for TransitionScene {
         if self.min_walkers < 2 {
             return Err(Error::invalid("min_walkers", self.min_walkers, ">= 2"));
         }
+        if let Some(other) = self.other_step_scene() {
+            other.validate().map_err(|e| match e {
+                Error::InvalidInput {
+                    field,
+                    value,
+                    allowed,
+                } => Error::InvalidInput {
+                    field: format!("other_scene.{field}"),
+                    value,
+                    allowed,
+                },
+                e => e,
+            })?;
+        }
         Ok(())
     }
 
-    fn jobs(&self) -> Vec<u64> {
-        self.seeds.clone()
+    /// The realizations, then those of the other scene.
+    fn jobs(&self) -> Vec<TransitionJob> {
+        let own = self.seeds.iter().map(|&s| TransitionJob::Realization(s));
+        let other = self.other_scene.iter().flat_map(|o| &o.seeds);
+        own.chain(other.map(|&s| TransitionJob::Other(s))).collect()
     }
 
-    fn work(&self, _seed: &u64) -> Work {
+    /// The other scene is read on the headline solver's transitions.
+    fn headline_only(job: &TransitionJob) -> bool {
+        matches!(job, TransitionJob::Other(_))
+    }
+
+    /// The realizations depend on the scene without the other scene: their keys are
+    /// those of the scenes that had none.
+    fn key_scene(&self) -> serde_json::Value {
+        let mut scene = self.clone();
+        scene.other_scene = None;
+        serde_json::to_value(scene).expect("scenes serialise")
+    }
+
+    /// A realization of the other scene is keyed as that scene's own realization, so its
+    /// key follows the other scene's fields (and a validation of that scene alone would
+    /// share it).
+    fn shared_job(&self, job: &TransitionJob) -> Option<(serde_json::Value, TransitionJob)> {
+        match job {
+            TransitionJob::Other(seed) => Some((
+                self.other_step_scene()?.key_scene(),
+                TransitionJob::Realization(*seed),
+            )),
+            TransitionJob::Realization(_) => None,
+        }
+    }
+
+    fn work(&self, _job: &TransitionJob) -> Work {
         // The load at zeta, then one step of dzeta.
         Work::search_then(self.n, 1, 0)
     }
 
-    fn run_job(&self, seed: &u64, ctx: &JobContext) -> Result<TransitionResult> {
-        run_transition(self, *seed, ctx.solver)
+    fn run_job(&self, job: &TransitionJob, ctx: &JobContext) -> Result<TransitionResult> {
+        match job {
+            TransitionJob::Realization(seed) => run_transition(self, *seed, ctx.solver),
+            TransitionJob::Other(seed) => {
+                let other = self.other_step_scene().ok_or_else(|| {
+                    Error::invalid("other_scene", "none", "a scene for its realizations")
+                })?;
+                run_transition(&other, *seed, ctx.solver)
+            }
+        }
     }
 
     fn residual(result: &TransitionResult) -> f64 {
@@ -163,6 +274,20 @@ impl Jobs for TransitionScene {
 }
 
 impl TransitionScene {
+    /// The other scene as a scene of its own (without an other scene).
+    pub fn other_step_scene(&self) -> Option<Self> {
+        let o = self.other_scene.as_ref()?;
+        Some(Self {
+            hurst: o.hurst,
+            contact_area: o.contact_area,
+            zeta: o.zeta,
+            dzeta: o.dzeta,
+            seeds: o.seeds.clone(),
+            other_scene: None,
+            ..self.clone()
+        })
+    }
+
     /// The pressure bins, pressures in units of `unit` (`p0 / a_r` in pascals or `E*`; 1
     /// for pressures already in units of `p0 / a_r`): the last collects the rest.
     fn pressure_bins(&self, unit: f64) -> Bins {
@@ -274,5 +399,83 @@ fn synthetic_scene(bins: usize, bin_width: f64) -> TransitionScene {
         low_pressure: 0.5,
         high_pressure: 1.0,
         min_walkers: 2,
+        other_scene: None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::experiments::{Experiment, Jobs};
+
+    #[test]
+    fn the_other_scene_is_keyed_as_its_own_and_leaves_the_scene_keys_alone() {
+        let (_, full, _) = crate::experiments::shipped_scenes::<TransitionScene>("a_diffusion");
+        let other = full
+            .other_step_scene()
+            .expect("an other scene at full scale");
+        assert_eq!((other.hurst, other.contact_area), (0.5, 0.01));
+        assert!(other.other_scene.is_none());
+        let mut without = full.clone();
+        without.other_scene = None;
+        assert_eq!(full.key_scene(), without.key_scene());
+        assert_eq!(
+            full.jobs().len(),
+            full.seeds.len() + other.seeds.len(),
+            "the realizations, then the other scene's"
+        );
+        for job in full.jobs() {
+            match (job, full.shared_job(&job)) {
+                (TransitionJob::Realization(_), None) => {}
+                (TransitionJob::Other(seed), Some((scene, keyed))) => {
+                    assert_eq!(scene, other.key_scene());
+                    assert_eq!(keyed, TransitionJob::Realization(seed));
+                    assert!(TransitionScene::headline_only(&job));
+                }
+                (job, shared) => panic!("{job:?} shared as {shared:?}"),
+            }
+        }
+        // Bare seeds are still read as the scene's realizations.
+        let bare: TransitionJob = serde_json::from_str("3").unwrap();
+        assert_eq!(bare, TransitionJob::Realization(3));
+        let mut bad = full;
+        bad.other_scene.as_mut().unwrap().zeta = 500.0;
+        let e = bad.validate().unwrap_err().to_string();
+        assert!(e.contains("other_scene."), "{e}");
+    }
+
+    #[test]
+    fn the_other_scene_is_read_apart_from_the_scene() {
+        // The scene's walkers do not move; the other scene's drift down by 0.1 p0/a_r
+        // over the step: mu_c = -0.1 / dzeta there and 0 in the scene.
+        let mut scene = synthetic_scene(8, 0.25);
+        scene.other_scene = Some(OtherStep {
+            hurst: 0.5,
+            contact_area: 0.1,
+            zeta: 1.0,
+            dzeta: 0.5,
+            seeds: vec![1, 2],
+        });
+        let still: Vec<(f64, f64)> = (0..40)
+            .map(|k| (0.1 + 0.05 * k as f64, 0.1 + 0.05 * k as f64))
+            .collect();
+        let down: Vec<(f64, f64)> = still.iter().map(|&(p, _)| (p, p - 0.1)).collect();
+        let results = vec![
+            (
+                TransitionJob::Realization(1),
+                synthetic(&scene, 1.0, 1.0, &still),
+            ),
+            (
+                TransitionJob::Realization(2),
+                synthetic(&scene, 1.0, 1.0, &still),
+            ),
+            (TransitionJob::Other(1), synthetic(&scene, 1.0, 1.0, &down)),
+            (TransitionJob::Other(2), synthetic(&scene, 1.0, 1.0, &down)),
+        ];
+        let (_, _, criteria) = crate::experiments::shipped_scenes::<TransitionScene>("b_drift");
+        let c = Drift::conclude(&criteria, &scene, &results).unwrap();
+        assert!(c.measured.unwrap().value.abs() < 1e-12);
+        let other = c.detail("other_scene_mu_c").unwrap().value;
+        assert!((other.value + 0.1 / 0.5).abs() < 1e-9, "{other:?}");
     }
 }
