@@ -11,6 +11,8 @@
 //! * [`boussinesq`]: the free-boundary half-space (a pixel's Boussinesq response) on a
 //!   doubled, zero-padded grid, for surfaces that are not periodic;
 //! * [`contact`]: the problem, its solution and the solver-independent residual;
+//! * [`distance`]: the Euclidean distance transform of the periodic grid (how far each
+//!   point lies from the nearest point of a set);
 //! * [`solver`]: the [`solver::Solver`] trait, GFMD and constrained conjugate gradients on
 //!   one scaffold (an executor that runs either, their work space, warm starts and the
 //!   packaging of a solution), and [`solver::Watched`], which shows every iteration to a
@@ -25,6 +27,7 @@
 
 pub mod boussinesq;
 pub mod contact;
+pub mod distance;
 pub mod elastic;
 pub mod fft;
 pub mod field;

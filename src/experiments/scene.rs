@@ -197,14 +197,32 @@ impl<'a> Base<'a> {
         contact_area: f64,
     ) -> Result<Step> {
         let mut sweep = self.sweep(r, solver);
-        let p0 = sweep.find_load(zeta, contact_area)?;
-        let before = sweep
-            .solution()
-            .expect("find_load keeps its solution")
-            .clone();
+        let (p0, before) = load_at(&mut sweep, zeta, contact_area)?;
         let after = sweep.solve_at(zeta + dzeta, p0)?.clone();
         Ok(Step { p0, before, after })
     }
+
+    /// `r` solved at `zeta` at the load that gives `contact_area` there: the load and
+    /// the solution (the first half of [`Base::step`]).
+    pub fn solve_at_load(
+        &self,
+        r: &Realization,
+        solver: SolverKind,
+        zeta: f64,
+        contact_area: f64,
+    ) -> Result<(f64, ContactSolution)> {
+        load_at(&mut self.sweep(r, solver), zeta, contact_area)
+    }
+}
+
+/// The load that gives `contact_area` at `zeta` on `sweep`, and the solution there.
+fn load_at(sweep: &mut Sweep, zeta: f64, contact_area: f64) -> Result<(f64, ContactSolution)> {
+    let p0 = sweep.find_load(zeta, contact_area)?;
+    let solution = sweep
+        .solution()
+        .expect("find_load keeps its solution")
+        .clone();
+    Ok((p0, solution))
 }
 
 /// The two solutions of one step of magnification at fixed load ([`Base::step`]).

@@ -5,11 +5,11 @@ use std::collections::BTreeMap;
 
 use super::figures::{bin_figure, bin_points, bin_table, common_account, level, transition_table};
 use super::stats::{
-    bin_broadening_share, bin_fits, bin_rows, bin_spread_over_half_width,
+    bin_broadening_share, bin_fits, bin_rows, bin_spread_over_half_width, contact_line_distances,
     lowest_minus_top_unsuited, mean_of, mean_where, over_realizations, region_mean,
     small_pressure_exponent, unsuited_minus_suited, BinRow, SMALL_PRESSURE,
 };
-use super::{others, own, TransitionResult, TransitionScene};
+use super::{distances, others, own, TransitionResult, TransitionScene};
 use crate::error::Result;
 use crate::experiments::{Check, Detail, Experiment, Keys, Table};
 use crate::persson::moments;
@@ -41,6 +41,11 @@ const DETAILS: [&str; 9] = [
 
 /// The other scene's headline (with an other scene).
 const OTHER_D_RATIO_LOW: &str = "other_scene_d_ratio_low";
+/// The walkers' distances to the nearest point out of contact (with the distance jobs).
+const DISTANCE_LOW: &str = "contact_line_distance_low";
+const DISTANCE_HIGH: &str = "contact_line_distance_high";
+const DISTANCE_HIGH_MINUS_LOW: &str = "contact_line_distance_high_minus_low";
+const DISTANCE_DETAILS: [&str; 3] = [DISTANCE_LOW, DISTANCE_HIGH, DISTANCE_HIGH_MINUS_LOW];
 
 /// The diffusion validation, assumption (a).
 pub struct Diffusion;
@@ -72,6 +77,10 @@ pub struct DiffusionStats {
     /// The other scene's `D_n / D_P` in its low-pressure region and its contact area at
     /// `zeta` (none without an other scene).
     pub other: Option<(Estimate, Estimate)>,
+    /// The walkers' mean distance to the nearest point out of contact (grid spacings)
+    /// below `low_pressure` and from `high_pressure` up, and high minus low, over
+    /// realizations (none without the distance jobs).
+    pub distances: Option<[Estimate; 3]>,
 }
 
 impl DiffusionStats {
@@ -106,6 +115,7 @@ impl DiffusionStats {
             }),
             bin_broadening_share: mean_where(results, |r| bin_broadening_share(scene, r)),
             other: None,
+            distances: None,
         }
     }
 
@@ -130,6 +140,16 @@ impl Experiment for Diffusion {
             let o = DiffusionStats::of(&other, &others(run.results));
             s.other = Some((o.low, o.a_r));
         }
+        let per_realization: Vec<(f64, f64)> = distances(run.results)
+            .into_iter()
+            .filter_map(|d| contact_line_distances(run.scene, d))
+            .collect();
+        if !per_realization.is_empty() {
+            let over = |f: fn(&(f64, f64)) -> f64| {
+                Estimate::mean_of(&per_realization.iter().map(f).collect::<Vec<_>>())
+            };
+            s.distances = Some([over(|d| d.0), over(|d| d.1), over(|d| d.1 - d.0)]);
+        }
         Ok(s)
     }
 
@@ -142,6 +162,9 @@ impl Experiment for Diffusion {
         keys.details(DETAILS);
         if scene.other_scene.is_some() {
             keys.detail(OTHER_D_RATIO_LOW);
+        }
+        if scene.contact_line_distances {
+            keys.details(DISTANCE_DETAILS);
         }
         keys
     }
@@ -227,6 +250,31 @@ impl Experiment for Diffusion {
                 )
                 .persson(1.0),
             );
+        }
+        if let Some([low, high, difference]) = s.distances {
+            let (lo, hi) = (run.scene.low_pressure, run.scene.high_pressure);
+            let walkers = |which: &str| {
+                format!(
+                    "mean distance to the nearest point out of contact at zeta = {}, grid \
+                     spacings, of the walkers {which} (per realization, then over realizations)",
+                    run.scene.zeta
+                )
+            };
+            details.extend([
+                Detail::new(DISTANCE_LOW, walkers(&format!("at p < {lo} p0/a_r")), low),
+                Detail::new(
+                    DISTANCE_HIGH,
+                    walkers(&format!("at p >= {hi} p0/a_r")),
+                    high,
+                ),
+                Detail::new(
+                    DISTANCE_HIGH_MINUS_LOW,
+                    walkers(&format!(
+                        "at p >= {hi} p0/a_r minus that of those at p < {lo} p0/a_r"
+                    )),
+                    difference,
+                ),
+            ]);
         }
         details
     }

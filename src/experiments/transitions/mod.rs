@@ -34,7 +34,10 @@
 //! A scene may carry the paper's other scene of the same analysis (`other_scene`: its
 //! first, fig. broadening, at another Hurst exponent, load and step): its realizations
 //! run as jobs of their own, keyed as that scene's, and both validations report its
-//! headline beside their own.
+//! headline beside their own. With `contact_line_distances`, every realization is solved
+//! again at `zeta` (the same load and solution) and each walker's distance to the nearest
+//! point out of contact is binned by its pressure ([`crate::engine::distance`]): how close
+//! to a contact line the walkers of low and of high pressure sit (paper sec. 3.1).
 //!
 //! Both validations share the scene and its jobs (one realization each), here in `mod.rs`.
 //! The files:
@@ -57,6 +60,7 @@ use serde::{Deserialize, Serialize};
 
 use super::scene::{step_scene, Step};
 use super::{JobContext, Jobs, Work};
+use crate::engine::distance::squared_distance_to;
 use crate::engine::solver::SolverKind;
 use crate::error::{check_positive, Error, Result};
 use crate::persson::Broadening;
@@ -79,6 +83,10 @@ step_scene! {
         /// bins and solver settings at another roughness, load and step.
         #[serde(default, skip_serializing_if = "Option::is_none")]
         pub other_scene: Option<OtherStep>,
+        /// Every realization solved again at `zeta` for how far each walker lies from the
+        /// nearest point out of contact (false: not run).
+        #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+        pub contact_line_distances: bool,
     }
 }
 
@@ -98,37 +106,83 @@ pub struct OtherStep {
     pub seeds: Vec<u64>,
 }
 
-/// A job: one realization of the scene (stored bare, as before the other scene existed),
-/// or one of the other scene.
+/// A job: one realization of the scene (stored bare, as before the other jobs existed),
+/// one of the other scene, or the distances of one realization's walkers.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub enum TransitionJob {
     /// A realization of the other scene.
     Other(u64),
+    /// The distances of the walkers of a realization of the scene.
+    Distances(u64),
     /// A realization of the scene.
     #[serde(untagged)]
     Realization(u64),
 }
 
-/// The scene's own realizations among the results, by seed.
-pub(super) fn own(results: &[(TransitionJob, TransitionResult)]) -> Vec<(u64, TransitionResult)> {
+/// What a job measured.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum TransitionOutput {
+    /// The walkers' distances to the nearest point out of contact.
+    Distances(DistanceResult),
+    /// The transitions of a realization (of the scene or of the other scene).
+    #[serde(untagged)]
+    Transitions(TransitionResult),
+}
+
+/// The walkers of one realization at `zeta` by pressure bin: how many, and the sum of
+/// their distances to the nearest point out of contact.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DistanceResult {
+    /// The load.
+    pub p0: f64,
+    /// Contact area at `zeta`.
+    pub a_r: f64,
+    /// `(walkers, sum of distances in grid spacings)` of each bin of pressure (in units of
+    /// `p0 / a_r`, the scene's bins; the last collects the rest).
+    pub bins: Vec<(f64, f64)>,
+    /// Largest solver residual.
+    pub max_residual: f64,
+}
+
+/// The transitions of the jobs `pick` selects among the results, by seed.
+fn transitions(
+    results: &[(TransitionJob, TransitionOutput)],
+    pick: fn(&TransitionJob) -> Option<u64>,
+) -> Vec<(u64, TransitionResult)> {
     results
         .iter()
-        .filter_map(|(j, r)| match j {
-            TransitionJob::Realization(seed) => Some((*seed, r.clone())),
-            TransitionJob::Other(_) => None,
+        .filter_map(|(j, r)| match (pick(j), r) {
+            (Some(seed), TransitionOutput::Transitions(r)) => Some((seed, r.clone())),
+            _ => None,
         })
         .collect()
 }
 
+/// The scene's own realizations among the results, by seed.
+pub(super) fn own(results: &[(TransitionJob, TransitionOutput)]) -> Vec<(u64, TransitionResult)> {
+    transitions(results, |j| match j {
+        TransitionJob::Realization(seed) => Some(*seed),
+        _ => None,
+    })
+}
+
 /// The other scene's realizations among the results, by seed.
 pub(super) fn others(
-    results: &[(TransitionJob, TransitionResult)],
+    results: &[(TransitionJob, TransitionOutput)],
 ) -> Vec<(u64, TransitionResult)> {
+    transitions(results, |j| match j {
+        TransitionJob::Other(seed) => Some(*seed),
+        _ => None,
+    })
+}
+
+/// The walkers' distances among the results.
+pub(super) fn distances(results: &[(TransitionJob, TransitionOutput)]) -> Vec<&DistanceResult> {
     results
         .iter()
-        .filter_map(|(j, r)| match j {
-            TransitionJob::Other(seed) => Some((*seed, r.clone())),
-            TransitionJob::Realization(_) => None,
+        .filter_map(|(_, r)| match r {
+            TransitionOutput::Distances(d) => Some(d),
+            TransitionOutput::Transitions(_) => None,
         })
         .collect()
 }
@@ -188,7 +242,7 @@ pub struct TransitionResult {
 impl Jobs for TransitionScene {
     const FAMILY: &'static str = "transition";
     type Job = TransitionJob;
-    type JobResult = TransitionResult;
+    type JobResult = TransitionOutput;
 
     fn validate(&self) -> Result<()> {
         self.validate_one_step()?;
@@ -218,23 +272,31 @@ impl Jobs for TransitionScene {
         Ok(())
     }
 
-    /// The realizations, then those of the other scene.
+    /// The realizations, then those of the other scene, then the walkers' distances.
     fn jobs(&self) -> Vec<TransitionJob> {
         let own = self.seeds.iter().map(|&s| TransitionJob::Realization(s));
         let other = self.other_scene.iter().flat_map(|o| &o.seeds);
-        own.chain(other.map(|&s| TransitionJob::Other(s))).collect()
+        let distances = self
+            .seeds
+            .iter()
+            .filter(|_| self.contact_line_distances)
+            .map(|&s| TransitionJob::Distances(s));
+        own.chain(other.map(|&s| TransitionJob::Other(s)))
+            .chain(distances)
+            .collect()
     }
 
-    /// The other scene is read on the headline solver's transitions.
+    /// The other scene and the distances are read on the headline solver's solutions.
     fn headline_only(job: &TransitionJob) -> bool {
-        matches!(job, TransitionJob::Other(_))
+        !matches!(job, TransitionJob::Realization(_))
     }
 
-    /// The realizations depend on the scene without the other scene: their keys are
-    /// those of the scenes that had none.
+    /// The realizations depend on the scene without the other scene and the distances:
+    /// their keys are those of the scenes that had neither.
     fn key_scene(&self) -> serde_json::Value {
         let mut scene = self.clone();
         scene.other_scene = None;
+        scene.contact_line_distances = false;
         serde_json::to_value(scene).expect("scenes serialise")
     }
 
@@ -247,7 +309,7 @@ impl Jobs for TransitionScene {
                 self.other_step_scene()?.key_scene(),
                 TransitionJob::Realization(*seed),
             )),
-            TransitionJob::Realization(_) => None,
+            TransitionJob::Realization(_) | TransitionJob::Distances(_) => None,
         }
     }
 
@@ -256,20 +318,28 @@ impl Jobs for TransitionScene {
         Work::search_then(self.n, 1, 0)
     }
 
-    fn run_job(&self, job: &TransitionJob, ctx: &JobContext) -> Result<TransitionResult> {
+    fn run_job(&self, job: &TransitionJob, ctx: &JobContext) -> Result<TransitionOutput> {
         match job {
-            TransitionJob::Realization(seed) => run_transition(self, *seed, ctx.solver),
+            TransitionJob::Realization(seed) => {
+                run_transition(self, *seed, ctx.solver).map(TransitionOutput::Transitions)
+            }
             TransitionJob::Other(seed) => {
                 let other = self.other_step_scene().ok_or_else(|| {
                     Error::invalid("other_scene", "none", "a scene for its realizations")
                 })?;
-                run_transition(&other, *seed, ctx.solver)
+                run_transition(&other, *seed, ctx.solver).map(TransitionOutput::Transitions)
+            }
+            TransitionJob::Distances(seed) => {
+                run_distances(self, *seed, ctx.solver).map(TransitionOutput::Distances)
             }
         }
     }
 
-    fn residual(result: &TransitionResult) -> f64 {
-        result.max_residual
+    fn residual(result: &TransitionOutput) -> f64 {
+        match result {
+            TransitionOutput::Transitions(r) => r.max_residual,
+            TransitionOutput::Distances(d) => d.max_residual,
+        }
     }
 }
 
@@ -319,6 +389,34 @@ fn run_transition(
         zero: walkers.zero,
         histogram: walkers.histogram,
         max_residual: old.stats.residual.value().max(new.stats.residual.value()),
+    })
+}
+
+/// Solves one realization at `zeta` (the load and solution of its transition job) and
+/// bins its walkers' distances to the nearest point out of contact by pressure.
+fn run_distances(scene: &TransitionScene, seed: u64, solver: SolverKind) -> Result<DistanceResult> {
+    let r = scene.base().realization(seed)?;
+    let (p0, s) = scene
+        .base()
+        .solve_at_load(&r, solver, scene.zeta, scene.contact_area)?;
+    let a_r = s.contact_area();
+    let grid = r.surface.grid();
+    let out: Vec<bool> = s.pressure.iter().map(|&p| p <= 0.0).collect();
+    let d2 = squared_distance_to(&out, grid.rows(), grid.cols());
+    let axis = scene.pressure_bins(p0 / a_r);
+    let mut bins = vec![(0.0, 0.0); scene.bins];
+    for (&p, &d2) in s.pressure.iter().zip(&d2) {
+        if p > 0.0 {
+            let b = &mut bins[axis.index(p)];
+            b.0 += 1.0;
+            b.1 += d2.sqrt();
+        }
+    }
+    Ok(DistanceResult {
+        p0,
+        a_r,
+        bins,
+        max_residual: s.stats.residual.value(),
     })
 }
 
@@ -400,6 +498,7 @@ fn synthetic_scene(bins: usize, bin_width: f64) -> TransitionScene {
         high_pressure: 1.0,
         min_walkers: 2,
         other_scene: None,
+        contact_line_distances: false,
     }
 }
 
@@ -418,15 +517,20 @@ mod tests {
         assert!(other.other_scene.is_none());
         let mut without = full.clone();
         without.other_scene = None;
+        without.contact_line_distances = false;
         assert_eq!(full.key_scene(), without.key_scene());
+        assert!(full.contact_line_distances);
         assert_eq!(
             full.jobs().len(),
-            full.seeds.len() + other.seeds.len(),
-            "the realizations, then the other scene's"
+            2 * full.seeds.len() + other.seeds.len(),
+            "the realizations, the other scene's, then the distances"
         );
         for job in full.jobs() {
             match (job, full.shared_job(&job)) {
                 (TransitionJob::Realization(_), None) => {}
+                (TransitionJob::Distances(_), None) => {
+                    assert!(TransitionScene::headline_only(&job));
+                }
                 (TransitionJob::Other(seed), Some((scene, keyed))) => {
                     assert_eq!(scene, other.key_scene());
                     assert_eq!(keyed, TransitionJob::Realization(seed));
@@ -473,6 +577,10 @@ mod tests {
             (TransitionJob::Other(2), synthetic(&scene, 1.0, 1.0, &down)),
         ];
         let (_, _, criteria) = crate::experiments::shipped_scenes::<TransitionScene>("b_drift");
+        let results: Vec<(TransitionJob, TransitionOutput)> = results
+            .into_iter()
+            .map(|(j, r)| (j, TransitionOutput::Transitions(r)))
+            .collect();
         let c = Drift::conclude(&criteria, &scene, &results).unwrap();
         assert!(c.measured.unwrap().value.abs() < 1e-12);
         let other = c.detail("other_scene_mu_c").unwrap().value;

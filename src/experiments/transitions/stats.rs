@@ -10,7 +10,7 @@ use std::f64::consts::SQRT_2;
 
 use statrs::function::erf::erfc;
 
-use super::{BinSums, TransitionResult, TransitionScene};
+use super::{BinSums, DistanceResult, TransitionResult, TransitionScene};
 use crate::persson::moments;
 use crate::stats::{Bins, Estimate};
 
@@ -420,9 +420,49 @@ pub fn small_pressure_exponent(bins: &[BinSums], bin_width: f64) -> Option<f64> 
     Some(sxy / sxx)
 }
 
+/// One realization's mean distance to the nearest point out of contact (grid spacings)
+/// of the walkers in the bins wholly below `low_pressure` and of those in the bins from
+/// `high_pressure` up (`None` where either holds no walker).
+pub fn contact_line_distances(scene: &TransitionScene, d: &DistanceResult) -> Option<(f64, f64)> {
+    let w = scene.bin_width;
+    let low_end = ((scene.low_pressure / w) + 1e-9).floor() as usize;
+    let high_from = ((scene.high_pressure / w) - 1e-9).ceil() as usize;
+    let mean = |bins: &[(f64, f64)]| {
+        let (n, sum) = bins.iter().fold((0.0, 0.0), |(n, s), b| (n + b.0, s + b.1));
+        (n > 0.0).then(|| sum / n)
+    };
+    let low = mean(&d.bins[..low_end.min(d.bins.len())])?;
+    let high = mean(&d.bins[high_from.min(d.bins.len())..])?;
+    Some((low, high))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn contact_line_distances_average_the_walkers_of_whole_bins() {
+        // Bins of 0.25 p0/a_r: below 0.5 are bins 0 and 1, from 1.0 up bins 4 to 7.
+        let scene = super::super::synthetic_scene(8, 0.25);
+        let mut bins = vec![(0.0, 0.0); 8];
+        bins[0] = (2.0, 2.0);
+        bins[1] = (2.0, 4.0);
+        bins[2] = (5.0, 50.0); // between the regions: not read
+        bins[5] = (1.0, 9.0);
+        bins[7] = (3.0, 15.0);
+        let d = DistanceResult {
+            p0: 0.1,
+            a_r: 0.3,
+            bins,
+            max_residual: 0.0,
+        };
+        assert_eq!(contact_line_distances(&scene, &d), Some((1.5, 6.0)));
+        let empty = DistanceResult {
+            bins: vec![(0.0, 0.0); 8],
+            ..d
+        };
+        assert_eq!(contact_line_distances(&scene, &empty), None);
+    }
 
     #[test]
     fn the_small_pressure_exponent_of_a_linear_and_a_flat_histogram() {
