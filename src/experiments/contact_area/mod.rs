@@ -44,6 +44,7 @@
 //!   several grids.
 
 mod figures;
+pub mod gap;
 mod ladder;
 pub mod scaling;
 pub mod stats;
@@ -54,6 +55,7 @@ use std::collections::BTreeMap;
 use serde::{Deserialize, Serialize};
 
 use self::figures::{area_figures, area_table};
+use self::gap::{GapJob, GapPlan, GapResult};
 pub use self::ladder::{AreaJob, AreaResult, FinerGrid};
 use self::scaling::{ScalingJob, ScalingPlan, ScalingResult};
 use self::stats::{AreaStats, NEAR_FULL_CONTACT};
@@ -100,6 +102,9 @@ pub struct AreaScene {
     /// The solvers' iterations against the system size (none: not run).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub scaling: Option<ScalingPlan>,
+    /// The mean gap at low loads (none: not run).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gap: Option<GapPlan>,
 }
 
 /// A job: one realization's load ladder (stored bare, as before the scaling study
@@ -108,6 +113,8 @@ pub struct AreaScene {
 pub enum ContactAreaJob {
     /// A cold solve of the scaling study.
     Scaling(ScalingJob),
+    /// A ladder of low loads recording the mean gap.
+    Gap(GapJob),
     /// A load ladder.
     #[serde(untagged)]
     Ladder(AreaJob),
@@ -118,6 +125,8 @@ pub enum ContactAreaJob {
 pub enum ContactAreaOutput {
     /// A cold solve of the scaling study.
     Scaling(ScalingResult),
+    /// The mean gaps of a ladder of low loads.
+    Gap(GapResult),
     /// A load ladder.
     #[serde(untagged)]
     Ladder(AreaResult),
@@ -182,6 +191,9 @@ impl Jobs for AreaScene {
         if let Some(plan) = &self.scaling {
             plan.validate()?;
         }
+        if let Some(plan) = &self.gap {
+            plan.validate(self)?;
+        }
         SolveOptions::with_tol(self.tol).validate()
     }
 
@@ -195,14 +207,23 @@ impl Jobs for AreaScene {
         if let Some(plan) = &self.scaling {
             jobs.extend(plan.jobs().into_iter().map(ContactAreaJob::Scaling));
         }
+        if let Some(plan) = &self.gap {
+            jobs.extend(plan.jobs(&self.seeds).into_iter().map(ContactAreaJob::Gap));
+        }
         jobs
     }
 
-    /// The ladders depend on the scene without the scaling study: their keys are those of
-    /// the scenes that had none.
+    /// The mean gaps are read on the headline solver's solutions.
+    fn headline_only(job: &ContactAreaJob) -> bool {
+        matches!(job, ContactAreaJob::Gap(_))
+    }
+
+    /// The ladders depend on the scene without the scaling and gap studies: their keys
+    /// are those of the scenes that had neither.
     fn key_scene(&self) -> serde_json::Value {
         let mut scene = self.clone();
         scene.scaling = None;
+        scene.gap = None;
         serde_json::to_value(scene).expect("scenes serialise")
     }
 
@@ -210,6 +231,7 @@ impl Jobs for AreaScene {
         match job {
             ContactAreaJob::Ladder(j) => self.ladder_work(j),
             ContactAreaJob::Scaling(j) => j.work(),
+            ContactAreaJob::Gap(j) => j.work(self),
         }
     }
 
@@ -217,6 +239,7 @@ impl Jobs for AreaScene {
         match job {
             ContactAreaJob::Ladder(j) => self.run_ladder(j, ctx).map(ContactAreaOutput::Ladder),
             ContactAreaJob::Scaling(j) => j.run(ctx).map(ContactAreaOutput::Scaling),
+            ContactAreaJob::Gap(j) => j.run(self, ctx).map(ContactAreaOutput::Gap),
         }
     }
 
@@ -224,6 +247,7 @@ impl Jobs for AreaScene {
         match result {
             ContactAreaOutput::Ladder(r) => r.max_residual,
             ContactAreaOutput::Scaling(r) => r.max_residual,
+            ContactAreaOutput::Gap(r) => r.max_residual,
         }
     }
 }
@@ -283,8 +307,19 @@ impl Experiment for ContactArea {
                 _ => None,
             })
             .collect();
+        let gaps: Vec<(&GapJob, &GapResult)> = run
+            .results
+            .iter()
+            .filter_map(|(j, r)| match (j, r) {
+                (ContactAreaJob::Gap(j), ContactAreaOutput::Gap(r)) => Some((j, r)),
+                _ => None,
+            })
+            .collect();
         let mut stats = AreaStats::of(run.scene, &ladders);
         stats.iteration_exponent = scaling::exponent(&solves);
+        if let Some(plan) = &run.scene.gap {
+            stats.gap_slope_changes = gap::slope_changes(plan, &gaps);
+        }
         Ok(stats)
     }
 
@@ -301,6 +336,9 @@ impl Experiment for ContactArea {
         keys.details(LAW_DETAILS);
         if scene.scaling.is_some() {
             keys.details([scaling::EXPONENT]);
+        }
+        if let Some(plan) = &scene.gap {
+            keys.details(plan.hursts.iter().map(|&h| gap::key(h)));
         }
         study::keys(scene, &mut keys);
         keys
@@ -357,6 +395,13 @@ impl Experiment for ContactArea {
         details.extend(shape_details(scene, s));
         if let (Some(plan), Some(k)) = (&scene.scaling, s.iteration_exponent) {
             details.push(scaling::detail(plan, k));
+        }
+        if let Some(plan) = &scene.gap {
+            details.extend(
+                s.gap_slope_changes
+                    .iter()
+                    .map(|&(h, change)| gap::detail(plan, h, change)),
+            );
         }
         details
     }

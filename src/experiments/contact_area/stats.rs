@@ -533,6 +533,9 @@ pub struct AreaStats {
     /// The exponent of the solver's iterations against the system size, where the scene
     /// plans the scaling study ([`super::scaling`]).
     pub iteration_exponent: Option<Estimate>,
+    /// The relative change of `d(mean gap) / d ln p~0` between the halves of the low
+    /// loads, at each Hurst exponent of the scene's gap study ([`super::gap`]).
+    pub gap_slope_changes: Vec<(f64, Estimate)>,
 }
 
 /// Loads at and above this `a_r` are near full contact, where the law's complementary
@@ -652,6 +655,7 @@ impl AreaStats {
             shape,
             fall,
             iteration_exponent: None,
+            gap_slope_changes: Vec::new(),
         }
     }
 }
