@@ -152,28 +152,34 @@ impl AreaScene {
     }
 
     pub(super) fn run_ladder(&self, job: &AreaJob, ctx: &JobContext) -> Result<AreaResult> {
-        let surface = Surface::generate(&self.params(job))?;
-        let model = Model::new(surface.grid().clone(), 1.0)?;
-        let g_bar = surface.rms_gradient(f64::INFINITY);
-        let zeta = surface.zeta_max();
-        let mut sweep = Sweep::new(
-            &surface,
-            &model,
-            ctx.solver,
-            SolveOptions::with_tol(self.tol),
-        );
-        let mut contact_area = Vec::new();
-        let mut max_residual = 0.0f64;
-        for &p in self.pressures(job) {
-            let s = sweep.solve_at(zeta, p * g_bar * model.halfspace.e_star())?;
-            contact_area.push(s.contact_area());
-            max_residual = max_residual.max(s.stats.residual.value());
-        }
-        Ok(AreaResult {
-            contact_area,
-            max_residual,
-        })
+        solve_ladder(&self.params(job), self.pressures(job), self.tol, ctx)
     }
+}
+
+/// The realization `params` at full resolution at each reduced pressure `p~0` in turn,
+/// each solve warm-started from the one before (the first from cold): its contact areas.
+pub(super) fn solve_ladder(
+    params: &SurfaceModel,
+    reduced_pressures: &[f64],
+    tol: f64,
+    ctx: &JobContext,
+) -> Result<AreaResult> {
+    let surface = Surface::generate(params)?;
+    let model = Model::new(surface.grid().clone(), 1.0)?;
+    let g_bar = surface.rms_gradient(f64::INFINITY);
+    let zeta = surface.zeta_max();
+    let mut sweep = Sweep::new(&surface, &model, ctx.solver, SolveOptions::with_tol(tol));
+    let mut contact_area = Vec::new();
+    let mut max_residual = 0.0f64;
+    for &p in reduced_pressures {
+        let s = sweep.solve_at(zeta, p * g_bar * model.halfspace.e_star())?;
+        contact_area.push(s.contact_area());
+        max_residual = max_residual.max(s.stats.residual.value());
+    }
+    Ok(AreaResult {
+        contact_area,
+        max_residual,
+    })
 }
 
 #[cfg(test)]

@@ -49,6 +49,7 @@ mod ladder;
 pub mod scaling;
 pub mod stats;
 mod study;
+pub mod system_size;
 
 use std::collections::BTreeMap;
 
@@ -59,6 +60,7 @@ use self::gap::{GapJob, GapPlan, GapResult};
 pub use self::ladder::{AreaJob, AreaResult, FinerGrid};
 use self::scaling::{ScalingJob, ScalingPlan, ScalingResult};
 use self::stats::{AreaStats, NEAR_FULL_CONTACT};
+use self::system_size::{SizeJob, SizePlan};
 use super::scene::{check_increasing, increasing, list_error};
 use super::study::Study;
 use super::{Check, Detail, Experiment, JobContext, Jobs, Keys, Table, Work};
@@ -105,6 +107,9 @@ pub struct AreaScene {
     /// The mean gap at low loads (none: not run).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub gap: Option<GapPlan>,
+    /// The ladders on a larger system at the same resolution (none: not run).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub system_size: Option<SizePlan>,
 }
 
 /// A job: one realization's load ladder (stored bare, as before the scaling study
@@ -115,6 +120,8 @@ pub enum ContactAreaJob {
     Scaling(ScalingJob),
     /// A ladder of low loads recording the mean gap.
     Gap(GapJob),
+    /// A load ladder on the larger system.
+    Size(SizeJob),
     /// A load ladder.
     #[serde(untagged)]
     Ladder(AreaJob),
@@ -127,6 +134,8 @@ pub enum ContactAreaOutput {
     Scaling(ScalingResult),
     /// The mean gaps of a ladder of low loads.
     Gap(GapResult),
+    /// A load ladder on the larger system.
+    Size(AreaResult),
     /// A load ladder.
     #[serde(untagged)]
     Ladder(AreaResult),
@@ -194,6 +203,9 @@ impl Jobs for AreaScene {
         if let Some(plan) = &self.gap {
             plan.validate(self)?;
         }
+        if let Some(plan) = &self.system_size {
+            plan.validate(self)?;
+        }
         SolveOptions::with_tol(self.tol).validate()
     }
 
@@ -210,20 +222,24 @@ impl Jobs for AreaScene {
         if let Some(plan) = &self.gap {
             jobs.extend(plan.jobs(&self.seeds).into_iter().map(ContactAreaJob::Gap));
         }
+        if let Some(plan) = &self.system_size {
+            jobs.extend(plan.jobs(self).into_iter().map(ContactAreaJob::Size));
+        }
         jobs
     }
 
-    /// The mean gaps are read on the headline solver's solutions.
+    /// The mean gaps and the larger system are read on the headline solver's solutions.
     fn headline_only(job: &ContactAreaJob) -> bool {
-        matches!(job, ContactAreaJob::Gap(_))
+        matches!(job, ContactAreaJob::Gap(_) | ContactAreaJob::Size(_))
     }
 
-    /// The ladders depend on the scene without the scaling and gap studies: their keys
-    /// are those of the scenes that had neither.
+    /// The ladders depend on the scene without the scaling, gap and system-size studies:
+    /// their keys are those of the scenes that had none of them.
     fn key_scene(&self) -> serde_json::Value {
         let mut scene = self.clone();
         scene.scaling = None;
         scene.gap = None;
+        scene.system_size = None;
         serde_json::to_value(scene).expect("scenes serialise")
     }
 
@@ -232,6 +248,7 @@ impl Jobs for AreaScene {
             ContactAreaJob::Ladder(j) => self.ladder_work(j),
             ContactAreaJob::Scaling(j) => j.work(),
             ContactAreaJob::Gap(j) => j.work(self),
+            ContactAreaJob::Size(j) => j.work(),
         }
     }
 
@@ -240,6 +257,7 @@ impl Jobs for AreaScene {
             ContactAreaJob::Ladder(j) => self.run_ladder(j, ctx).map(ContactAreaOutput::Ladder),
             ContactAreaJob::Scaling(j) => j.run(ctx).map(ContactAreaOutput::Scaling),
             ContactAreaJob::Gap(j) => j.run(self, ctx).map(ContactAreaOutput::Gap),
+            ContactAreaJob::Size(j) => j.run(self.tol, ctx).map(ContactAreaOutput::Size),
         }
     }
 
@@ -248,6 +266,7 @@ impl Jobs for AreaScene {
             ContactAreaOutput::Ladder(r) => r.max_residual,
             ContactAreaOutput::Scaling(r) => r.max_residual,
             ContactAreaOutput::Gap(r) => r.max_residual,
+            ContactAreaOutput::Size(r) => r.max_residual,
         }
     }
 }
@@ -320,6 +339,29 @@ impl Experiment for ContactArea {
         if let Some(plan) = &run.scene.gap {
             stats.gap_slope_changes = gap::slope_changes(plan, &gaps);
         }
+        if let Some(plan) = &run.scene.system_size {
+            stats.size_changes = plan
+                .hursts
+                .iter()
+                .filter_map(|&h| {
+                    let larger: Vec<&AreaResult> = run
+                        .results
+                        .iter()
+                        .filter_map(|(j, r)| match (j, r) {
+                            (ContactAreaJob::Size(j), ContactAreaOutput::Size(r))
+                                if j.hurst == h =>
+                            {
+                                Some(r)
+                            }
+                            _ => None,
+                        })
+                        .collect();
+                    let own = system_size::scene_ladders(&ladders, h);
+                    system_size::largest_change(plan, &run.scene.reduced_pressures, &larger, &own)
+                        .map(|c| (h, c))
+                })
+                .collect();
+        }
         Ok(stats)
     }
 
@@ -339,6 +381,9 @@ impl Experiment for ContactArea {
         }
         if let Some(plan) = &scene.gap {
             keys.details(plan.hursts.iter().map(|&h| gap::key(h)));
+        }
+        if let Some(plan) = &scene.system_size {
+            keys.details(plan.hursts.iter().map(|&h| system_size::key(h)));
         }
         study::keys(scene, &mut keys);
         keys
@@ -401,6 +446,13 @@ impl Experiment for ContactArea {
                 s.gap_slope_changes
                     .iter()
                     .map(|&(h, change)| gap::detail(plan, h, change)),
+            );
+        }
+        if let Some(plan) = &scene.system_size {
+            details.extend(
+                s.size_changes
+                    .iter()
+                    .map(|&(h, change)| system_size::detail(plan, scene, h, change)),
             );
         }
         details

@@ -536,6 +536,9 @@ pub struct AreaStats {
     /// The relative change of `d(mean gap) / d ln p~0` between the halves of the low
     /// loads, at each Hurst exponent of the scene's gap study ([`super::gap`]).
     pub gap_slope_changes: Vec<(f64, Estimate)>,
+    /// The change of `kappa(p~0)` on the larger system, at each Hurst exponent of the
+    /// scene's system-size study ([`super::system_size`]).
+    pub size_changes: Vec<(f64, Estimate)>,
 }
 
 /// Loads at and above this `a_r` are near full contact, where the law's complementary
@@ -656,6 +659,7 @@ impl AreaStats {
             fall,
             iteration_exponent: None,
             gap_slope_changes: Vec::new(),
+            size_changes: Vec::new(),
         }
     }
 }
