@@ -182,7 +182,7 @@ pub fn detail(plan: &SizePlan, scene: &AreaScene, hurst: f64, change: Estimate) 
 }
 
 /// The scene's own ladders at Hurst exponent `hurst` on its first grid.
-pub fn scene_ladders<'a>(ladders: &'a [(AreaJob, AreaResult)], hurst: f64) -> Vec<&'a AreaResult> {
+pub fn scene_ladders(ladders: &[(AreaJob, AreaResult)], hurst: f64) -> Vec<&AreaResult> {
     ladders
         .iter()
         .filter(|(j, _)| j.hurst == hurst && j.refine == 1)
