@@ -64,9 +64,10 @@ const ONE_SEED_SCENES: &[(&str, &str)] = &[
          refinements = [1, 2]\nreduced_pressures = [0.01, 0.03, 0.1, 0.3, 0.8]\n\
          low_load = 0.03\nlaw_range = [0.01, 0.9]\nlaw_tolerance = 0.10\ntol = 1e-8\n\n\
          [reduced.scaling]\nns = [16, 32]\nhurst = 0.8\nlambda_s = 4\nseeds = [1]\n\
-         reduced_pressure = 0.1\ntol = 1e-8\n",
+         reduced_pressure = 0.1\ntol = 1e-8\n\n\
+         [reduced.system_size]\nfactor = 2\nhursts = [0.8]\nfrom_load = 0.03\n",
     ),
-    ("a_diffusion", TRANSITION),
+    ("a_diffusion", TRANSITION_WITH_DISTANCES),
     ("b_drift", TRANSITION),
     (
         "c_flux",
@@ -108,10 +109,21 @@ const ONE_SEED_SCENES: &[(&str, &str)] = &[
     ),
 ];
 
+/// The transition scene of (a) and (b), one seed, as a literal (for `concat!`).
+macro_rules! transition {
+    () => {
+        "n = 64\nhurst = 0.8\nlambda_l = 32\nlambda_s = 4\nseeds = [1]\n\
+         contact_area = 0.3\nzeta = 4\ndzeta = 0.2\nbins = 16\nbin_width = 0.25\n\
+         low_pressure = 0.5\nhigh_pressure = 1.0\nmin_walkers = 5\ntol = 1e-8\n"
+    };
+}
+
 /// The transition scenes of (a) and (b), one seed.
-const TRANSITION: &str = "n = 64\nhurst = 0.8\nlambda_l = 32\nlambda_s = 4\nseeds = [1]\n\
-    contact_area = 0.3\nzeta = 4\ndzeta = 0.2\nbins = 16\nbin_width = 0.25\n\
-    low_pressure = 0.5\nhigh_pressure = 1.0\nmin_walkers = 5\ntol = 1e-8\n";
+const TRANSITION: &str = transition!();
+
+/// [`TRANSITION`] with the walkers' distances to the contact lines, as a_diffusion's
+/// reduced scene has them.
+const TRANSITION_WITH_DISTANCES: &str = concat!(transition!(), "contact_line_distances = true\n");
 
 /// A folder of the shipped definitions with their `[reduced]` tables replaced by
 /// [`ONE_SEED_SCENES`].
