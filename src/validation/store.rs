@@ -4,7 +4,9 @@
 //!
 //! The key is a short hash of everything that determines a job's result (scale, scene and
 //! job), so validations whose scenes are equal share their jobs (assumptions (a) and (b)
-//! run the same transitions), and a changed scene never reuses an old result.
+//! run the same transitions), and a changed scene never reuses an old result. A job that
+//! is another scene's (a reference surface's sweep, another scene of the paper) is keyed
+//! as that scene's own job ([`crate::experiments::Jobs::shared_job`]), so it is shared too.
 
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
