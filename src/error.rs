@@ -158,6 +158,23 @@ impl Error {
         }
     }
 
+    /// The same error with an [`Error::InvalidInput`]'s field placed inside the table
+    /// `table` (`hurst` becomes `reference.hurst`); other errors are returned unchanged.
+    pub fn within(self, table: &str) -> Self {
+        match self {
+            Error::InvalidInput {
+                field,
+                value,
+                allowed,
+            } => Error::InvalidInput {
+                field: format!("{table}.{field}"),
+                value,
+                allowed,
+            },
+            other => other,
+        }
+    }
+
     /// An [`Error::Io`] for `path`.
     pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
         Error::Io {

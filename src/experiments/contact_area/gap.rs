@@ -61,22 +61,7 @@ pub struct GapResult {
 impl GapPlan {
     /// Checks the ranges against the scene; errors name the field.
     pub fn validate(&self, scene: &AreaScene) -> Result<()> {
-        if self.hursts.is_empty() {
-            return Err(Error::invalid(
-                "gap.hursts",
-                "[]",
-                "at least one Hurst exponent",
-            ));
-        }
-        for &h in &self.hursts {
-            if !scene.hursts.contains(&h) {
-                return Err(Error::invalid(
-                    "gap.hursts",
-                    h,
-                    format!("one of the scene's hursts {:?}", scene.hursts),
-                ));
-            }
-        }
+        scene.check_some_hursts("gap.hursts", &self.hursts)?;
         check_increasing("gap.reduced_pressures", &self.reduced_pressures)?;
         if self.reduced_pressures.len() < 4 {
             return Err(Error::invalid(

@@ -66,6 +66,22 @@ impl AreaScene {
         }
     }
 
+    /// Checks a study's Hurst exponents (the field `field`): at least one, each one of
+    /// the scene's.
+    pub(super) fn check_some_hursts(&self, field: &str, hursts: &[f64]) -> Result<()> {
+        if hursts.is_empty() {
+            return Err(Error::invalid(field, "[]", "at least one Hurst exponent"));
+        }
+        match hursts.iter().find(|h| !self.hursts.contains(h)) {
+            Some(&h) => Err(Error::invalid(
+                field,
+                h,
+                format!("one of the scene's hursts {:?}", self.hursts),
+            )),
+            None => Ok(()),
+        }
+    }
+
     pub(super) fn validate_finer_grid(&self, f: &FinerGrid) -> Result<()> {
         let last = *self.refinements.last().expect("validated non-empty");
         if f.refine <= last {
@@ -75,21 +91,8 @@ impl AreaScene {
                 format!("a refinement above the last of refinements ({last})"),
             ));
         }
-        if f.hursts.is_empty() {
-            return Err(Error::invalid(
-                "finer_grid.hursts",
-                "[]",
-                "at least one Hurst exponent",
-            ));
-        }
+        self.check_some_hursts("finer_grid.hursts", &f.hursts)?;
         for &h in &f.hursts {
-            if !self.hursts.contains(&h) {
-                return Err(Error::invalid(
-                    "finer_grid.hursts",
-                    h,
-                    format!("one of hursts {:?}", self.hursts),
-                ));
-            }
             let p = self.params(&AreaJob {
                 hurst: h,
                 seed: 0,

@@ -54,22 +54,7 @@ impl SizePlan {
         if self.factor < 2 {
             return Err(Error::invalid("system_size.factor", self.factor, ">= 2"));
         }
-        if self.hursts.is_empty() {
-            return Err(Error::invalid(
-                "system_size.hursts",
-                "[]",
-                "at least one Hurst exponent",
-            ));
-        }
-        for &h in &self.hursts {
-            if !scene.hursts.contains(&h) {
-                return Err(Error::invalid(
-                    "system_size.hursts",
-                    h,
-                    format!("one of the scene's hursts {:?}", scene.hursts),
-                ));
-            }
-        }
+        scene.check_some_hursts("system_size.hursts", &self.hursts)?;
         check_positive("system_size.from_load", self.from_load)?;
         if !scene.reduced_pressures.iter().any(|&p| p >= self.from_load) {
             return Err(Error::invalid(

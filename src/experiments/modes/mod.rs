@@ -201,37 +201,43 @@ pub enum ModeOutput {
     Sweep(ModeResult),
 }
 
-/// The sweeps with the scene's bands among the results.
-pub(super) fn sweeps(results: &[(ModeJob, ModeOutput)]) -> Vec<(SeedLoad, ModeResult)> {
+/// The results that `pick` keeps, as `(realization and load, sweep)`.
+fn picked(
+    results: &[(ModeJob, ModeOutput)],
+    pick: fn(&ModeJob, &ModeOutput) -> Option<SeedLoad>,
+) -> Vec<(SeedLoad, ModeResult)> {
     results
         .iter()
-        .filter_map(|(j, r)| match (j, r) {
-            (ModeJob::Sweep(j), ModeOutput::Sweep(r)) => Some((j.clone(), r.clone())),
-            _ => None,
+        .filter_map(|(j, r)| {
+            let at = pick(j, r)?;
+            let (ModeOutput::Sweep(r) | ModeOutput::Narrow(r)) = r;
+            Some((at, r.clone()))
         })
         .collect()
+}
+
+/// The sweeps with the scene's bands among the results.
+pub(super) fn sweeps(results: &[(ModeJob, ModeOutput)]) -> Vec<(SeedLoad, ModeResult)> {
+    picked(results, |j, r| match (j, r) {
+        (ModeJob::Sweep(j), ModeOutput::Sweep(_)) => Some(j.clone()),
+        _ => None,
+    })
 }
 
 /// The reference surface's sweeps among the results.
 pub(super) fn reference_sweeps(results: &[(ModeJob, ModeOutput)]) -> Vec<(SeedLoad, ModeResult)> {
-    results
-        .iter()
-        .filter_map(|(j, r)| match (j, r) {
-            (ModeJob::Reference(j), ModeOutput::Sweep(r)) => Some((j.clone(), r.clone())),
-            _ => None,
-        })
-        .collect()
+    picked(results, |j, r| match (j, r) {
+        (ModeJob::Reference(j), ModeOutput::Sweep(_)) => Some(j.clone()),
+        _ => None,
+    })
 }
 
 /// The sweeps with the narrow bands among the results.
 pub(super) fn narrow_sweeps(results: &[(ModeJob, ModeOutput)]) -> Vec<(SeedLoad, ModeResult)> {
-    results
-        .iter()
-        .filter_map(|(j, r)| match (j, r) {
-            (ModeJob::Narrow(j), ModeOutput::Narrow(r)) => Some((j.at(), r.clone())),
-            _ => None,
-        })
-        .collect()
+    picked(results, |j, r| match (j, r) {
+        (ModeJob::Narrow(j), ModeOutput::Narrow(_)) => Some(j.at()),
+        _ => None,
+    })
 }
 
 impl ModeScene {
@@ -327,18 +333,7 @@ impl Jobs for ModeScene {
             check_open("narrow_band", narrow, 0.0, self.band)?;
         }
         if let Some(reference) = self.reference_scene() {
-            reference.validate().map_err(|e| match e {
-                Error::InvalidInput {
-                    field,
-                    value,
-                    allowed,
-                } => Error::InvalidInput {
-                    field: format!("reference.{field}"),
-                    value,
-                    allowed,
-                },
-                e => e,
-            })?;
+            reference.validate().map_err(|e| e.within("reference"))?;
         }
         self.correction.validate()
     }

@@ -256,18 +256,7 @@ impl Jobs for TransitionScene {
             return Err(Error::invalid("min_walkers", self.min_walkers, ">= 2"));
         }
         if let Some(other) = self.other_step_scene() {
-            other.validate().map_err(|e| match e {
-                Error::InvalidInput {
-                    field,
-                    value,
-                    allowed,
-                } => Error::InvalidInput {
-                    field: format!("other_scene.{field}"),
-                    value,
-                    allowed,
-                },
-                e => e,
-            })?;
+            other.validate().map_err(|e| e.within("other_scene"))?;
         }
         Ok(())
     }
