@@ -153,6 +153,22 @@ fn c_points_re_enter_contact() {
     assert!(detail("range_coloured_over_grey_ar0.14") > 1.0);
     assert!(detail("range_share_ar0.14") > 0.3);
     assert!(detail("h03_share_ar0.14") > 0.3);
+    // Shell by shell: a point that entered contact leaves again within 10 shells far
+    // more often than a point of the contact does, and a shell of the first octave changes
+    // far more of the contact than one of the last.
+    assert!(
+        detail("shells_entered_leave_soon_ar0.14")
+            > 2.0 * detail("shells_contact_leave_soon_ar0.14")
+    );
+    assert!(
+        detail("shells_changes_first_octave_ar0.14")
+            > 5.0 * detail("shells_changes_last_octave_ar0.14")
+    );
+    assert_eq!(claim(&o, "reentrant_leave_soon"), ClaimResult::Reproduced);
+    assert_eq!(
+        claim(&o, "changes_per_shell_fall_with_zeta"),
+        ClaimResult::Reproduced
+    );
 }
 
 #[test]

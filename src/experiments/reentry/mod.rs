@@ -42,11 +42,14 @@
 //! * `range.rs`: the share against the range of magnification (the headline against the
 //!   tolerance study's smaller range);
 //! * `variants.rs`: histories of scenes beside the headline's (another Hurst exponent,
-//!   `eps_c` or range of magnification), for the paper's statements that compare scenes.
+//!   `eps_c` or range of magnification), for the paper's statements that compare scenes;
+//! * `shells.rs`: what a variant's history does shell by shell (entries and departures
+//!   per added shell, how soon a re-entered point leaves again), where the variant asks.
 
 mod figures;
 mod history_job;
 pub mod range;
+pub mod shells;
 pub mod stats;
 pub mod tolerance;
 pub mod variants;
@@ -200,10 +203,11 @@ impl Jobs for ReentryScene {
                 .map(ReentryOutput::Tolerance),
             ReentryJob::Variant(j) => {
                 // The map of the first history of each variant (first load, first seed).
+                // A variant that records its shells repeats a scene whose map is shown.
                 let keep_map = self
                     .variants
                     .iter()
-                    .any(|v| v.job(v.seeds[0], v.contact_areas[0]) == *j);
+                    .any(|v| !v.record_shells && v.job(v.seeds[0], v.contact_areas[0]) == *j);
                 variants::run(j, ctx, self.checkpoint_seconds, keep_map).map(ReentryOutput::Variant)
             }
         }
@@ -478,7 +482,8 @@ impl Experiment for Reentry {
         ]
     }
 
-    /// The golden values: every share (the variants' too) and the flux of the interval.
+    /// The golden values: every share (the variants' too, with their shell statistics) and
+    /// the flux of the interval.
     fn golden(_run: &Run, s: &RunStats) -> BTreeMap<String, f64> {
         let mut golden = BTreeMap::new();
         for share in &s.shares {
@@ -495,6 +500,16 @@ impl Experiment for Reentry {
                     format!("{}_share_{}", v.variant.name, l.load),
                     round_sig(l.share.value, 3),
                 );
+                if let Some(p) = &l.per_shell {
+                    golden.insert(
+                        format!("{}_leave_soon_excess_{}", v.variant.name, l.load),
+                        round_sig(p.leave_soon_excess.value, 3),
+                    );
+                    golden.insert(
+                        format!("{}_changes_octave_drop_{}", v.variant.name, l.load),
+                        round_sig(p.changes_octave_drop.value, 3),
+                    );
+                }
             }
         }
         golden.insert("flux_in".into(), round_sig(s.flux_in.value, 3));

@@ -16,11 +16,15 @@
 //! at zeta = 3.2 or lost contact exactly once"). The load is the one that gives the
 //! variant's contact area at its `zeta_max`, as for the headline.
 //!
+//! A variant may record its history shell by shell (`record_shells`, [`super::shells`]):
+//! the headline's own scene, run again, for the paper's statements about single shells.
+//!
 //! A variant runs at its own tolerance, the one the tolerance study ([`super::tolerance`])
 //! accepted; the committed histories of the headline keep theirs.
 
 use serde::{Deserialize, Serialize};
 
+use super::shells::{self, ShellLog, ShellRecord, ShellStats};
 use super::stats::Share;
 use crate::engine::contact::ContactSolution;
 use crate::engine::sweep::shell_steps;
@@ -50,6 +54,9 @@ scene! {
         pub zeta_from: f64,
         /// Contact areas at `zeta_max` (the loads).
         pub contact_areas: Vec<f64>,
+        /// Records every shell's entries and departures ([`super::shells`]).
+        #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+        pub record_shells: bool,
     }
 }
 
@@ -73,6 +80,9 @@ pub struct VariantJob {
     pub contact_area: f64,
     /// Residual tolerance.
     pub tol: f64,
+    /// Records every shell (absent from the keys of histories that do not).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub record_shells: bool,
 }
 
 /// What one history of a variant measured.
@@ -101,6 +111,9 @@ pub struct VariantResult {
     /// Map categories at `zeta_max` (2 bits a point, hex), for the first seed at the first
     /// load only.
     pub map: Option<String>,
+    /// Every shell's entries and departures, where the variant records them.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub per_shell: Option<ShellRecord>,
 }
 
 impl VariantResult {
@@ -138,6 +151,7 @@ impl Variant {
             seed,
             contact_area,
             tol: self.tol,
+            record_shells: self.record_shells,
         }
     }
 
@@ -214,20 +228,27 @@ fn job_base<'a>(job: &VariantJob, seeds: &'a [u64]) -> Base<'a> {
     Base::new(job.n, job.hurst, job.lambda_l, job.lambda_s, seeds, job.tol)
 }
 
-/// A history that also counts the contact after its first step.
+/// A history that also counts the contact after its first step, and where asked, records
+/// every shell.
 struct FromStart {
     history: History,
     contact_at_start: Option<u64>,
+    shells: Option<ShellLog>,
 }
 
 #[derive(Serialize, Deserialize)]
 struct FromStartMeta {
     history: serde_json::Value,
     contact_at_start: Option<u64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    shells: Option<serde_json::Value>,
 }
 
 impl Recorder for FromStart {
     fn record(&mut self, step: usize, zeta: f64, solution: &ContactSolution) -> Result<()> {
+        if let Some(log) = self.shells.as_mut() {
+            log.update(step, zeta, &solution.pressure);
+        }
         self.history.record(step, zeta, solution)?;
         if step == 0 {
             self.contact_at_start =
@@ -237,10 +258,16 @@ impl Recorder for FromStart {
     }
 
     fn state(&self) -> (serde_json::Value, Arrays<'_>) {
-        let (meta, arrays) = self.history.state();
+        let (meta, mut arrays) = self.history.state();
+        let shells = self.shells.as_ref().map(|log| {
+            let (meta, more) = log.state();
+            arrays.extend(more);
+            meta
+        });
         let meta = FromStartMeta {
             history: meta,
             contact_at_start: self.contact_at_start,
+            shells,
         };
         (
             serde_json::to_value(meta).expect("checkpoint metadata serialises"),
@@ -252,6 +279,17 @@ impl Recorder for FromStart {
         let meta: FromStartMeta = serde_json::from_value(meta)
             .map_err(|e| Error::invalid("checkpoint", e, "a variant's re-entry history"))?;
         self.contact_at_start = meta.contact_at_start;
+        match (self.shells.as_mut(), meta.shells) {
+            (Some(log), Some(m)) => log.restore(m, ck)?,
+            (None, None) => {}
+            _ => {
+                return Err(Error::invalid(
+                    "checkpoint",
+                    "a shell record",
+                    "the same record_shells as the job",
+                ))
+            }
+        }
         self.history.restore(meta.history, ck)
     }
 }
@@ -272,6 +310,11 @@ pub fn run(
         // No flux interval: a variant reads the history only.
         history: History::new(r.model.grid.points(), (f64::INFINITY, f64::INFINITY)),
         contact_at_start: None,
+        shells: if job.record_shells {
+            Some(ShellLog::new(r.model.grid.points(), steps.len())?)
+        } else {
+            None
+        },
     };
     let climbed = climb_job(&b, ctx, &r, job.contact_area, &steps, &mut rec, seconds)?;
     let categories = rec.history.categories();
@@ -289,6 +332,7 @@ pub fn run(
         wall_s: climbed.wall_s,
         max_residual: climbed.max_residual,
         map: keep_map.then(|| pack_categories(&categories)),
+        per_shell: rec.shells.map(|log| log.record().clone()),
     })
 }
 
@@ -311,6 +355,8 @@ pub struct VariantLoad {
     pub shells: Estimate,
     /// Solver iterations per shell.
     pub iterations_per_shell: Estimate,
+    /// The shell statistics, where the variant records its shells.
+    pub per_shell: Option<ShellStats>,
 }
 
 /// The statistics of every load of `variant` from its histories (`None` where a seed has
@@ -340,6 +386,12 @@ pub fn loads(variant: &Variant, results: &[(VariantJob, VariantResult)]) -> Vec<
                 a_r_start: mean(&|r| r.a_r_start(variant.n)),
                 shells: super::stats::shells(runs.iter().map(|r| r.shells)),
                 iterations_per_shell: mean(&|r| r.iterations as f64 / r.shells.max(1) as f64),
+                per_shell: ShellStats::of(
+                    &runs
+                        .iter()
+                        .filter_map(|r| r.per_shell.as_ref())
+                        .collect::<Vec<_>>(),
+                ),
             }
         })
         .collect()
@@ -498,7 +550,8 @@ pub fn detail_keys(variant: &Variant, headline: &[f64]) -> Vec<String> {
     for &a in &variant.contact_areas {
         keys.push(share_key(name, a));
         if variant.zeta_from == 0.0 {
-            if headline.contains(&a) {
+            // A variant that records its shells repeats the headline's scene.
+            if headline.contains(&a) && !variant.record_shells {
                 keys.push(shift_key(name, a));
             }
         } else {
@@ -508,13 +561,17 @@ pub fn detail_keys(variant: &Variant, headline: &[f64]) -> Vec<String> {
                 coloured_key(name, a),
             ]);
         }
+        if variant.record_shells {
+            keys.extend(shells::detail_keys(name, a));
+        }
     }
     keys
 }
 
 /// The statistics of a variant: its shares, their shift from the headline's where it
-/// starts from the flat interface too, and where it starts later, the counts of the
-/// paper's 2048^2 figure.
+/// starts from the flat interface too on another scene, where it starts later, the counts
+/// of the paper's 2048^2 figure, and where it records its shells, their statistics
+/// ([`shells::details`]).
 pub fn details(v: &VariantStats, headline: &[Share]) -> Vec<Detail> {
     let (name, what) = (&v.variant.name, &v.variant.what);
     let mut details = Vec::new();
@@ -529,7 +586,10 @@ pub fn details(v: &VariantStats, headline: &[Share]) -> Vec<Detail> {
             .persson(0.0),
         );
         if v.variant.zeta_from == 0.0 {
-            if let Some(h) = headline.iter().find(|h| h.load == a) {
+            if let Some(h) = headline
+                .iter()
+                .find(|h| h.load == a && !v.variant.record_shells)
+            {
                 details.push(Detail::new(
                     shift_key(name, a),
                     format!("re-entry share at a_r = {a}, {what}, minus the headline's"),
@@ -562,6 +622,9 @@ pub fn details(v: &VariantStats, headline: &[Share]) -> Vec<Detail> {
                 ),
             ]);
         }
+        if let Some(s) = &l.per_shell {
+            details.extend(shells::details(name, what, a, s));
+        }
     }
     details
 }
@@ -582,6 +645,7 @@ mod tests {
             seeds: vec![1, 2],
             contact_areas: vec![0.14, 0.88],
             tol: 1e-6,
+            record_shells: false,
         }
     }
 
@@ -641,6 +705,7 @@ mod tests {
             wall_s: 0.0,
             max_residual: 0.0,
             map: None,
+            per_shell: None,
         };
         assert_eq!(r.remained_of_start(), 0.5);
         assert_eq!(r.coloured_over_grey(), 2.0);
