@@ -13,6 +13,13 @@
 //! panels, `1 - r` with `r` the Pearson correlation of the elastic body's displacement
 //! along the cut, and the share of the cut's points re-entered in the last panel. One
 //! realization: neither has an error bar.
+//!
+//! A third reads the text ("even though we did not select the location of the cut
+//! specifically for this effect, we happened to find a re-entry point", tex 705-706): the
+//! share of grid rows that hold a re-entered point in some panel, i.e. the chance that an
+//! unselected cut shows one. Its error is the standard error over [`ROW_BLOCKS`] blocks of
+//! consecutive rows (rows next to each other cut the same contact patches, so single rows
+//! are not independent).
 
 use serde::{Deserialize, Serialize};
 
@@ -27,8 +34,12 @@ use crate::stats::{pearson, Estimate};
 pub const SHAPE_CHANGE: &str = "waterfall_shape_change";
 /// The key of the share of the cut's points re-entered in the last panel.
 pub const REENTERED_LAST: &str = "waterfall_reentered_last";
+/// The key of the share of rows that hold a re-entered point.
+pub const ROWS_WITH_REENTRY: &str = "waterfall_rows_with_reentry";
 /// The details of a waterfall.
-pub const DETAILS: [&str; 2] = [SHAPE_CHANGE, REENTERED_LAST];
+pub const DETAILS: [&str; 3] = [SHAPE_CHANGE, REENTERED_LAST, ROWS_WITH_REENTRY];
+/// Blocks of consecutive rows over which the share of rows with re-entry is averaged.
+pub const ROW_BLOCKS: usize = 16;
 
 /// The waterfall, as a scene states it (`[reduced.waterfall]`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -70,6 +81,9 @@ pub struct WaterfallResult {
     pub p0: f64,
     /// The panels.
     pub cuts: Vec<Cut>,
+    /// Re-entered points of every grid row, summed over the panels.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub row_reentries: Vec<u32>,
 }
 
 impl WaterfallPlan {
@@ -111,22 +125,44 @@ pub fn reentered(contact: &[Vec<bool>]) -> Vec<Vec<bool>> {
         .collect()
 }
 
-/// The row of an `n x n` grid with the most marked points over all panels (the first of
-/// equals).
-pub fn busiest_row(marks: &[Vec<bool>], n: usize) -> usize {
+/// The marked points of every row of an `n x n` grid, summed over the panels.
+pub fn row_counts(marks: &[Vec<bool>], n: usize) -> Vec<u32> {
     (0..n)
         .map(|row| {
-            let count: usize = marks
+            marks
                 .iter()
-                .map(|m| m[row * n..(row + 1) * n].iter().filter(|&&x| x).count())
-                .sum();
-            (row, count)
+                .map(|m| m[row * n..(row + 1) * n].iter().filter(|&&x| x).count() as u32)
+                .sum()
         })
+        .collect()
+}
+
+/// The row with the most marked points (the first of equals).
+pub fn busiest_row(counts: &[u32]) -> usize {
+    counts
+        .iter()
+        .enumerate()
         .fold(
             (0, 0),
-            |best, (row, c)| if c > best.1 { (row, c) } else { best },
+            |best, (row, &c)| if c > best.1 { (row, c) } else { best },
         )
         .0
+}
+
+/// The share of rows holding a marked point, with its standard error over
+/// [`ROW_BLOCKS`] blocks of consecutive rows (`None` without rows).
+pub fn rows_with_reentry(counts: &[u32]) -> Option<Estimate> {
+    if counts.is_empty() {
+        return None;
+    }
+    let blocks = ROW_BLOCKS.min(counts.len());
+    let size = counts.len().div_ceil(blocks);
+    let shares: Vec<f64> = counts
+        .chunks(size)
+        .map(|b| b.iter().filter(|&&c| c > 0).count() as f64 / b.len() as f64)
+        .collect();
+    let all = counts.iter().filter(|&&c| c > 0).count() as f64 / counts.len() as f64;
+    Some(Estimate::new(all, Estimate::mean_of(&shares).std_error))
 }
 
 /// Solves the panels and cuts the busiest row.
@@ -156,7 +192,8 @@ pub fn run(scene: &FluxScene, plan: &WaterfallPlan) -> Result<WaterfallResult> {
     let contact: Vec<Vec<bool>> = fields.iter().map(|f| f.4.clone()).collect();
     let marks = reentered(&contact);
     let n = scene.n;
-    let row = busiest_row(&marks, n);
+    let row_reentries = row_counts(&marks, n);
+    let row = busiest_row(&row_reentries);
     let cut = |v: &[f64]| v[row * n..(row + 1) * n].to_vec();
     let cuts = fields
         .iter()
@@ -169,7 +206,12 @@ pub fn run(scene: &FluxScene, plan: &WaterfallPlan) -> Result<WaterfallResult> {
             reentered: m[row * n..(row + 1) * n].to_vec(),
         })
         .collect();
-    Ok(WaterfallResult { row, p0, cuts })
+    Ok(WaterfallResult {
+        row,
+        p0,
+        cuts,
+        row_reentries,
+    })
 }
 
 /// The shape change of the cut between its last two panels, `1 - r` with `r` the
@@ -192,7 +234,7 @@ pub fn reentered_last(r: &WaterfallResult) -> Option<f64> {
 pub fn details(r: &WaterfallResult) -> Vec<Detail> {
     let zetas = |k: usize| r.cuts.iter().rev().nth(k).map_or(f64::NAN, |c| c.zeta);
     let one = |v: Option<f64>| Estimate::new(v.unwrap_or(f64::NAN), f64::NAN);
-    vec![
+    let mut details = vec![
         Detail::new(
             SHAPE_CHANGE,
             format!(
@@ -213,7 +255,25 @@ pub fn details(r: &WaterfallResult) -> Vec<Detail> {
             ),
             one(reentered_last(r)),
         ),
-    ]
+    ];
+    // Results stored before the rows were counted have none.
+    if let Some(e) = rows_with_reentry(&r.row_reentries) {
+        details.push(Detail::new(
+            ROWS_WITH_REENTRY,
+            format!(
+                "share of the grid rows holding a point re-entered in some panel (in \
+                 contact, out in a panel above), zeta = {}; error over {ROW_BLOCKS} blocks \
+                 of rows, one realization",
+                r.cuts
+                    .iter()
+                    .map(|c| c.zeta.to_string())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+            e,
+        ));
+    }
+    details
 }
 
 /// The figure of a result.
@@ -270,7 +330,22 @@ mod tests {
         assert_eq!(m[1], vec![false, true, false, false]);
         assert_eq!(m[2], vec![false, true, true, false]);
         // 2 x 2 grid: row 0 holds points 0 and 1, row 1 points 2 and 3.
-        assert_eq!(busiest_row(&m, 2), 0);
+        let counts = row_counts(&m, 2);
+        assert_eq!(counts, vec![2, 1]);
+        assert_eq!(busiest_row(&counts), 0);
+        assert_eq!(busiest_row(&[0, 3, 3, 1]), 1);
+    }
+
+    #[test]
+    fn rows_with_reentry_is_the_share_of_rows_with_a_mark_blocked_for_its_error() {
+        // 32 rows in 16 blocks of two: blocks alternate between one marked row and none.
+        let counts: Vec<u32> = (0..32).map(|r| u32::from(r % 4 == 0) * 3).collect();
+        let e = rows_with_reentry(&counts).unwrap();
+        assert_eq!(e.value, 0.25);
+        // Block shares 0.5 and 0 alternating: standard deviation 0.258, over sqrt(16).
+        let sd = (16.0 * 0.25 * 0.25 / 15.0_f64).sqrt();
+        assert!((e.std_error - sd / 4.0).abs() < 1e-12, "{}", e.std_error);
+        assert_eq!(rows_with_reentry(&[]), None);
     }
 
     fn cut(zeta: f64, displacement: Vec<f64>, reentered: Vec<bool>) -> Cut {
@@ -295,6 +370,7 @@ mod tests {
             row: 0,
             p0: 0.1,
             cuts,
+            row_reentries: vec![0, 1, 0, 2],
         };
         let kept = r(vec![
             cut(2.0, reversed.clone(), vec![false; 4]),
@@ -313,5 +389,12 @@ mod tests {
         let d = details(&kept);
         assert_eq!(d.len(), DETAILS.len());
         assert!(d[0].value.std_error.is_nan());
+        assert_eq!(d[2].value.value, 0.5);
+        // A result stored before the rows were counted.
+        let old = WaterfallResult {
+            row_reentries: Vec::new(),
+            ..kept
+        };
+        assert_eq!(details(&old).len(), DETAILS.len() - 1);
     }
 }
