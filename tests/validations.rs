@@ -189,6 +189,11 @@ fn one_step_moves_points_into_contact() {
     assert_eq!(direction.result, ClaimResult::Reproduced);
     assert_eq!(direction.readings[0].result, ClaimResult::Contradicted);
     assert_eq!(claim(&o, "flux_in"), ClaimResult::NotJudgedAtThisScale);
+    // An unselected row of the waterfall holds a re-entered point (every row does here).
+    assert_eq!(
+        claim(&o, "waterfall_reentry_unselected"),
+        ClaimResult::Reproduced
+    );
     assert_ne!(o.reproduced, Some(false), "{:?}", o.claims);
     assert!(o.value > 0.5 && o.value < 2.0, "in / out = {}", o.value);
     let net = o

@@ -322,6 +322,7 @@ impl Experiment for Reentry {
                         _ => None,
                     })
                     .collect::<Vec<_>>(),
+                &|v| range::same_cutoffs(run.scene, v, run.results),
             ),
             stats,
             histories,
@@ -351,7 +352,12 @@ impl Experiment for Reentry {
             keys.details(scene.contact_areas.iter().map(|&a| range::gain_key(a)));
         }
         for v in &scene.variants {
-            keys.details(variants::detail_keys(v, &scene.contact_areas));
+            let headline = variants::Headline {
+                loads: &scene.contact_areas,
+                zeta_max: scene.base().zeta_max(),
+            };
+            let same_cutoffs = range::same_cutoffs_grid(scene, v).is_some();
+            keys.details(variants::detail_keys(v, headline, same_cutoffs));
         }
         if scene.tolerance.is_some() {
             keys.study(tolerance::STUDY, &tolerance::columns());
@@ -446,7 +452,7 @@ impl Experiment for Reentry {
             ));
         }
         for v in &s.variants {
-            details.extend(variants::details(v, &s.shares));
+            details.extend(variants::details(v, &s.shares, zeta_max));
         }
         details
     }

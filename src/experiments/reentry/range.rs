@@ -3,9 +3,15 @@
 //! experience re-entry"): the headline's share at `zeta_max` minus the share of the
 //! tolerance study's histories over a smaller range at the same `eps_c` and tolerance
 //! (a range extended at its upper end: finer roughness, the same `lambda_l / L`).
+//!
+//! The same grids serve a variant of other `lambda_l / L` (tex 790-794: "the numbers do
+//! not depend much on lambda_l / L either"): a variant with a grid's cutoffs `lambda_l`,
+//! `lambda_s` and tolerance, on another number of points, is set against that grid's
+//! shares ([`same_cutoffs`]).
 
 use super::stats::ReentryStats;
 use super::tolerance::ToleranceGrid;
+use super::variants::Variant;
 use super::{ReentryJob, ReentryOutput, ReentryScene};
 use crate::stats::Estimate;
 
@@ -50,24 +56,69 @@ pub fn range_gains(
         .shares
         .iter()
         .filter_map(|share| {
-            let samples: Vec<f64> = grid
-                .seeds
-                .iter()
-                .filter_map(|&seed| {
-                    let job = grid.job(seed, share.load, scene.tol);
-                    results.iter().find_map(|(j, r)| match (j, r) {
-                        (ReentryJob::Tolerance(j), ReentryOutput::Tolerance(r)) if *j == job => {
-                            Some(r.share())
-                        }
-                        _ => None,
-                    })
-                })
-                .collect();
-            (!samples.is_empty()).then(|| RangeGain {
+            let smaller = grid_share(grid, share.load, scene.tol, results)?;
+            Some(RangeGain {
                 load: share.load,
                 zeta_max: grid.lambda_l / grid.lambda_s,
-                gain: Estimate::difference(share.share, Estimate::mean_of(&samples)),
+                gain: Estimate::difference(share.share, smaller),
             })
         })
         .collect()
+}
+
+/// The tolerance study's grid with `variant`'s cutoffs, Hurst exponent and tolerance on
+/// another number of points, if the scene plans one: the system-size reference of the
+/// variant.
+pub fn same_cutoffs_grid<'a>(
+    scene: &'a ReentryScene,
+    variant: &Variant,
+) -> Option<&'a ToleranceGrid> {
+    let plan = scene.tolerance.as_ref()?;
+    if variant.hurst != scene.hurst || variant.zeta_from != 0.0 || !plan.tols.contains(&variant.tol)
+    {
+        return None;
+    }
+    plan.grids.iter().find(|g| {
+        (g.lambda_l, g.lambda_s) == (variant.lambda_l, variant.lambda_s) && g.n != variant.n
+    })
+}
+
+/// The shares of the reference grid ([`same_cutoffs_grid`]) at each load of `variant`
+/// that it holds: `(n of the grid, [(load, share)])`, means over its realizations.
+pub fn same_cutoffs(
+    scene: &ReentryScene,
+    variant: &Variant,
+    results: &[(ReentryJob, ReentryOutput)],
+) -> Option<(usize, Vec<(f64, Estimate)>)> {
+    let grid = same_cutoffs_grid(scene, variant)?;
+    let shares = variant
+        .contact_areas
+        .iter()
+        .filter_map(|&load| Some((load, grid_share(grid, load, variant.tol, results)?)))
+        .collect();
+    Some((grid.n, shares))
+}
+
+/// The mean share of `grid`'s histories at `load` and `tol` over the realizations that
+/// have a result (`None` without one).
+fn grid_share(
+    grid: &ToleranceGrid,
+    load: f64,
+    tol: f64,
+    results: &[(ReentryJob, ReentryOutput)],
+) -> Option<Estimate> {
+    let samples: Vec<f64> = grid
+        .seeds
+        .iter()
+        .filter_map(|&seed| {
+            let job = grid.job(seed, load, tol);
+            results.iter().find_map(|(j, r)| match (j, r) {
+                (ReentryJob::Tolerance(j), ReentryOutput::Tolerance(r)) if *j == job => {
+                    Some(r.share())
+                }
+                _ => None,
+            })
+        })
+        .collect();
+    (!samples.is_empty()).then(|| Estimate::mean_of(&samples))
 }

@@ -405,10 +405,20 @@ pub struct VariantStats {
     pub loads: Vec<VariantLoad>,
     /// The map of its first history, if run.
     pub map: Option<String>,
+    /// The shares of the grid with the same cutoffs on another number of points, where
+    /// the scene has one ([`super::range::same_cutoffs`]): its `n` and `(load, share)`.
+    pub same_cutoffs: Option<(usize, Vec<(f64, Estimate)>)>,
 }
 
+/// The shares of the grid with a variant's cutoffs on another number of points.
+pub type SameCutoffs<'a> = &'a dyn Fn(&Variant) -> Option<(usize, Vec<(f64, Estimate)>)>;
+
 /// The statistics of every variant from the histories among `results`.
-pub fn stats(variants: &[Variant], results: &[(VariantJob, VariantResult)]) -> Vec<VariantStats> {
+pub fn stats(
+    variants: &[Variant],
+    results: &[(VariantJob, VariantResult)],
+    same_cutoffs: SameCutoffs,
+) -> Vec<VariantStats> {
     variants
         .iter()
         .map(|v| VariantStats {
@@ -418,6 +428,7 @@ pub fn stats(variants: &[Variant], results: &[(VariantJob, VariantResult)]) -> V
                 .iter()
                 .find(|(j, _)| *j == v.job(v.seeds[0], v.contact_areas[0]))
                 .and_then(|(_, r)| r.map.clone()),
+            same_cutoffs: same_cutoffs(v),
         })
         .collect()
 }
@@ -541,17 +552,41 @@ fn remained_key(name: &str, a: f64) -> String {
 fn coloured_key(name: &str, a: f64) -> String {
     format!("{name}_coloured_over_grey_ar{a}")
 }
+fn size_shift_key(name: &str, a: f64) -> String {
+    format!("{name}_size_shift_ar{a}")
+}
 
-/// The keys of the details a variant can have ([`details`]), beside a headline at the loads
-/// `headline`.
-pub fn detail_keys(variant: &Variant, headline: &[f64]) -> Vec<String> {
+/// The headline a variant is set against: its loads and its `zeta_max`.
+#[derive(Debug, Clone, Copy)]
+pub struct Headline<'a> {
+    /// The headline's loads.
+    pub loads: &'a [f64],
+    /// The headline's `zeta_max`.
+    pub zeta_max: f64,
+}
+
+impl Headline<'_> {
+    /// Whether `variant`'s share at load `a` is set against the headline's: a variant from
+    /// the flat interface over the headline's range of magnification, at one of its loads,
+    /// that does not repeat the headline's scene (as one that records its shells does).
+    fn compares(&self, variant: &Variant, a: f64) -> bool {
+        let same_range = (variant.base().zeta_max() / self.zeta_max - 1.0).abs() < 1e-9;
+        variant.zeta_from == 0.0 && same_range && !variant.record_shells && self.loads.contains(&a)
+    }
+}
+
+/// The keys of the details a variant can have ([`details`]), beside `headline`, with a grid
+/// of the same cutoffs on another number of points or without.
+pub fn detail_keys(variant: &Variant, headline: Headline, same_cutoffs: bool) -> Vec<String> {
     let name = &variant.name;
     let mut keys = Vec::new();
     for &a in &variant.contact_areas {
         keys.push(share_key(name, a));
+        if same_cutoffs {
+            keys.push(size_shift_key(name, a));
+        }
         if variant.zeta_from == 0.0 {
-            // A variant that records its shells repeats the headline's scene.
-            if headline.contains(&a) && !variant.record_shells {
+            if headline.compares(variant, a) {
                 keys.push(shift_key(name, a));
             }
         } else {
@@ -568,11 +603,17 @@ pub fn detail_keys(variant: &Variant, headline: &[f64]) -> Vec<String> {
     keys
 }
 
-/// The statistics of a variant: its shares, their shift from the headline's where it
-/// starts from the flat interface too on another scene, where it starts later, the counts
-/// of the paper's 2048^2 figure, and where it records its shells, their statistics
-/// ([`shells::details`]).
-pub fn details(v: &VariantStats, headline: &[Share]) -> Vec<Detail> {
+/// The statistics of a variant: its shares; their shift from the headline's where it
+/// starts from the flat interface too over the same range on another scene
+/// ([`Headline::compares`]); their shift from the shares of a grid with the same cutoffs
+/// on another number of points; where it starts later, the counts of the paper's 2048^2
+/// figure; and where it records its shells, their statistics ([`shells::details`]).
+pub fn details(v: &VariantStats, headline: &[Share], zeta_max: f64) -> Vec<Detail> {
+    let loads: Vec<f64> = headline.iter().map(|h| h.load).collect();
+    let against = Headline {
+        loads: &loads,
+        zeta_max,
+    };
     let (name, what) = (&v.variant.name, &v.variant.what);
     let mut details = Vec::new();
     for l in v.loads.iter().filter(|l| l.realizations > 0) {
@@ -585,10 +626,22 @@ pub fn details(v: &VariantStats, headline: &[Share]) -> Vec<Detail> {
             )
             .persson(0.0),
         );
+        if let Some((n, shares)) = &v.same_cutoffs {
+            if let Some((_, other)) = shares.iter().find(|(load, _)| *load == a) {
+                details.push(Detail::new(
+                    size_shift_key(name, a),
+                    format!(
+                        "re-entry share at a_r = {a}, {what}, minus that on {n}^2 with the \
+                         same lambda_l, lambda_s and tolerance (independent realizations)"
+                    ),
+                    Estimate::difference(l.share, *other),
+                ));
+            }
+        }
         if v.variant.zeta_from == 0.0 {
             if let Some(h) = headline
                 .iter()
-                .find(|h| h.load == a && !v.variant.record_shells)
+                .find(|h| h.load == a && against.compares(&v.variant, a))
             {
                 details.push(Detail::new(
                     shift_key(name, a),
