@@ -122,3 +122,43 @@ fn grid_share(
         .collect();
     (!samples.is_empty()).then(|| Estimate::mean_of(&samples))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::experiments::reentry::Reentry;
+
+    #[test]
+    fn a_variant_finds_the_grid_of_its_cutoffs_on_another_size_only() {
+        let (_, full) = crate::experiments::shipped_valid::<Reentry>("c_reentry");
+        let quarter = full.variants.iter().find(|v| v.name == "quarter").unwrap();
+        let grid = same_cutoffs_grid(&full, quarter).expect("the 512^2 grid");
+        assert_eq!((grid.n, grid.lambda_l, grid.lambda_s), (512, 256.0, 8.0));
+        // Another tolerance, Hurst exponent or a later start has no reference; nor has a
+        // variant on the grid's own size.
+        for v in [
+            Variant {
+                tol: 1e-3,
+                ..quarter.clone()
+            },
+            Variant {
+                hurst: 0.3,
+                ..quarter.clone()
+            },
+            Variant {
+                zeta_from: 2.0,
+                ..quarter.clone()
+            },
+            Variant {
+                n: 512,
+                ..quarter.clone()
+            },
+        ] {
+            assert!(same_cutoffs_grid(&full, &v).is_none(), "{v:?}");
+        }
+        // The headline's other variants have none either.
+        for v in full.variants.iter().filter(|v| v.name != "quarter") {
+            assert!(same_cutoffs_grid(&full, v).is_none(), "{}", v.name);
+        }
+    }
+}
