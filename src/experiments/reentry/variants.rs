@@ -569,7 +569,7 @@ impl Headline<'_> {
     /// Whether `variant`'s share at load `a` is set against the headline's: a variant from
     /// the flat interface over the headline's range of magnification, at one of its loads,
     /// that does not repeat the headline's scene (as one that records its shells does).
-    fn compares(&self, variant: &Variant, a: f64) -> bool {
+    pub fn compares(&self, variant: &Variant, a: f64) -> bool {
         let same_range = (variant.base().zeta_max() / self.zeta_max - 1.0).abs() < 1e-9;
         variant.zeta_from == 0.0 && same_range && !variant.record_shells && self.loads.contains(&a)
     }
