@@ -766,6 +766,44 @@ mod tests {
     }
 
     #[test]
+    fn only_a_variant_over_the_headline_s_range_is_set_against_it() {
+        // variant(): 64^2, lambda_l = 32, lambda_s = 4: zeta 1 -> 8.
+        let loads = [0.14, 0.014];
+        let headline = Headline {
+            loads: &loads,
+            zeta_max: 8.0,
+        };
+        let v = variant();
+        assert!(headline.compares(&v, 0.14));
+        // A load the headline lacks, a later start, a repeat of the headline's scene and
+        // another range are not.
+        assert!(!headline.compares(&v, 0.88));
+        for other in [
+            Variant {
+                zeta_from: 2.0,
+                ..variant()
+            },
+            Variant {
+                record_shells: true,
+                ..variant()
+            },
+            Variant {
+                lambda_s: 2.0,
+                ..variant()
+            },
+        ] {
+            assert!(!headline.compares(&other, 0.14), "{other:?}");
+        }
+        let keys = detail_keys(&v, headline, true);
+        assert!(keys.contains(&"h03_share_shift_ar0.14".to_string()));
+        assert!(!keys.contains(&"h03_share_shift_ar0.88".to_string()));
+        assert!(keys.contains(&"h03_size_shift_ar0.88".to_string()));
+        assert!(!detail_keys(&v, headline, false)
+            .iter()
+            .any(|k| k.contains("size_shift")));
+    }
+
+    #[test]
     fn a_later_start_is_one_step_then_the_shells_above_it() {
         let v = Variant {
             zeta_from: 2.0,
