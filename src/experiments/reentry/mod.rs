@@ -41,8 +41,10 @@
 //!   several solver tolerances), run where the scene states a plan, and its table;
 //! * `range.rs`: the share against the range of magnification (the headline against the
 //!   tolerance study's smaller range);
-//! * `variants.rs`: histories of scenes beside the headline's (another Hurst exponent,
-//!   `eps_c` or range of magnification), for the paper's statements that compare scenes;
+//! * `variants/`: histories of scenes beside the headline's (another Hurst exponent,
+//!   `eps_c`, range of magnification or `lambda_l / L`), for the paper's statements that
+//!   compare scenes: `mod.rs` their scenes, jobs and runs, `findings.rs` their statistics,
+//!   study, maps and details;
 //! * `shells.rs`: what a variant's history does shell by shell (entries and departures
 //!   per added shell, how soon a re-entered point leaves again), where the variant asks.
 

@@ -24,7 +24,6 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Error, Result};
 use crate::experiments::climb::Arrays;
 use crate::experiments::contact_change::above;
-use crate::experiments::Detail;
 use crate::io::checkpoint::{Array, Checkpoints};
 use crate::stats::Estimate;
 
@@ -196,6 +195,11 @@ impl ShellLog {
         &self.record
     }
 
+    /// The record, once the history is done.
+    pub fn into_record(self) -> ShellRecord {
+        self.record
+    }
+
     /// The state to checkpoint.
     pub fn state(&self) -> (serde_json::Value, Arrays<'_>) {
         let meta = Meta {
@@ -258,94 +262,62 @@ impl ShellStats {
     }
 }
 
-/// The key of the leave-soon excess of variant `name` at load `a`.
-fn excess_key(name: &str, a: f64) -> String {
-    format!("{name}_leave_soon_excess_ar{a}")
-}
-fn entered_key(name: &str, a: f64) -> String {
-    format!("{name}_entered_leave_soon_ar{a}")
-}
-fn contact_key(name: &str, a: f64) -> String {
-    format!("{name}_contact_leave_soon_ar{a}")
-}
-fn first_key(name: &str, a: f64) -> String {
-    format!("{name}_changes_first_octave_ar{a}")
-}
-fn last_key(name: &str, a: f64) -> String {
-    format!("{name}_changes_last_octave_ar{a}")
-}
-fn drop_key(name: &str, a: f64) -> String {
-    format!("{name}_changes_octave_drop_ar{a}")
-}
+/// The statistics of [`ShellStats`] a variant reports, by name (the middle of its detail
+/// keys, after the variant's name and before the load).
+pub const STATISTICS: [&str; 6] = [
+    "leave_soon_excess",
+    "entered_leave_soon",
+    "contact_leave_soon",
+    "changes_octave_drop",
+    "changes_first_octave",
+    "changes_last_octave",
+];
 
-/// The keys of the details of a variant `name` that records its shells, at load `a`.
-pub fn detail_keys(name: &str, a: f64) -> Vec<String> {
-    vec![
-        excess_key(name, a),
-        entered_key(name, a),
-        contact_key(name, a),
-        drop_key(name, a),
-        first_key(name, a),
-        last_key(name, a),
-    ]
-}
-
-/// The details of a variant `name` (`what`, in words) at load `a`.
-pub fn details(name: &str, what: &str, a: f64, s: &ShellStats) -> Vec<Detail> {
-    let pairs = [
-        (
-            excess_key(name, a),
-            format!(
-                "of the points entering contact, the share leaving again within {SOON} shells, \
-                 minus that of every point in contact, a_r = {a}, {what}"
+impl ShellStats {
+    /// Each of [`STATISTICS`] with its description (at load `a` of a variant `what`, in
+    /// words) and its value, in that order.
+    pub fn named(&self, a: f64, what: &str) -> Vec<(&'static str, String, Estimate)> {
+        let per_shell = "changes of contact state per added shell and point of contact";
+        let values = [
+            (
+                format!(
+                    "of the points entering contact, the share leaving again within {SOON} \
+                     shells, minus that of every point in contact"
+                ),
+                self.leave_soon_excess,
             ),
-            s.leave_soon_excess,
-        ),
-        (
-            entered_key(name, a),
-            format!(
-                "of the points entering contact, the share leaving again within {SOON} \
-                 shells, a_r = {a}, {what}"
+            (
+                format!(
+                    "of the points entering contact, the share leaving again within {SOON} \
+                     shells"
+                ),
+                self.entered_leave_soon,
             ),
-            s.entered_leave_soon,
-        ),
-        (
-            contact_key(name, a),
-            format!(
-                "of the points in contact at a shell, the share leaving within {SOON} shells, \
-                 a_r = {a}, {what}"
+            (
+                format!(
+                    "of the points in contact at a shell, the share leaving within {SOON} shells"
+                ),
+                self.contact_leave_soon,
             ),
-            s.contact_leave_soon,
-        ),
-        (
-            drop_key(name, a),
-            format!(
-                "changes of contact state per added shell and point of contact, first octave \
-                 of zeta minus last octave, a_r = {a}, {what}"
+            (
+                format!("{per_shell}, first octave of zeta minus last octave"),
+                self.changes_octave_drop,
             ),
-            s.changes_octave_drop,
-        ),
-        (
-            first_key(name, a),
-            format!(
-                "changes of contact state per added shell and point of contact, first octave \
-                 of zeta (the first shell excluded), a_r = {a}, {what}"
+            (
+                format!("{per_shell}, first octave of zeta (the first shell excluded)"),
+                self.changes_first_octave,
             ),
-            s.changes_first_octave,
-        ),
-        (
-            last_key(name, a),
-            format!(
-                "changes of contact state per added shell and point of contact, last octave \
-                 of zeta, a_r = {a}, {what}"
+            (
+                format!("{per_shell}, last octave of zeta"),
+                self.changes_last_octave,
             ),
-            s.changes_last_octave,
-        ),
-    ];
-    pairs
-        .into_iter()
-        .map(|(key, name, e)| Detail::new(key, name, e))
-        .collect()
+        ];
+        STATISTICS
+            .into_iter()
+            .zip(values)
+            .map(|(stat, (text, e))| (stat, format!("{text}, a_r = {a}, {what}"), e))
+            .collect()
+    }
 }
 
 #[cfg(test)]
