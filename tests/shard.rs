@@ -331,3 +331,124 @@ fn bad_share_specs_are_refused_and_write_nothing() {
         assert!(err.contains(var), "auto does not name {var}: {err}");
     }
 }
+
+/// [`SCENE`] with a variant (H = 0.3 on a smaller grid): an optional part of the scene.
+const SCENE_WITH_VARIANT: &str = concat!(
+    "[reduced]
+n = 64
+hurst = 0.8
+lambda_l = 32
+lambda_s = 2
+seeds = [1, 2, 3]
+contact_areas = [0.14]
+flux_zeta = 12
+flux_dzeta = 1
+checkpoint_seconds = 0.1
+tol = 1e-8
+
+",
+    "[[reduced.variants]]
+name = \"h03\"
+what = \"H = 0.3\"
+n = 32
+hurst = 0.3
+lambda_l = 16
+lambda_s = 2
+seeds = [1]
+contact_areas = [0.14]
+tol = 1e-8
+
+"
+);
+
+#[test]
+fn a_partial_merge_leaves_out_a_variant_whose_jobs_are_not_all_in() {
+    let defs = definitions_with_reentry(SCENE_WITH_VARIANT, &[]);
+    let defs = defs.path();
+    let names = ["c_reentry"];
+    let all = tempfile::tempdir().unwrap();
+    finish(validate_on(2, defs, all.path(), &names, &[]));
+
+    // The plan names the variant's job as a part of the scene; its result goes missing.
+    let plan = Command::new(env!("CARGO_BIN_EXE_persson-check"))
+        .args(["validate", "c_reentry", "--solver", "cg", "--dir"])
+        .arg(defs)
+        .arg("--plan")
+        .output()
+        .unwrap();
+    let plan: serde_json::Value = serde_json::from_slice(&plan.stdout).unwrap();
+    let jobs = plan["jobs"].as_array().unwrap();
+    let key = |part: Option<&str>| {
+        jobs.iter()
+            .find(|j| j["part"].as_str() == part)
+            .map(|j| j["key"].as_str().unwrap().to_string())
+            .unwrap()
+    };
+    let (variant, headline) = (key(Some("h03")), key(None));
+    let out = tempfile::tempdir().unwrap();
+    copy_dir(&all.path().join("jobs"), &out.path().join("jobs"));
+    let result = |k: &str| out.path().join(format!("jobs/reentry/reduced/{k}.json"));
+    std::fs::remove_file(result(&variant)).unwrap();
+
+    // A plain merge refuses; a partial one concludes without the variant and says so.
+    let err = fails(validate(defs, out.path(), &names, &["--merge"]));
+    assert!(err.contains(&variant), "{err}");
+    finish(validate(
+        defs,
+        out.path(),
+        &names,
+        &["--merge", "--partial"],
+    ));
+    let read = |dir: &Path| -> serde_json::Value {
+        serde_json::from_slice(&std::fs::read(dir.join("c_reentry.json")).unwrap()).unwrap()
+    };
+    let (partial, whole) = (read(out.path()), read(all.path()));
+    let pending = &partial["merge"]["pending"];
+    assert_eq!(pending.as_array().unwrap().len(), 1, "{pending}");
+    assert_eq!(pending[0]["name"], "h03");
+    assert_eq!(
+        (pending[0]["jobs"].as_u64(), pending[0]["done"].as_u64()),
+        (Some(1), Some(0))
+    );
+    assert!(pending[0]["core_hours_left"].as_f64().unwrap() > 0.0);
+    let measures: Vec<&str> = pending[0]["measures"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|m| m.as_str().unwrap())
+        .collect();
+    // Its share (over another range than the headline's, so no shift from it), and the
+    // variants' study, which only it fills.
+    assert_eq!(measures, ["detail:h03_share_ar0.14", "study:variants"]);
+    assert!(partial["scene"]["variants"]
+        .as_array()
+        .is_none_or(|v| v.is_empty()));
+    assert_eq!(whole["scene"]["variants"].as_array().map(Vec::len), Some(1));
+    // Every other statistic is the complete run's.
+    let details = |o: &serde_json::Value| -> Vec<serde_json::Value> {
+        o["details"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|d| !d["key"].as_str().unwrap().starts_with("h03_"))
+            .cloned()
+            .collect()
+    };
+    assert_eq!(details(&partial), details(&whole));
+    assert!(details(&whole).len() < whole["details"].as_array().unwrap().len());
+    assert_eq!(partial["value"], whole["value"]);
+    assert_eq!(
+        partial["golden"]["share_0.14"],
+        whole["golden"]["share_0.14"]
+    );
+
+    // A job of the scene proper has no part: without it nothing merges.
+    std::fs::remove_file(result(&headline)).unwrap();
+    let err = fails(validate(
+        defs,
+        out.path(),
+        &names,
+        &["--merge", "--partial"],
+    ));
+    assert!(err.contains(&headline), "{err}");
+}

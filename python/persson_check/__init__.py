@@ -170,8 +170,9 @@ def merge(
     solver=None,
     accept_other_commit=False,
     dir=None,
+    partial=False,
 ):
-    return _native.merge(names, out, full, solver, accept_other_commit, dir)
+    return _native.merge(names, out, full, solver, accept_other_commit, dir, partial)
 
 
 def report(source="out", out="scorecard.md", golden=None, speed=False, speed_n=256):

@@ -185,8 +185,10 @@ def merge(
     solver: SolverNames = None,
     accept_other_commit: bool = False,
     dir: Optional[Path] = None,
+    partial: bool = False,
 ) -> list[dict[str, Any]]:
-    """The outcomes from the job results that shares stored under out/jobs/."""
+    """The outcomes from the job results that shares stored under out/jobs/ (with
+    partial, without the optional parts of a scene whose jobs are not all in)."""
 
 def report(
     source: Path = "out",

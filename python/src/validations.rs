@@ -134,9 +134,10 @@ pub fn plan<'py>(
 
 /// Writes the outcomes of the named validations from the job results that shares stored
 /// under `out/jobs/`, exactly as `persson-check validate NAMES --merge --out OUT` does,
-/// and returns them as a list of dicts. Runs no job; every job's result must be there.
+/// and returns them as a list of dicts. Runs no job; every job's result must be there, but
+/// for those of a scene's optional parts with `partial` (`--partial`).
 #[pyfunction]
-#[pyo3(signature = (names, out, full, solver, accept_other_commit, dir))]
+#[pyo3(signature = (names, out, full, solver, accept_other_commit, dir, partial))]
 pub fn merge<'py>(
     py: Python<'py>,
     names: Option<&Bound<'py, PyAny>>,
@@ -145,6 +146,7 @@ pub fn merge<'py>(
     solver: Option<&Bound<'py, PyAny>>,
     accept_other_commit: bool,
     dir: Option<PathBuf>,
+    partial: bool,
 ) -> PyResult<Vec<Bound<'py, PyAny>>> {
     let names = name_list(names)?;
     let mut opts = run_options(full, out, false, solver)?;
@@ -153,7 +155,7 @@ pub fn merge<'py>(
         let registry = Registry::builtin();
         task::check(&registry, &sources)?;
         let plan = task::plan(&registry, &sources, &opts, None)?;
-        task::merge(&plan, accept_other_commit, &mut opts)?;
+        task::merge(&plan, accept_other_commit, partial, &mut opts)?;
         run_definitions(hook, &sources, &opts)
     })?;
     outcomes.iter().map(|o| record(py, o)).collect()

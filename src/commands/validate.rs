@@ -52,6 +52,11 @@ pub struct Args {
     /// outcome).
     #[arg(long, requires = "merge")]
     accept_other_commit: bool,
+    /// With --merge: conclude without a scene's optional parts (a re-entry variant) whose
+    /// jobs do not all have results yet; the outcome names them as pending, with their
+    /// progress and the plan's cost of the rest, and a claim that reads one says so.
+    #[arg(long, requires = "merge")]
+    partial: bool,
     /// Print the jobs with their estimated cost (and share, with --shards N) as JSON; runs
     /// nothing.
     #[arg(long)]
@@ -100,8 +105,8 @@ pub fn run(args: Args) -> Result<()> {
             };
         } else {
             // Merge: every job's result must be there (and usable) before anything is
-            // written.
-            validations::merge(&plan, args.accept_other_commit, &mut opts)?;
+            // written, but for the optional parts' with --partial.
+            validations::merge(&plan, args.accept_other_commit, args.partial, &mut opts)?;
         }
     }
     let mut failed = Vec::new();

@@ -3,7 +3,7 @@
 //! the jobs' results reduce to a [`Conclusion`], in three steps: statistics, findings as
 //! data, a thin builder of what a reader sees).
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::fmt;
 use std::path::PathBuf;
 
@@ -102,6 +102,20 @@ pub trait Jobs: Serialize + DeserializeOwned + Sync + fmt::Debug {
     fn shared_job(&self, _job: &Self::Job) -> Option<(serde_json::Value, Self::Job)> {
         None
     }
+
+    /// The optional part of the scene that `job` belongs to, by name (a scene beside the
+    /// headline's, as a re-entry variant), or `None` for a job of the scene proper. A merge
+    /// that allows pending parts (`validate --merge --partial`) concludes without a part
+    /// whose jobs do not all have results yet ([`Jobs::leave_out`]), and the outcome names
+    /// it as pending; a job of the scene proper must always have its result.
+    fn part(&self, _job: &Self::Job) -> Option<String> {
+        None
+    }
+
+    /// Removes the optional parts named `parts` ([`Jobs::part`]) from the scene. The jobs
+    /// of what remains must keep their keys ([`Jobs::key_scene`] leaves the parts out),
+    /// which the runner checks.
+    fn leave_out(&mut self, _parts: &BTreeSet<String>) {}
 
     /// What one job costs (its grid and its solves), for splitting a run into shares
     /// before anything runs.

@@ -19,6 +19,7 @@ impl Scorecard<'_> {
         let _ = writeln!(s, "## {}: {}\n", md(&o.name), md(&o.title));
         push_table(s, &["", ""], &facts(o, g));
         account(s, o);
+        pending(s, o);
         super::study::studies(s, &o.studies);
         details(s, o);
         checks(s, o);
@@ -156,6 +157,27 @@ fn account(s: &mut String, o: &Outcome) {
     if !o.account.trim().is_empty() {
         let _ = writeln!(s, "{}\n", prose(o.account.trim()));
     }
+}
+
+/// The optional parts of the scene a merge left out until their jobs are in.
+fn pending(s: &mut String, o: &Outcome) {
+    let Some(merge) = &o.merge else { return };
+    if merge.pending.is_empty() {
+        return;
+    }
+    let _ = writeln!(
+        s,
+        "**Pending**: parts of the scene left out of this merge until all their jobs have \
+         results; the claims that read them say so.\n"
+    );
+    let header = ["part", "jobs with results", "the plan's cost of the rest"];
+    push_rows(s, &header, &merge.pending, |p| {
+        vec![
+            md(&p.name),
+            format!("{} of {}", p.done, p.jobs),
+            format!("{:.1} core-hours", p.core_hours_left),
+        ]
+    });
 }
 
 /// The secondary statistics with Persson's and the paper's values.

@@ -95,16 +95,25 @@ pub fn plan(
 
 /// Sets `opts` to merge the job results the shares stored under `opts.out`, once every
 /// job of `plan` has a result there under its job key (computed by this commit, unless
-/// `accept_other_commit`: see [`Plan::check_merge`]); nothing is written otherwise.
+/// `accept_other_commit`: see [`Plan::check_merge`]); nothing is written otherwise. With
+/// `partial`, the optional parts of a scene whose jobs lack results are left out and
+/// recorded as pending.
 ///
 /// # Errors
 ///
-/// If a job of `plan` has no result under `opts.out`, or one computed by another commit
-/// unless `accept_other_commit` ([`Plan::check_merge`]).
-pub fn merge(plan: &Plan, accept_other_commit: bool, opts: &mut RunOptions) -> Result<()> {
-    plan.check_merge(accept_other_commit)?;
+/// If a job of `plan` has no result under `opts.out` (one of an optional part is allowed
+/// with `partial`), or one computed by another commit unless `accept_other_commit`
+/// ([`Plan::check_merge`]).
+pub fn merge(
+    plan: &Plan,
+    accept_other_commit: bool,
+    partial: bool,
+    opts: &mut RunOptions,
+) -> Result<()> {
+    plan.check_merge(accept_other_commit, partial)?;
     opts.mode = Mode::Merge {
         other_commits_accepted: accept_other_commit,
+        partial,
     };
     Ok(())
 }

@@ -392,13 +392,18 @@ impl ClaimSpec {
         let measured = self.measure.as_deref().and_then(|m| measures.get(m));
         let (result, why) = match (&self.measure, measured) {
             (None, _) => (ClaimResult::NotMeasured, self.not_measured.clone()),
-            (Some(m), None) => (
-                ClaimResult::NotMeasured,
-                Some(format!("this run has no {m}")),
-            ),
-            (Some(_), Some(_)) if reduced_scene && !self.reduced => (
+            // Not judged here whether or not the reduced scene has the measure: a load or
+            // grid of the paper's own scene often exists at full scale only.
+            (Some(_), _) if reduced_scene && !self.reduced => (
                 ClaimResult::NotJudgedAtThisScale,
                 Some("a magnitude of the paper's scene: judged on the full scene".into()),
+            ),
+            (Some(m), None) => (
+                ClaimResult::NotMeasured,
+                Some(match measures.pending.iter().find(|p| p.gives(m)) {
+                    Some(p) => p.why(),
+                    None => format!("this run has no {m}"),
+                }),
             ),
             (Some(_), Some(e)) => self.verdict(e, measures, z),
         };
@@ -425,8 +430,8 @@ impl ClaimSpec {
             .map(|r| {
                 let measured = measures.get(&r.measure);
                 let result = match measured {
+                    _ if reduced_scene && !self.reduced => ClaimResult::NotJudgedAtThisScale,
                     None => ClaimResult::NotMeasured,
-                    Some(_) if reduced_scene && !self.reduced => ClaimResult::NotJudgedAtThisScale,
                     Some(e) => match &r.rule {
                         Some(rule) => {
                             ClaimSpec {
@@ -570,6 +575,7 @@ pub fn deciding(claims: &[ClaimOutcome]) -> Vec<&ClaimOutcome> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::validation::outcome::PendingPart;
 
     fn spec(phrase: Phrase, rule: Rule, value: Option<f64>) -> ClaimSpec {
         ClaimSpec {
@@ -600,6 +606,7 @@ mod tests {
             details: &[],
             studies: &[],
             cross_checks: vec![("cg".into(), Estimate::new(0.5, 0.01))],
+            pending: &[],
         }
     }
 
@@ -739,6 +746,63 @@ mod tests {
         };
         assert_eq!(decision(&[reduced, failed.clone()]), Decision::Failed);
         assert_eq!(deciding(&[failed]).len(), 1);
+    }
+
+    #[test]
+    fn a_claim_of_the_full_scene_is_not_judged_on_the_reduced_one_measured_or_not() {
+        let mut s = spec(Phrase::About, Rule::Near(0.1), Some(0.62));
+        s.reduced = false;
+        s.measure = Some("detail:a_load_of_the_full_scene".into());
+        s.other_readings = vec![OtherReading {
+            reading: "at another load".into(),
+            measure: "detail:another_load_of_the_full_scene".into(),
+            rule: None,
+        }];
+        let m = measures(Estimate::new(0.2, 0.01));
+        let reduced = s.judge(&m, true, 3.0);
+        assert_eq!(reduced.result, ClaimResult::NotJudgedAtThisScale);
+        assert_eq!(
+            reduced.readings[0].result,
+            ClaimResult::NotJudgedAtThisScale
+        );
+        let full = s.judge(&m, false, 3.0);
+        assert_eq!(full.result, ClaimResult::NotMeasured);
+        assert_eq!(full.readings[0].result, ClaimResult::NotMeasured);
+    }
+
+    #[test]
+    fn a_measure_of_a_pending_part_says_it_is_pending() {
+        let pending = [PendingPart {
+            name: "eps16".into(),
+            jobs: 6,
+            done: 2,
+            core_hours_left: 13.04,
+            measures: vec!["detail:eps16_share_ar0.14".into(), "study:variants".into()],
+        }];
+        let m = Measures {
+            pending: &pending,
+            ..measures(Estimate::new(0.2, 0.01))
+        };
+        let mut s = spec(Phrase::About, Rule::Near(0.1), Some(0.62));
+        s.measure = Some("detail:eps16_share_ar0.14".into());
+        let o = s.judge(&m, false, 3.0);
+        assert_eq!(o.result, ClaimResult::NotMeasured);
+        let why = o.why.unwrap();
+        for word in ["pending", "eps16", "2 of 6", "13.0 core-hours"] {
+            assert!(why.contains(word), "{word}: {why}");
+        }
+        // A study cell of the part, a detail on a grid: the part gives them too.
+        assert!(pending[0].gives("study:variants/eps16_ar0.14/share"));
+        assert!(pending[0].gives("detail:eps16_share_ar0.14@2048"));
+        assert!(!pending[0].gives("detail:eps16_share_ar0.88"));
+        assert!(!pending[0].gives("headline"));
+        // Any other absent measure reads as before.
+        s.measure = Some("detail:absent".into());
+        assert!(s
+            .judge(&m, false, 3.0)
+            .why
+            .unwrap()
+            .contains("this run has no"));
     }
 
     #[test]

@@ -188,6 +188,14 @@ impl<S> Definition<S> {
         }
     }
 
+    /// The scene of `scale`, to edit.
+    pub fn scene_mut(&mut self, scale: Scale) -> &mut S {
+        match scale {
+            Scale::Reduced => &mut self.reduced,
+            Scale::Full => &mut self.full,
+        }
+    }
+
     /// What the experiment's conclusion is judged by.
     pub fn criteria(&self) -> Criteria {
         Criteria {

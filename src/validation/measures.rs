@@ -10,6 +10,7 @@ use crate::experiments::keys::closest;
 use crate::experiments::study::{self, Study};
 use crate::experiments::{Detail, Keys};
 use crate::stats::Estimate;
+use crate::validation::outcome::PendingPart;
 
 /// Where a claim finds its numbers: a run's headline, details, studies and cross-checks.
 pub struct Measures<'a> {
@@ -21,6 +22,9 @@ pub struct Measures<'a> {
     pub studies: &'a [Study],
     /// The other solvers' headlines: (solver, estimate).
     pub cross_checks: Vec<(String, Estimate)>,
+    /// The optional parts of the scene a merge left out, with the measures only they give
+    /// ([`PendingPart`]).
+    pub pending: &'a [PendingPart],
 }
 
 impl Measures<'_> {

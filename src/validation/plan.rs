@@ -67,6 +67,8 @@ pub struct PlannedUnit {
     pub work: Work,
     /// Estimated wall time on one core, seconds.
     pub cost: f64,
+    /// The optional part of its scene it belongs to ([`crate::experiments::Jobs::part`]).
+    pub part: Option<String>,
 }
 
 /// One job in the printed plan.
@@ -92,6 +94,9 @@ pub struct PlanRow {
     pub cost: f64,
     /// Its share (1-based), when the plan has shares.
     pub shard: Option<usize>,
+    /// The optional part of its scene it belongs to (a re-entry variant), if any.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub part: Option<String>,
     /// Its measured wall time, when its result is already in the output folder.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub measured_s: Option<f64>,
@@ -149,6 +154,7 @@ impl Plan {
                     shells: u.work.shells,
                     cost: u.cost,
                     shard: assigned.as_ref().map(|a| a[i]),
+                    part: u.part.clone(),
                     measured_s,
                 }
             })
@@ -187,8 +193,10 @@ impl Plan {
     /// comment, the other scale's scene, the paper's finding) keeps it valid, and an edit of
     /// a parameter of its scene changes the key, so that the job runs again. The hash of the
     /// definition file that computed a result stays in its provenance. The error names every
-    /// missing job with the share that owns it, or the refused result and why.
-    pub fn check_merge(&self, accept_other_commit: bool) -> Result<()> {
+    /// missing job with the share that owns it, or the refused result and why. With
+    /// `partial`, a job of an optional part of its scene ([`PlanRow::part`]) may be missing:
+    /// the merge concludes without that part.
+    pub fn check_merge(&self, accept_other_commit: bool, partial: bool) -> Result<()> {
         let commit = crate::provenance::commit_label();
         let stored: Vec<Option<StoredRun>> = self.paths.iter().map(|p| load_run(p)).collect();
         // The share count of the run, from the shares' own records.
@@ -208,6 +216,9 @@ impl Plan {
         let mut missing = Vec::new();
         for (i, (row, s)) in self.jobs.iter().zip(&stored).enumerate() {
             let Some(s) = s else {
+                if partial && row.part.is_some() {
+                    continue;
+                }
                 let owner = match &owners {
                     Some((a, n)) => format!("shard {}/{n}", a[i]),
                     None if counts.len() > 1 => {
@@ -287,6 +298,7 @@ mod tests {
             path: PathBuf::from(p),
             work: Work::default(),
             cost,
+            part: None,
         };
         let plan = Plan::new(
             vec![

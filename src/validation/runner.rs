@@ -6,7 +6,7 @@
 //! left alone with `--resume` (so the job continues from its last checkpoint), and removed
 //! once the job's result is stored, never before.
 
-use std::collections::HashSet;
+use std::collections::{BTreeMap, BTreeSet, HashSet};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::{Instant, SystemTime, UNIX_EPOCH};
@@ -16,7 +16,7 @@ use rayon::prelude::*;
 
 use super::claims::{self, ClaimOutcome, Measures};
 use super::definition::{Definition, Scale, Verdict};
-use super::outcome::{CrossCheck, MergeRecord, Outcome, ShardRecord};
+use super::outcome::{CrossCheck, MergeRecord, Outcome, PendingPart, ShardRecord};
 use super::plan::{estimate_seconds, PlannedUnit};
 use super::shard::Shard;
 use super::source::Source;
@@ -69,6 +69,9 @@ pub enum Mode {
     Merge {
         /// Whether results of another commit were accepted.
         other_commits_accepted: bool,
+        /// Whether the optional parts of a scene whose jobs do not all have results are
+        /// left out (recorded as pending in the outcome) instead of refusing the merge.
+        partial: bool,
     },
 }
 
@@ -123,6 +126,8 @@ pub(crate) struct Unit<J> {
     pub state_dir: PathBuf,
     /// What it costs.
     pub work: Work,
+    /// The optional part of the scene it belongs to ([`Jobs::part`]).
+    pub part: Option<String>,
 }
 
 /// A parsed, checked definition with its units of work.
@@ -139,8 +144,14 @@ impl<E: Experiment> Prepared<E> {
     }
 }
 
-/// Parses and checks `source` and lists its jobs for every solver of `opts`.
-pub(crate) fn prepare<E: Experiment>(source: &Source, opts: &RunOptions) -> Result<Prepared<E>> {
+/// Parses and checks `source` and lists its jobs for every solver of `opts`, the scene's
+/// optional parts named in `leave_out` left out ([`Jobs::leave_out`]; the definition is
+/// checked before, with them).
+pub(crate) fn prepare<E: Experiment>(
+    source: &Source,
+    opts: &RunOptions,
+    leave_out: &BTreeSet<String>,
+) -> Result<Prepared<E>> {
     if opts.solvers.is_empty() {
         return Err(Error::invalid("solvers", "none", "at least one solver"));
     }
@@ -156,8 +167,13 @@ pub(crate) fn prepare<E: Experiment>(source: &Source, opts: &RunOptions) -> Resu
             "each solver at most once",
         ));
     }
-    let def = source.parse::<E::Scene>()?;
-    let (scene, jobs) = checked_scene::<E>(source, &def, opts.scale)?;
+    let mut def = source.parse::<E::Scene>()?;
+    checked_scene::<E>(source, &def, opts.scale)?;
+    if !leave_out.is_empty() {
+        def.scene_mut(opts.scale).leave_out(leave_out);
+    }
+    let scene = def.scene(opts.scale);
+    let jobs = scene.jobs();
     let scene_json = serde_json::to_value(scene).expect("scenes serialise");
     let key_json = scene.key_scene();
     let state = jobs_dir(&opts.out, <E::Scene as Jobs>::FAMILY, opts.scale);
@@ -186,6 +202,7 @@ pub(crate) fn prepare<E: Experiment>(source: &Source, opts: &RunOptions) -> Resu
                 path: state.join(format!("{key}.json")),
                 state_dir: state.join(format!("{key}.checkpoint")),
                 work: scene.work(job),
+                part: scene.part(job),
             });
         }
     }
@@ -201,7 +218,7 @@ pub(crate) fn planned_units<E: Experiment>(
     source: &Source,
     opts: &RunOptions,
 ) -> Result<Vec<PlannedUnit>> {
-    let prepared = prepare::<E>(source, opts)?;
+    let prepared = prepare::<E>(source, opts, &BTreeSet::new())?;
     Ok(prepared
         .units
         .into_iter()
@@ -212,6 +229,7 @@ pub(crate) fn planned_units<E: Experiment>(
             cost: estimate_seconds(u.work, u.solver),
             work: u.work,
             path: u.path,
+            part: u.part,
         })
         .collect())
 }
@@ -299,7 +317,27 @@ pub fn run_experiment<E: Experiment>(
     opts: &RunOptions,
 ) -> Result<Option<Outcome>> {
     let timer = Instant::now();
-    let prepared = prepare::<E>(source, opts)?;
+    let mut prepared = prepare::<E>(source, opts, &BTreeSet::new())?;
+    let pending = match opts.mode {
+        Mode::Merge { partial: true, .. } => pending_parts::<E>(source, &prepared, opts.scale)?,
+        _ => Vec::new(),
+    };
+    if !pending.is_empty() {
+        let names: BTreeSet<String> = pending.iter().map(|p| p.name.clone()).collect();
+        let rest = prepare::<E>(source, opts, &names)?;
+        let keys: HashSet<&PathBuf> = prepared.units.iter().map(|u| &u.path).collect();
+        if let Some(u) = rest.units.iter().find(|u| !keys.contains(&u.path)) {
+            return Err(Error::bad_file(
+                &source.path,
+                format!(
+                    "leaving out {names:?} changes the key of job {}: the scene's keys must \
+                     not depend on its optional parts",
+                    u.job_json
+                ),
+            ));
+        }
+        prepared = rest;
+    }
     let scene = prepared.scene(opts.scale);
     let selected: Vec<&Unit<JobOf<E>>> = match &opts.mode {
         Mode::Share { jobs, .. } => prepared
@@ -325,6 +363,7 @@ pub fn run_experiment<E: Experiment>(
     let (wall_s, merge) = match &opts.mode {
         Mode::Merge {
             other_commits_accepted,
+            ..
         } => {
             let runs = prepared
                 .units
@@ -335,12 +374,68 @@ pub fn run_experiment<E: Experiment>(
                 commit: crate::provenance::commit_label(),
                 other_commits_accepted: *other_commits_accepted,
                 shards: ShardRecord::from_runs(&runs),
+                pending,
             };
             (busy_seconds(runs.iter().map(|r| r.span)), Some(record))
         }
         _ => (timer.elapsed().as_secs_f64(), None),
     };
     conclude::<E>(source, &prepared, results, opts, wall_s, merge).map(Some)
+}
+
+/// The optional parts of the scene ([`Jobs::part`]) that some job of `prepared` has no
+/// stored result for: each with its jobs, those done, the plan's cost of the rest, and the
+/// measures only it gives (the keys its experiment declares with it and not without it).
+fn pending_parts<E: Experiment>(
+    source: &Source,
+    prepared: &Prepared<E>,
+    scale: Scale,
+) -> Result<Vec<PendingPart>> {
+    let mut parts: BTreeMap<&str, PendingPart> = BTreeMap::new();
+    for u in &prepared.units {
+        let Some(name) = u.part.as_deref() else {
+            continue;
+        };
+        let p = parts.entry(name).or_insert_with(|| PendingPart {
+            name: name.to_string(),
+            jobs: 0,
+            done: 0,
+            core_hours_left: 0.0,
+            measures: Vec::new(),
+        });
+        p.jobs += 1;
+        if store::load_run(&u.path).is_some() {
+            p.done += 1;
+        } else {
+            p.core_hours_left += estimate_seconds(u.work, u.solver) / 3600.0;
+        }
+    }
+    let with = measure_names(&E::keys(prepared.scene(scale)));
+    let mut pending = Vec::new();
+    for (name, mut p) in parts.into_iter().filter(|(_, p)| p.done < p.jobs) {
+        let mut def = source.parse::<E::Scene>()?;
+        def.scene_mut(scale)
+            .leave_out(&BTreeSet::from([name.to_string()]));
+        let without = measure_names(&E::keys(def.scene(scale)));
+        p.measures = with
+            .iter()
+            .filter(|m| !without.contains(*m))
+            .cloned()
+            .collect();
+        pending.push(p);
+    }
+    Ok(pending)
+}
+
+/// The measures `keys` declare as a claim names them, without grids or study cells:
+/// `detail:KEY` and `study:KEY`.
+fn measure_names(keys: &Keys) -> BTreeSet<String> {
+    let details = keys
+        .detail_names()
+        .into_iter()
+        .map(|k| format!("detail:{}", k.split('@').next().unwrap_or(&k)));
+    let studies = keys.study_names().into_iter().map(|k| format!("study:{k}"));
+    details.chain(studies).collect()
 }
 
 /// The time during which at least one of the jobs ran: the length of the union of their
@@ -393,7 +488,15 @@ pub(crate) fn conclude<E: Experiment>(
         .collect();
     let verdict = def.verdict.judge(measured, conclusion.persson);
     let mut conclusion = conclusion;
-    let claims = judge_claims(def, &conclusion, measured, &cross_checks, opts.scale);
+    let pending = merge.as_ref().map_or(&[][..], |m| &m.pending[..]);
+    let claims = judge_claims(
+        def,
+        &conclusion,
+        measured,
+        &cross_checks,
+        pending,
+        opts.scale,
+    );
     papers_values(&mut conclusion.details, &claims);
     let reproduced = reproduced(def, verdict, measured, &conclusion.checks, &claims);
     let files = write_files(&opts.out, &def.name, &conclusion)?;
@@ -472,9 +575,11 @@ fn judge_claims<S>(
     conclusion: &Conclusion,
     measured: Estimate,
     cross_checks: &[CrossCheck],
+    pending: &[PendingPart],
     scale: Scale,
 ) -> Vec<ClaimOutcome> {
     let measures = Measures {
+        pending,
         headline: measured,
         details: &conclusion.details,
         studies: &conclusion.studies,

@@ -56,7 +56,7 @@ pub mod stats;
 pub mod tolerance;
 pub mod variants;
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 use serde::{Deserialize, Serialize};
 
@@ -181,6 +181,22 @@ impl Jobs for ReentryScene {
         scene.tolerance = None;
         scene.variants.clear();
         serde_json::to_value(scene).expect("scenes serialise")
+    }
+
+    /// A variant is an optional part, named by its name: its histories are scenes of
+    /// their own, outside the headline's keys.
+    fn part(&self, job: &ReentryJob) -> Option<String> {
+        let ReentryJob::Variant(j) = job else {
+            return None;
+        };
+        self.variants
+            .iter()
+            .find(|v| v.jobs().contains(j))
+            .map(|v| v.name.clone())
+    }
+
+    fn leave_out(&mut self, parts: &BTreeSet<String>) {
+        self.variants.retain(|v| !parts.contains(&v.name));
     }
 
     fn work(&self, job: &ReentryJob) -> Work {
