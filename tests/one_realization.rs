@@ -83,8 +83,14 @@ const ONE_SEED_SCENES: &[(&str, &str)] = &[
     (
         "c_reentry",
         "n = 32\nhurst = 0.8\nlambda_l = 16\nlambda_s = 4\nseeds = [1]\n\
-         contact_areas = [0.14, 0.5]\nflux_zeta = 2\n\
-         flux_dzeta = 1\ncheckpoint_seconds = 30\ntol = 1e-8\n",
+         contact_areas = [0.14, 0.014, 0.88]\nflux_zeta = 2\n\
+         flux_dzeta = 1\ncheckpoint_seconds = 30\ntol = 1e-8\n\n\
+         [[reduced.variants]]\nname = \"h03\"\nwhat = \"H = 0.3\"\nn = 32\nhurst = 0.3\n\
+         lambda_l = 16\nlambda_s = 4\nseeds = [1]\ncontact_areas = [0.14, 0.014, 0.88]\n\
+         tol = 1e-8\n\n\
+         [[reduced.variants]]\nname = \"shells\"\nwhat = \"shell by shell\"\nn = 32\n\
+         hurst = 0.8\nlambda_l = 16\nlambda_s = 4\nseeds = [1]\ncontact_areas = [0.14]\n\
+         tol = 1e-8\nrecord_shells = true\n",
     ),
     (
         "d_onset",

@@ -166,6 +166,17 @@ fn c_points_re_enter_contact() {
     );
     assert!(detail("shells_leave_soon_excess_ar0.14") > 0.0);
     assert!(detail("shells_changes_octave_drop_ar0.14") > 0.0);
+    // The two shell claims read those statistics and reproduce; the paper's 2048^2 counts
+    // and eps_c = 1/16 are magnitudes of its own scenes, judged at full scale only.
+    assert_eq!(claim(&o, "reentrant_leave_soon"), ClaimResult::Reproduced);
+    assert_eq!(
+        claim(&o, "changes_per_shell_fall_with_zeta"),
+        ClaimResult::Reproduced
+    );
+    assert_eq!(
+        claim(&o, "stayed_in_contact_2048"),
+        ClaimResult::NotJudgedAtThisScale
+    );
 }
 
 #[test]
@@ -352,6 +363,7 @@ fn a_share_far_from_the_papers_flips_its_claim() {
             details: &details,
             studies: &[],
             cross_checks: Vec::new(),
+            pending: &[],
         };
         (
             spec.judge(&m, false, def.verdict.significance).result,
