@@ -5,6 +5,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::stats::ratio;
 use super::ReentryScene;
 use crate::engine::sweep::shell_steps;
 use crate::error::{Error, Result};
@@ -53,12 +54,12 @@ impl ReentryResult {
     /// The re-entry share: points in contact at `zeta_max` that were ever out, over the
     /// points in contact.
     pub fn share(&self) -> f64 {
-        self.reentered as f64 / self.contact_points.max(1) as f64
+        ratio(self.reentered, self.contact_points)
     }
 
     /// The share that left contact after the first shell and came back.
     pub fn share_after_first(&self) -> f64 {
-        self.reentered_after_first as f64 / self.contact_points.max(1) as f64
+        ratio(self.reentered_after_first, self.contact_points)
     }
 
     /// The share of the final contact that was out of contact at the first shell
@@ -66,8 +67,10 @@ impl ReentryResult {
     /// reentered_after_first) / contact_points`, a lower bound on the final contact's share
     /// out of contact at `zeta = 1`.
     pub fn share_out_at_first(&self) -> f64 {
-        self.reentered.saturating_sub(self.reentered_after_first) as f64
-            / self.contact_points.max(1) as f64
+        ratio(
+            self.reentered.saturating_sub(self.reentered_after_first),
+            self.contact_points,
+        )
     }
 
     /// The net flux over the mean one-way flux, `|out - in| / ((out + in) / 2)`.

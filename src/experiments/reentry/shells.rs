@@ -21,6 +21,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::stats::ratio;
 use crate::error::{Error, Result};
 use crate::experiments::climb::Arrays;
 use crate::experiments::contact_change::above;
@@ -60,12 +61,12 @@ impl ShellRecord {
 
     /// Of the entries into contact, the share that left within [`SOON`] shells.
     pub fn entered_leave_soon(&self) -> f64 {
-        self.entries_left_soon as f64 / self.entries.max(1) as f64
+        ratio(self.entries_left_soon, self.entries)
     }
 
     /// Of the points in contact at a shell, the share that leaves within [`SOON`] shells.
     pub fn contact_leave_soon(&self) -> f64 {
-        self.contact_pairs_left_soon as f64 / self.contact_pairs.max(1) as f64
+        ratio(self.contact_pairs_left_soon, self.contact_pairs)
     }
 
     /// Changes of contact state per shell and per point of the contact before it, averaged

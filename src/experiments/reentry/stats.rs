@@ -61,6 +61,13 @@ impl ReentryStats {
     }
 }
 
+/// `part / whole` as a fraction, 0 when `whole` is 0 (no points to count): every share
+/// of the histories (re-entered of the contact, stayed of the start, left soon of the
+/// entered).
+pub fn ratio(part: u64, whole: u64) -> f64 {
+    part as f64 / whole.max(1) as f64
+}
+
 /// The count of shells of the histories: exact (error 0) when they agree, else their mean
 /// over histories (NaN with none).
 pub fn shells(counts: impl IntoIterator<Item = usize>) -> Estimate {

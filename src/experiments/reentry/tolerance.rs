@@ -27,7 +27,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::stats::ReentryStats;
+use super::stats::{ratio, ReentryStats};
 use super::{ReentryJob, ReentryOutput, ReentryResult, ReentryScene};
 use crate::engine::sweep::shell_steps;
 use crate::error::{check_positive, Error, Result};
@@ -101,7 +101,7 @@ pub struct ToleranceResult {
 impl ToleranceResult {
     /// The re-entry share.
     pub fn share(&self) -> f64 {
-        self.reentered as f64 / self.contact_points.max(1) as f64
+        ratio(self.reentered, self.contact_points)
     }
 }
 

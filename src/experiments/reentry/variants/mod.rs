@@ -35,6 +35,7 @@ pub use findings::{
 use serde::{Deserialize, Serialize};
 
 use super::shells::{ShellLog, ShellRecord};
+use super::stats::ratio;
 use crate::engine::contact::ContactSolution;
 use crate::engine::sweep::shell_steps;
 use crate::error::{check_key_name, check_positive, Error, Result};
@@ -125,18 +126,18 @@ pub struct VariantResult {
 impl VariantResult {
     /// The re-entry share of the final contact.
     pub fn share(&self) -> f64 {
-        self.reentered as f64 / self.contact_points.max(1) as f64
+        ratio(self.reentered, self.contact_points)
     }
 
     /// The share of the points in contact at the first step that stayed in contact at
     /// every step.
     pub fn remained_of_start(&self) -> f64 {
-        self.in_throughout as f64 / self.contact_at_start.max(1) as f64
+        ratio(self.in_throughout, self.contact_at_start)
     }
 
     /// Coloured (re-entered) points over grey (always in contact) ones.
     pub fn coloured_over_grey(&self) -> f64 {
-        self.coloured as f64 / self.in_throughout.max(1) as f64
+        ratio(self.coloured, self.in_throughout)
     }
 
     /// Contact area at the first step.
