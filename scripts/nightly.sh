@@ -10,7 +10,10 @@
 #       copied into OUT/jobs) plus every job that has no committed result (a new or edited
 #       definition), which runs here unless its estimate, times 1.5, exceeds HOURS (default
 #       5) on this machine's cores; compared with results/full (OUT/compare.md); the jobs
-#       that ran are listed in OUT/missing.json
+#       that ran are listed in OUT/missing.json. When every missing job belongs to an
+#       optional part of a scene (a re-entry variant the campaign is still running) and
+#       they exceed HOURS, the outcomes are merged without those parts (--partial), as
+#       results/full is
 #   scripts/nightly.sh audit OUT BUDGET SEED
 #       `audit --from results/full --budget BUDGET --seed SEED --out OUT`
 #   scripts/nightly.sh summary OUT HISTORY REDUCED FULL AUDIT
@@ -78,7 +81,8 @@ full)
     step="plan of the full scenes"
     "$BIN" validate --full --plan --out "$out" >"$out/plan.json" 2>"$log"
     step="jobs without a committed result"
-    python3 - "$out" "$hours" "$(nproc)" <<'PY' | tee "$log"
+    rc=0
+    (python3 - "$out" "$hours" "$(nproc)" <<'PY' | tee "$log"
 import glob, json, sys
 out, hours, cores = sys.argv[1], float(sys.argv[2]), int(sys.argv[3])
 plan = json.load(open(f"{out}/plan.json"))
@@ -92,11 +96,24 @@ print(f"{len(missing)} of {len(plan['jobs'])} full jobs have no committed result
       f"({', '.join(validations) or 'none'}): estimated {cost / 3600:.2f} core-hours, "
       f"{hours_needed:.2f} h on {cores} cores with the margin")
 if hours_needed > hours:
+    if missing and all(j.get("part") for j in missing):
+        parts = sorted({j["part"] for j in missing})
+        print(f"more than the {hours} h allowed, all of them of optional parts ({', '.join(parts)}): "
+              "merging without those parts (--partial)")
+        sys.exit(4)
     print(f"more than the {hours} h allowed: run them as a campaign of shares (docs/cluster.md, "
           "'Running the paper-scale scenes on a cluster') and commit the results")
     sys.exit(3)
 PY
-    run "full outcomes from the committed and the missing jobs" "$BIN" validate --full --resume --out "$out"
+    ) || rc=$?
+    if [[ $rc -eq 4 ]]; then
+        run "full outcomes from the committed jobs, pending parts left out" \
+            "$BIN" validate --full --merge --partial --accept-other-commit --out "$out"
+    elif [[ $rc -ne 0 ]]; then
+        exit "$rc"
+    else
+        run "full outcomes from the committed and the missing jobs" "$BIN" validate --full --resume --out "$out"
+    fi
     answer "compare with $COMMITTED_FULL" "$BIN" compare "$COMMITTED_FULL" "$out" --out "$out/compare.md"
     ;;
 audit)
