@@ -52,6 +52,9 @@ def test_report_writes_the_scorecard(d_onset, tmp_path):
 def test_merge_needs_the_shares_results(tmp_path):
     with pytest.raises(ValueError):
         persson_check.merge("d_onset", out=str(tmp_path))
+    # A partial merge leaves out only optional parts of a scene; d_onset has none.
+    with pytest.raises(ValueError, match="have no result"):
+        persson_check.merge("d_onset", out=str(tmp_path), partial=True)
 
 
 def test_paths_may_be_pathlib_paths(d_onset, tmp_path):
