@@ -138,6 +138,7 @@ pub fn plan<'py>(
 /// for those of a scene's optional parts with `partial` (`--partial`).
 #[pyfunction]
 #[pyo3(signature = (names, out, full, solver, accept_other_commit, dir, partial))]
+#[allow(clippy::too_many_arguments)]
 pub fn merge<'py>(
     py: Python<'py>,
     names: Option<&Bound<'py, PyAny>>,
