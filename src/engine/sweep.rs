@@ -264,12 +264,21 @@ impl<'a, R: Roughness> Sweep<'a, R> {
         self.previous.take()
     }
 
-    /// Restores a solution as the warm start of the next solve (resuming a sweep).
-    pub fn restore(&mut self, zeta: f64, solution: ContactSolution) {
+    /// Restores a solution as the warm start of the next solve, with what the solver
+    /// carried after it ([`Sweep::carried`]): a sweep resumed from a checkpoint then solves
+    /// as the uninterrupted one did.
+    pub fn restore(&mut self, zeta: f64, solution: ContactSolution, carried: Option<f64>) {
         self.change = None;
         self.previous = None;
         self.set_zeta(zeta);
         self.previous = Some(solution);
+        self.solver.carry(carried);
+    }
+
+    /// What the solver carries to the next solve besides the solution
+    /// ([`Solver::carried`]), for a checkpoint.
+    pub fn carried(&self) -> Option<f64> {
+        self.solver.carried()
     }
 
     /// Solves at magnification `zeta` and load `p0`, warm-started from the last solution
@@ -438,6 +447,53 @@ mod tests {
         let surface = Surface::generate(&SurfaceModel::new(32, 0.8, 32.0, 4.0, 5)).unwrap();
         let model = Model::free_window(16, 32, 1.0).unwrap();
         let _ = Sweep::new(&surface, &model, SolverKind::Cg, SolveOptions::default());
+    }
+
+    #[test]
+    fn a_sweep_resumed_with_what_the_solver_carried_is_the_uninterrupted_one() {
+        // A climb through shells at a loose tolerance, interrupted after `k` steps and
+        // resumed in a fresh sweep from the stored solution: bit for bit the uninterrupted
+        // climb with every solver, once the solver's carried state comes along (GFMD's:
+        // the step its last solve ended with, from which the next solve starts).
+        let (surface, model) = rough_contact(64, 0.8, 7);
+        let opts = SolveOptions::with_tol(1e-4);
+        let steps = shell_steps(&surface, 1.0, surface.zeta_max());
+        let k = steps.len() / 2;
+        for kind in SolverKind::ALL {
+            let mut whole = Sweep::new(&surface, &model, kind, opts);
+            let p0 = whole.find_load(surface.zeta_max(), 0.2).unwrap();
+            whole.take_solution();
+            let mut at_k = None;
+            for (i, &z) in steps.iter().enumerate() {
+                whole.solve_at(z, p0).unwrap();
+                if i + 1 == k {
+                    at_k = Some((whole.solution().unwrap().clone(), whole.carried()));
+                }
+            }
+            let (solution, carried) = at_k.unwrap();
+            assert_eq!(carried.is_some(), kind == SolverKind::Gfmd, "{kind:?}");
+            let resume = |carried: Option<f64>| {
+                let mut resumed = Sweep::new(&surface, &model, kind, opts);
+                resumed.restore(steps[k - 1], solution.clone(), carried);
+                for &z in &steps[k..] {
+                    resumed.solve_at(z, p0).unwrap();
+                }
+                resumed.take_solution().unwrap()
+            };
+            let end = whole.solution().unwrap();
+            let resumed = resume(carried);
+            assert_eq!(resumed.pressure, end.pressure, "{kind:?}");
+            assert_eq!(resumed.displacement, end.displacement, "{kind:?}");
+            if let Some(tau) = carried {
+                // The carried step is what the next solve starts from: another one (as a
+                // large grid's, which ends its solves on smaller steps) changes the climb.
+                let other = resume(Some(tau * 0.1));
+                assert!(
+                    other.pressure != end.pressure,
+                    "GFMD's carried step is not used"
+                );
+            }
+        }
     }
 
     #[test]

@@ -86,6 +86,11 @@ struct Progress {
     wall_s: f64,
     max_residual: f64,
     recorder: serde_json::Value,
+    /// What the solver carried after the last step ([`Sweep::carried`]); absent from
+    /// checkpoints written before it was kept (such a climb resumes without it, and
+    /// differs from an uninterrupted one at the solver's tolerance).
+    #[serde(default)]
+    solver: Option<f64>,
 }
 
 /// Checks the steps per octave of a [`ladder`]: an integer in `[1, 64]`.
@@ -194,7 +199,7 @@ pub fn climb(
             }
             recorder.start(pr.p0)?;
             recorder.restore(pr.recorder, ck)?;
-            sweep.restore(steps[pr.step - 1], solution);
+            sweep.restore(steps[pr.step - 1], solution, pr.solver);
             (pr.step, pr.p0, pr.iterations, pr.wall_s, pr.max_residual)
         }
         None => {
@@ -232,6 +237,7 @@ pub fn climb(
                     wall_s: wall_before + timer.elapsed().as_secs_f64(),
                     max_residual: done.max_residual,
                     recorder: meta,
+                    solver: sweep.carried(),
                 };
                 let mut arrays = vec![
                     ("pressure", Array::F64(&s.pressure)),

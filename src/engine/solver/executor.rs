@@ -56,6 +56,15 @@ pub trait Method {
         start: Start,
         opts: &SolveOptions,
     ) -> Result<Self::Solve<'a>>;
+
+    /// What the method carries from one solve to the next besides the solution
+    /// ([`super::Solver::carried`]); `None` when it carries nothing.
+    fn carried(&self) -> Option<f64> {
+        None
+    }
+
+    /// Sets what [`Method::carried`] returns (a sweep resumed from a checkpoint).
+    fn carry(&mut self, _carried: Option<f64>) {}
 }
 
 /// One solve's state and its iteration (see the module docs).

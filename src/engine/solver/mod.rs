@@ -255,6 +255,16 @@ pub trait Solver {
     ) -> Result<ContactSolution> {
         self.solve_monitored(problem, start, opts, &mut |_| {})
     }
+
+    /// What the solver carries from one solve to the next besides the solution (GFMD: the
+    /// step its last solve ended with), so that a sweep resumed from a checkpoint solves
+    /// as the uninterrupted one did; `None` when it carries nothing.
+    fn carried(&self) -> Option<f64> {
+        None
+    }
+
+    /// Sets what [`Solver::carried`] returns, as a resumed sweep's checkpoint holds it.
+    fn carry(&mut self, _carried: Option<f64>) {}
 }
 
 impl<M: executor::Method> Solver for M {
@@ -272,6 +282,14 @@ impl<M: executor::Method> Solver for M {
         opts.validate()?;
         let solve = self.init(problem, start, opts)?;
         executor::run(solve, opts.max_iter, monitor)
+    }
+
+    fn carried(&self) -> Option<f64> {
+        executor::Method::carried(self)
+    }
+
+    fn carry(&mut self, carried: Option<f64>) {
+        executor::Method::carry(self, carried);
     }
 }
 
@@ -302,6 +320,14 @@ impl<F: FnMut(&ContactProblem, Progress)> Solver for Watched<F> {
             watch(problem, p);
             monitor(p);
         })
+    }
+
+    fn carried(&self) -> Option<f64> {
+        self.inner.carried()
+    }
+
+    fn carry(&mut self, carried: Option<f64>) {
+        self.inner.carry(carried);
     }
 }
 

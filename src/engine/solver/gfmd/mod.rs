@@ -116,6 +116,15 @@ impl Method for Gfmd {
             stalled_at: f64::NAN,
         })
     }
+
+    /// The step the last solve ended with: the next solve of a sweep starts from it.
+    fn carried(&self) -> Option<f64> {
+        self.last_tau
+    }
+
+    fn carry(&mut self, carried: Option<f64>) {
+        self.last_tau = carried;
+    }
 }
 
 /// One solve's state: the mass-weighted dynamics' state, the schedule, and the solver's
