@@ -575,7 +575,7 @@ pub fn deciding(claims: &[ClaimOutcome]) -> Vec<&ClaimOutcome> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::validation::outcome::PendingPart;
+    use crate::validation::measures::PendingPart;
 
     fn spec(phrase: Phrase, rule: Rule, value: Option<f64>) -> ClaimSpec {
         ClaimSpec {

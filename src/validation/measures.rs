@@ -2,7 +2,11 @@
 //! cross-checks), the form of a measure (`headline`, `detail:KEY[@N]`,
 //! `study:STUDY/ROW/COLUMN`, `cross_check:SOLVER`), and the check at load that every
 //! measure a claim names is one its experiment declares for the scene
-//! ([`super::claims::check_declared`]), so that a mistyped key is an error, not "not measured".
+//! ([`super::claims::check_declared`]), so that a mistyped key is an error, not "not measured";
+//! and the measures a merge could not have yet ([`PendingPart`]: an optional part of the
+//! scene whose jobs are not all in), which a claim reads as pending.
+
+use serde::{Deserialize, Serialize};
 
 use crate::engine::solver::SolverKind;
 use crate::error::{Error, Result};
@@ -10,7 +14,6 @@ use crate::experiments::keys::closest;
 use crate::experiments::study::{self, Study};
 use crate::experiments::{Detail, Keys};
 use crate::stats::Estimate;
-use crate::validation::outcome::PendingPart;
 
 /// Where a claim finds its numbers: a run's headline, details, studies and cross-checks.
 pub struct Measures<'a> {
@@ -135,5 +138,44 @@ pub(super) fn declared(
             SolverKind::listed()
         )),
         _ => Ok(()),
+    }
+}
+
+/// An optional part of a scene (a re-entry variant) that a merge left out because not all
+/// of its jobs have results yet.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PendingPart {
+    /// The part's name (a variant's).
+    pub name: String,
+    /// Its jobs, over every solver run.
+    pub jobs: usize,
+    /// Those with a result.
+    pub done: usize,
+    /// The plan's estimate of what the others cost, core-hours.
+    pub core_hours_left: f64,
+    /// The measures a claim can name that only the part gives (`detail:KEY`,
+    /// `study:KEY`).
+    pub measures: Vec<String>,
+}
+
+impl PendingPart {
+    /// Whether the claim measure `measure` (`detail:KEY[@N]`, `study:KEY/ROW/COLUMN`) is one
+    /// of the part's.
+    pub fn gives(&self, measure: &str) -> bool {
+        let base = match measure.split_once(':') {
+            Some(("detail", rest)) => format!("detail:{}", rest.split('@').next().unwrap_or(rest)),
+            Some(("study", rest)) => format!("study:{}", rest.split('/').next().unwrap_or(rest)),
+            _ => return false,
+        };
+        self.measures.contains(&base)
+    }
+
+    /// Why a claim that reads the part's measure is not measured yet.
+    pub fn why(&self) -> String {
+        format!(
+            "pending: the scene's part {} is left out of this merge until its jobs are in \
+             ({} of {} have results; the plan costs the rest {:.1} core-hours)",
+            self.name, self.done, self.jobs, self.core_hours_left
+        )
     }
 }

@@ -16,6 +16,7 @@ use serde::{Deserialize, Deserializer, Serialize};
 
 use super::claims::ClaimOutcome;
 use super::definition::{Scale, Verdict, VerdictRule};
+pub use super::measures::PendingPart;
 use super::store::JobRun;
 use crate::experiments::study::Study;
 use crate::experiments::{Check, Detail};
@@ -117,45 +118,6 @@ pub struct MergeRecord {
     /// their measures says it is pending. Empty for a complete merge.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub pending: Vec<PendingPart>,
-}
-
-/// An optional part of a scene (a re-entry variant) that a merge left out because not all
-/// of its jobs have results yet.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct PendingPart {
-    /// The part's name (a variant's).
-    pub name: String,
-    /// Its jobs, over every solver run.
-    pub jobs: usize,
-    /// Those with a result.
-    pub done: usize,
-    /// The plan's estimate of what the others cost, core-hours.
-    pub core_hours_left: f64,
-    /// The measures a claim can name that only the part gives (`detail:KEY`,
-    /// `study:KEY`).
-    pub measures: Vec<String>,
-}
-
-impl PendingPart {
-    /// Whether the claim measure `measure` (`detail:KEY[@N]`, `study:KEY/ROW/COLUMN`) is one
-    /// of the part's.
-    pub fn gives(&self, measure: &str) -> bool {
-        let base = match measure.split_once(':') {
-            Some(("detail", rest)) => format!("detail:{}", rest.split('@').next().unwrap_or(rest)),
-            Some(("study", rest)) => format!("study:{}", rest.split('/').next().unwrap_or(rest)),
-            _ => return false,
-        };
-        self.measures.contains(&base)
-    }
-
-    /// Why a claim that reads the part's measure is not measured yet.
-    pub fn why(&self) -> String {
-        format!(
-            "pending: the scene's part {} is left out of this merge until its jobs are in \
-             ({} of {} have results; the plan costs the rest {:.1} core-hours)",
-            self.name, self.done, self.jobs, self.core_hours_left
-        )
-    }
 }
 
 /// One share of a sharded run, as its stored results record it.
