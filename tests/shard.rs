@@ -332,22 +332,8 @@ fn bad_share_specs_are_refused_and_write_nothing() {
     }
 }
 
-/// [`SCENE`] with a variant (H = 0.3 on a smaller grid): an optional part of the scene.
-const SCENE_WITH_VARIANT: &str = concat!(
-    "[reduced]
-n = 64
-hurst = 0.8
-lambda_l = 32
-lambda_s = 2
-seeds = [1, 2, 3]
-contact_areas = [0.14]
-flux_zeta = 12
-flux_dzeta = 1
-checkpoint_seconds = 0.1
-tol = 1e-8
-
-",
-    "[[reduced.variants]]
+/// A variant (H = 0.3 on a smaller grid) for [`SCENE`]: an optional part of the scene.
+const H03_VARIANT: &str = "[[reduced.variants]]
 name = \"h03\"
 what = \"H = 0.3\"
 n = 32
@@ -358,12 +344,11 @@ seeds = [1]
 contact_areas = [0.14]
 tol = 1e-8
 
-"
-);
+";
 
 #[test]
 fn a_partial_merge_leaves_out_a_variant_whose_jobs_are_not_all_in() {
-    let defs = definitions_with_reentry(SCENE_WITH_VARIANT, &[]);
+    let defs = definitions_with_reentry(&format!("{SCENE}{H03_VARIANT}"), &[]);
     let defs = defs.path();
     let names = ["c_reentry"];
     let all = tempfile::tempdir().unwrap();

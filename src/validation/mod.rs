@@ -34,6 +34,7 @@ pub mod claims;
 pub mod definition;
 pub mod measures;
 pub mod outcome;
+mod pending;
 pub mod phrase;
 pub mod plan;
 pub mod registry;

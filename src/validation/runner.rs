@@ -6,7 +6,7 @@
 //! left alone with `--resume` (so the job continues from its last checkpoint), and removed
 //! once the job's result is stored, never before.
 
-use std::collections::{BTreeMap, BTreeSet, HashSet};
+use std::collections::{BTreeSet, HashSet};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::{Instant, SystemTime, UNIX_EPOCH};
@@ -17,6 +17,7 @@ use rayon::prelude::*;
 use super::claims::{self, ClaimOutcome, Measures};
 use super::definition::{Definition, Scale, Verdict};
 use super::outcome::{CrossCheck, MergeRecord, Outcome, PendingPart, ShardRecord};
+use super::pending::{pending_parts, PartJob};
 use super::plan::{estimate_seconds, PlannedUnit};
 use super::shard::Shard;
 use super::source::Source;
@@ -319,7 +320,18 @@ pub fn run_experiment<E: Experiment>(
     let timer = Instant::now();
     let mut prepared = prepare::<E>(source, opts, &BTreeSet::new())?;
     let pending = match opts.mode {
-        Mode::Merge { partial: true, .. } => pending_parts::<E>(source, &prepared, opts.scale)?,
+        Mode::Merge { partial: true, .. } => {
+            let jobs: Vec<PartJob> = prepared
+                .units
+                .iter()
+                .map(|u| PartJob {
+                    part: u.part.as_deref(),
+                    path: &u.path,
+                    cost: estimate_seconds(u.work, u.solver),
+                })
+                .collect();
+            pending_parts::<E>(source, prepared.scene(opts.scale), &jobs, opts.scale)?
+        }
         _ => Vec::new(),
     };
     if !pending.is_empty() {
@@ -381,61 +393,6 @@ pub fn run_experiment<E: Experiment>(
         _ => (timer.elapsed().as_secs_f64(), None),
     };
     conclude::<E>(source, &prepared, results, opts, wall_s, merge).map(Some)
-}
-
-/// The optional parts of the scene ([`Jobs::part`]) that some job of `prepared` has no
-/// stored result for: each with its jobs, those done, the plan's cost of the rest, and the
-/// measures only it gives (the keys its experiment declares with it and not without it).
-fn pending_parts<E: Experiment>(
-    source: &Source,
-    prepared: &Prepared<E>,
-    scale: Scale,
-) -> Result<Vec<PendingPart>> {
-    let mut parts: BTreeMap<&str, PendingPart> = BTreeMap::new();
-    for u in &prepared.units {
-        let Some(name) = u.part.as_deref() else {
-            continue;
-        };
-        let p = parts.entry(name).or_insert_with(|| PendingPart {
-            name: name.to_string(),
-            jobs: 0,
-            done: 0,
-            core_hours_left: 0.0,
-            measures: Vec::new(),
-        });
-        p.jobs += 1;
-        if store::load_run(&u.path).is_some() {
-            p.done += 1;
-        } else {
-            p.core_hours_left += estimate_seconds(u.work, u.solver) / 3600.0;
-        }
-    }
-    let with = measure_names(&E::keys(prepared.scene(scale)));
-    let mut pending = Vec::new();
-    for (name, mut p) in parts.into_iter().filter(|(_, p)| p.done < p.jobs) {
-        let mut def = source.parse::<E::Scene>()?;
-        def.scene_mut(scale)
-            .leave_out(&BTreeSet::from([name.to_string()]));
-        let without = measure_names(&E::keys(def.scene(scale)));
-        p.measures = with
-            .iter()
-            .filter(|m| !without.contains(*m))
-            .cloned()
-            .collect();
-        pending.push(p);
-    }
-    Ok(pending)
-}
-
-/// The measures `keys` declare as a claim names them, without grids or study cells:
-/// `detail:KEY` and `study:KEY`.
-fn measure_names(keys: &Keys) -> BTreeSet<String> {
-    let details = keys
-        .detail_names()
-        .into_iter()
-        .map(|k| format!("detail:{}", k.split('@').next().unwrap_or(&k)));
-    let studies = keys.study_names().into_iter().map(|k| format!("study:{k}"));
-    details.chain(studies).collect()
 }
 
 /// The time during which at least one of the jobs ran: the length of the union of their
