@@ -172,6 +172,35 @@ fn the_reviewers_guide_states_each_phrases_rule() {
     }
 }
 
+/// Every committed outcome was concluded from the definition shipped beside it: its
+/// recorded definition hash is the file's. An edit of a definition (a claim, a rule, a
+/// reading) that is not followed by concluding its outcomes again fails here, so the claims
+/// in results/ and docs/claims.md cannot fall behind the definitions.
+#[test]
+fn every_committed_outcome_was_concluded_from_its_shipped_definition() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("results");
+    let mut stale = Vec::new();
+    for source in builtin_sources() {
+        let (name, _) = source.header().unwrap();
+        for scale in ["full", "reduced"] {
+            let path = root.join(scale).join(format!("{name}.json"));
+            let text = std::fs::read_to_string(&path)
+                .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            let o: Outcome = serde_json::from_str(&text).unwrap();
+            if o.definition_sha256 != source.sha256() {
+                stale.push(format!("results/{scale}/{name}.json"));
+            }
+        }
+    }
+    assert!(
+        stale.is_empty(),
+        "outcomes concluded from another version of their definition (conclude them again: \
+         `validate NAME --resume` on a copy of results/reduced, `validate NAME --full --merge \
+         --accept-other-commit` for results/full):\n{}",
+        stale.join("\n")
+    );
+}
+
 /// `docs/claims.md` holds the table that the committed outcomes give, as
 /// `persson-check claims --write docs/claims.md` writes it: an outcome changed without
 /// writing the table again fails here.
