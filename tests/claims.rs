@@ -56,6 +56,13 @@ fn every_claim_has_its_phrases_rule_and_a_place() {
     assert!(n > 0);
 }
 
+/// The committed outcome of validation `name` at `scale` ("full" or "reduced").
+fn committed_outcome(root: &Path, scale: &str, name: &str) -> Outcome {
+    let path = root.join(scale).join(format!("{name}.json"));
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    serde_json::from_str(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
 /// The measures a claim names.
 fn measures_of(c: &ClaimSpec) -> Vec<String> {
     let mut m: Vec<String> = c.measure.iter().cloned().collect();
@@ -73,10 +80,7 @@ fn every_measure_a_claim_names_is_in_the_committed_outcomes() {
     let mut read = 0;
     for d in definitions() {
         for scale in ["full", "reduced"] {
-            let path = root.join(scale).join(format!("{}.json", d.name));
-            let text = std::fs::read_to_string(&path)
-                .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-            let o: Outcome = serde_json::from_str(&text).unwrap();
+            let o = committed_outcome(&root, scale, &d.name);
             read += 1;
             let measures = Measures {
                 headline: Estimate::new(o.value, o.std_error),
@@ -124,10 +128,7 @@ fn every_key_in_the_committed_outcomes_is_declared_by_its_experiment() {
             let keys = registry
                 .keys(&source, scale)
                 .unwrap_or_else(|e| panic!("{name} [{scale}]: {e}"));
-            let path = root.join(scale.to_string()).join(format!("{name}.json"));
-            let text = std::fs::read_to_string(&path)
-                .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-            let o: Outcome = serde_json::from_str(&text).unwrap();
+            let o = committed_outcome(&root, &scale.to_string(), &name);
             read += 1;
             for d in &o.details {
                 if !keys.has_detail(&d.key, d.grid) {
@@ -183,10 +184,7 @@ fn every_committed_outcome_was_concluded_from_its_shipped_definition() {
     for source in builtin_sources() {
         let (name, _) = source.header().unwrap();
         for scale in ["full", "reduced"] {
-            let path = root.join(scale).join(format!("{name}.json"));
-            let text = std::fs::read_to_string(&path)
-                .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-            let o: Outcome = serde_json::from_str(&text).unwrap();
+            let o = committed_outcome(&root, scale, &name);
             if o.definition_sha256 != source.sha256() {
                 stale.push(format!("results/{scale}/{name}.json"));
             }
@@ -196,7 +194,7 @@ fn every_committed_outcome_was_concluded_from_its_shipped_definition() {
         stale.is_empty(),
         "outcomes concluded from another version of their definition (conclude them again: \
          `validate NAME --resume` on a copy of results/reduced, `validate NAME --full --merge \
-         --accept-other-commit` for results/full):\n{}",
+         --accept-other-commit [--partial]` for results/full):\n{}",
         stale.join("\n")
     );
 }
