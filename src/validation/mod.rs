@@ -31,6 +31,7 @@
 
 pub mod audit;
 pub mod claims;
+mod conclusion;
 pub mod definition;
 pub mod measures;
 pub mod outcome;

@@ -7,16 +7,17 @@
 //! once the job's result is stored, never before.
 
 use std::collections::{BTreeSet, HashSet};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Instant, SystemTime, UNIX_EPOCH};
 
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 
-use super::claims::{self, ClaimOutcome, Measures};
-use super::definition::{Definition, Scale, Verdict};
-use super::outcome::{CrossCheck, MergeRecord, Outcome, PendingPart, ShardRecord};
+use super::claims;
+use super::conclusion::{conclude, Results};
+use super::definition::{Definition, Scale};
+use super::outcome::{MergeRecord, Outcome, ShardRecord};
 use super::pending::{pending_parts, PartJob};
 use super::plan::{estimate_seconds, PlannedUnit};
 use super::shard::Shard;
@@ -26,10 +27,7 @@ use super::store::{
 };
 use crate::engine::solver::SolverKind;
 use crate::error::{Error, Result};
-use crate::experiments::{
-    Check, Conclusion, Detail, Experiment, JobContext, JobOf, Jobs, Keys, ResultOf, Work,
-};
-use crate::stats::{decide, Claim, Decision, Estimate};
+use crate::experiments::{Experiment, JobContext, JobOf, Jobs, Keys, ResultOf, Work};
 
 /// How to run validations.
 #[derive(Debug, Clone)]
@@ -108,9 +106,6 @@ impl RunOptions {
         self.resume || !matches!(self.mode, Mode::All)
     }
 }
-
-/// The jobs of one solver with their results, in job order.
-type Results<E> = Vec<(JobOf<E>, ResultOf<E>)>;
 
 /// One job of one solver, and where its result and checkpoints live.
 pub(crate) struct Unit<J> {
@@ -392,7 +387,25 @@ pub fn run_experiment<E: Experiment>(
         }
         _ => (timer.elapsed().as_secs_f64(), None),
     };
-    conclude::<E>(source, &prepared, results, opts, wall_s, merge).map(Some)
+    // Each solver's jobs with their results, in unit order (headline solver first).
+    let mut by_solver: Vec<(SolverKind, Results<E>)> = Vec::new();
+    for (unit, result) in prepared.units.iter().zip(results) {
+        match by_solver.iter_mut().find(|(s, _)| *s == unit.solver) {
+            Some((_, v)) => v.push((unit.job.clone(), result)),
+            None => by_solver.push((unit.solver, vec![(unit.job.clone(), result)])),
+        }
+    }
+    conclude::<E>(
+        source,
+        &prepared.def,
+        &prepared.scene_json,
+        by_solver,
+        opts.scale,
+        &opts.out,
+        wall_s,
+        merge,
+    )
+    .map(Some)
 }
 
 /// The time during which at least one of the jobs ran: the length of the union of their
@@ -415,219 +428,6 @@ fn busy_seconds(spans: impl IntoIterator<Item = (f64, f64)>) -> f64 {
         };
     }
     busy + open.map_or(0.0, |(s, e)| e - s)
-}
-
-/// The headline and the cross-checks from the units' results (in unit order), the verdict,
-/// and the outcome and its files.
-pub(crate) fn conclude<E: Experiment>(
-    source: &Source,
-    prepared: &Prepared<E>,
-    results: Vec<ResultOf<E>>,
-    opts: &RunOptions,
-    wall_s: f64,
-    merge: Option<MergeRecord>,
-) -> Result<Outcome> {
-    let def = &prepared.def;
-    let conclusions = conclude_by_solver::<E>(source, prepared, results, opts.scale)?;
-    let max_residual = conclusions
-        .iter()
-        .map(|(_, c, _)| c.max_residual)
-        .fold(0.0, f64::max);
-    let mut rest = conclusions.into_iter();
-    let (solver, conclusion, measured) = rest.next().expect("at least one solver");
-    let cross_checks: Vec<CrossCheck> = rest
-        .map(|(s, _, m)| CrossCheck {
-            solver: s.name().to_string(),
-            value: m.value,
-            std_error: m.std_error,
-            agrees: def.verdict.agree(measured, m),
-        })
-        .collect();
-    let verdict = def.verdict.judge(measured, conclusion.persson);
-    let mut conclusion = conclusion;
-    let pending = merge.as_ref().map_or(&[][..], |m| &m.pending[..]);
-    let claims = judge_claims(
-        def,
-        &conclusion,
-        measured,
-        &cross_checks,
-        pending,
-        opts.scale,
-    );
-    papers_values(&mut conclusion.details, &claims);
-    let reproduced = reproduced(def, verdict, measured, &conclusion.checks, &claims);
-    let files = write_files(&opts.out, &def.name, &conclusion)?;
-    let outcome = Outcome {
-        name: def.name.clone(),
-        title: def.title.clone(),
-        assumption: def.assumption.clone(),
-        statistic: def.statistic.clone(),
-        value: measured.value,
-        std_error: measured.std_error,
-        persson: conclusion.persson,
-        persson_text: def.persson.clone(),
-        paper: def.paper.finding.clone(),
-        paper_value: def.paper.value,
-        paper_range: def.paper.range,
-        paper_verdict: def.paper.verdict,
-        verdict,
-        reproduced,
-        rule: def.verdict,
-        scale: opts.scale,
-        scene: prepared.scene_json.clone(),
-        definition_sha256: source.sha256(),
-        wall_s,
-        max_residual,
-        details: conclusion.details,
-        checks: conclusion.checks,
-        account: conclusion.account,
-        golden: conclusion.golden,
-        claims,
-        studies: conclusion.studies,
-        files,
-        threads: rayon::current_num_threads(),
-        solver: solver.name().to_string(),
-        cross_checks,
-        merge,
-    };
-    let json = serde_json::to_vec_pretty(&outcome).expect("outcomes serialise");
-    crate::io::write_atomic(&opts.out.join(format!("{}.json", def.name)), &json)?;
-    Ok(outcome)
-}
-
-/// The experiment's conclusion from each solver's results (the units' results in unit
-/// order), headline solver first, with its headline estimate.
-fn conclude_by_solver<E: Experiment>(
-    source: &Source,
-    prepared: &Prepared<E>,
-    results: Vec<ResultOf<E>>,
-    scale: Scale,
-) -> Result<Vec<(SolverKind, Conclusion, Estimate)>> {
-    let mut by_solver: Vec<(SolverKind, Results<E>)> = Vec::new();
-    for (unit, result) in prepared.units.iter().zip(results) {
-        match by_solver.iter_mut().find(|(s, _)| *s == unit.solver) {
-            Some((_, v)) => v.push((unit.job.clone(), result)),
-            None => by_solver.push((unit.solver, vec![(unit.job.clone(), result)])),
-        }
-    }
-    let criteria = prepared.def.criteria();
-    let scene = prepared.scene(scale);
-    by_solver
-        .iter()
-        .map(|(solver, results)| {
-            let c = E::conclude(&criteria, scene, results)
-                .map_err(|e| Error::bad_file(&source.path, format!("[{}] {e}", solver.name())))?;
-            let measured = c
-                .measured
-                .ok_or_else(|| Error::bad_file(&source.path, "the experiment measured nothing"))?;
-            Ok((*solver, c, measured))
-        })
-        .collect()
-}
-
-/// Every claim of the definition judged on the headline solver's conclusion (and each
-/// cross-check's headline, by its solver's name: `cross_check:SOLVER`), by the one rule of [`super::claims::ClaimSpec::judge`].
-fn judge_claims<S>(
-    def: &Definition<S>,
-    conclusion: &Conclusion,
-    measured: Estimate,
-    cross_checks: &[CrossCheck],
-    pending: &[PendingPart],
-    scale: Scale,
-) -> Vec<ClaimOutcome> {
-    let measures = Measures {
-        pending,
-        headline: measured,
-        details: &conclusion.details,
-        studies: &conclusion.studies,
-        cross_checks: cross_checks
-            .iter()
-            .map(|c| (c.solver.clone(), Estimate::new(c.value, c.std_error)))
-            .collect(),
-    };
-    def.claims
-        .iter()
-        .map(|c| c.judge(&measures, scale == Scale::Reduced, def.verdict.significance))
-        .collect()
-}
-
-/// Each detail a claim measures carries that claim's value as the paper's (the details
-/// show it beside the measurement; the experiments know no paper values).
-fn papers_values(details: &mut [Detail], claims: &[ClaimOutcome]) {
-    for c in claims {
-        let Some(key) = c.measure.strip_prefix("detail:") else {
-            continue;
-        };
-        let (key, grid) = match key.split_once('@') {
-            Some((k, g)) => (k, g.parse::<usize>().ok()),
-            None => (key, None),
-        };
-        for d in details
-            .iter_mut()
-            .filter(|d| d.key == key && (grid.is_none() || d.grid == grid))
-        {
-            if c.paper_value.is_some() {
-                d.paper = c.paper_value;
-            }
-        }
-    }
-}
-
-/// Whether the run reproduces the paper's finding: the paper's verdict, its range (the
-/// interval `measured +- z error` overlaps it), every check and every claim judged at this
-/// scale, in the three-valued logic of [`Decision::all`]. `None` when the verdict is
-/// inconclusive, or when a check or claim the data do not decide (one realization) is all
-/// that stands in the way.
-fn reproduced<S>(
-    def: &Definition<S>,
-    verdict: Verdict,
-    measured: Estimate,
-    checks: &[Check],
-    claims: &[ClaimOutcome],
-) -> Option<bool> {
-    if verdict == Verdict::Inconclusive {
-        return None;
-    }
-    let same_verdict = Decision::from_bool(verdict == def.paper.verdict);
-    let in_range = match def.paper.range {
-        Some((lo, hi)) => decide(measured, Claim::Overlaps(lo, hi), def.verdict.significance),
-        None => Decision::Passed,
-    };
-    let checks = checks.iter().map(|c| match (c.decided, c.passed) {
-        (false, _) => Decision::Undecided,
-        (true, passed) => Decision::from_bool(passed),
-    });
-    let claims = claims::decision(claims);
-    match Decision::all([same_verdict, in_range, claims].into_iter().chain(checks)) {
-        Decision::Undecided => None,
-        d => Some(d.passed()),
-    }
-}
-
-/// Writes the conclusion's tables (the first as `<out>/<name>.csv`, the others and the
-/// figures under `<out>/<name>/`); the files written, relative to `out`.
-fn write_files(out: &Path, name: &str, conclusion: &Conclusion) -> Result<Vec<String>> {
-    let dir = out.join(name);
-    let mut files = Vec::new();
-    for (k, table) in conclusion.tables.iter().enumerate() {
-        let path = if k == 0 {
-            out.join(format!("{name}.csv"))
-        } else {
-            dir.join(format!("{}.csv", table.name))
-        };
-        table.write_csv(&path)?;
-        files.push(path);
-    }
-    for figure in &conclusion.figures {
-        files.extend(crate::plot::render(figure, &dir)?);
-    }
-    for waterfall in &conclusion.waterfalls {
-        files.extend(crate::plot::render_waterfall(waterfall, &dir)?);
-    }
-    for raster in &conclusion.rasters {
-        files.extend(crate::plot::render_raster(raster, &dir)?);
-    }
-    Ok(files.iter().map(|p| relative(out, p)).collect())
 }
 
 /// Parses `source` as a definition of experiment `E` and checks both of its scenes,
@@ -689,13 +489,6 @@ fn checked_scene<'a, E: Experiment>(
         ));
     }
     Ok((scene, jobs))
-}
-
-fn relative(base: &Path, path: &Path) -> String {
-    path.strip_prefix(base)
-        .unwrap_or(path)
-        .to_string_lossy()
-        .to_string()
 }
 
 fn progress_bar(show: bool, name: &str, len: usize) -> ProgressBar {
