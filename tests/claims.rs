@@ -92,6 +92,7 @@ fn every_measure_a_claim_names_is_in_the_committed_outcomes() {
                     .map(|c| (c.solver.clone(), Estimate::new(c.value, c.std_error)))
                     .collect(),
                 pending: o.merge.as_ref().map_or(&[][..], |m| &m.pending[..]),
+                scene: &o.scene,
             };
             for c in &d.claims {
                 // A magnitude of the paper's own scene (`reduced = false`) may name a load
@@ -199,13 +200,122 @@ fn every_committed_outcome_was_concluded_from_its_shipped_definition() {
     );
 }
 
+/// Every claim's rule is the last one registered for it in `validations/register.json`,
+/// and every earlier one has its amendment, with its reason, in the claim: a rule changed
+/// after its verdict was seen without saying so fails here.
+#[test]
+fn every_rule_is_registered_and_every_change_is_an_amendment() {
+    use persson_check::validation::register::{Register, REGISTER_FILE};
+    use persson_check::validation::source::claims_of;
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let register = Register::read(&root.join(REGISTER_FILE)).unwrap();
+    let claims = claims_of(&builtin_sources()).unwrap();
+    let problems = register.problems(&claims);
+    assert!(
+        problems.is_empty(),
+        "the register of rules (validations/register.json) against the definitions:\n{}",
+        problems.join("\n")
+    );
+    // Every registered rule of an amended claim records the verdicts it gave.
+    for (id, rules) in &register.claims {
+        for r in &rules[..rules.len() - 1] {
+            assert!(
+                r.full.is_some() || r.reduced.is_some(),
+                "{id}: {}",
+                r.sha256
+            );
+        }
+    }
+}
+
+/// Every claim that counts as evidence can be reproduced and can be contradicted: an
+/// estimate well inside its rule's region (away from its alternative) with a small error
+/// bar reproduces it, one well outside contradicts it. A claim whose rule cannot give both
+/// (a region of every value, a rule that holds its alternative everywhere) fails here.
+#[test]
+fn every_evidence_claim_can_pass_and_can_fail() {
+    use persson_check::stats::Region;
+    use persson_check::validation::claims::{ClaimKind, ClaimResult};
+    let mut wrong = Vec::new();
+    let mut walked = 0;
+    for d in definitions() {
+        for c in d.claims.iter().filter(|c| c.kind() == ClaimKind::Evidence) {
+            walked += 1;
+            let region = match &c.rule {
+                Rule::Exceeds(_) => Region::above(0.0),
+                r => r.region(c.value).expect("a region"),
+            };
+            let alt = c.alternative.as_ref().map(|a| a.value);
+            let (inside, outside) = points(region, alt);
+            let tiny = |x: f64| Estimate::new(x, 1e-9 * (1.0 + x.abs()));
+            let got = (
+                c.judge_estimate(tiny(inside), 3.0),
+                c.judge_estimate(tiny(outside), 3.0),
+            );
+            if got != (ClaimResult::Reproduced, ClaimResult::Contradicted) {
+                wrong.push(format!(
+                    "{}.{}: {inside} -> {:?}, {outside} -> {:?}",
+                    d.name, c.key, got.0, got.1
+                ));
+            }
+        }
+    }
+    assert!(walked > 80, "{walked} evidence claims walked");
+    assert!(
+        wrong.is_empty(),
+        "claims that cannot pass or fail:\n{}",
+        wrong.join("\n")
+    );
+}
+
+/// A point inside `region` away from `alternative`, and one outside it.
+fn points(region: persson_check::stats::Region, alternative: Option<f64>) -> (f64, f64) {
+    use persson_check::stats::Region;
+    match region {
+        Region::Interval { lo, hi, .. } if lo.is_finite() && hi.is_finite() => {
+            let w = hi - lo;
+            let inside = match alternative {
+                // The middle of the larger part beside the alternative.
+                Some(a) if a > lo && a < hi => {
+                    if a - lo > hi - a {
+                        0.5 * (lo + a)
+                    } else {
+                        0.5 * (a + hi)
+                    }
+                }
+                _ => 0.5 * (lo + hi),
+            };
+            (inside, hi + w.max(1e-6))
+        }
+        Region::Interval { lo, .. } if lo.is_finite() => {
+            let step = lo.abs().max(1.0);
+            let inside = match alternative {
+                Some(a) if a > lo => a + step,
+                _ => lo + step,
+            };
+            (inside, lo - step)
+        }
+        Region::Interval { hi, .. } => {
+            let step = hi.abs().max(1.0);
+            let inside = match alternative {
+                Some(a) if a < hi => a - step,
+                _ => hi - step,
+            };
+            (inside, hi + step)
+        }
+        Region::Outside(lo, hi) => (hi + (hi - lo).max(1e-6), 0.5 * (lo + hi)),
+        Region::Except(t) => (t + 1.0, t),
+    }
+}
+
 /// `docs/claims.md` holds the table that the committed outcomes give, as
 /// `persson-check claims --write docs/claims.md` writes it: an outcome changed without
 /// writing the table again fails here.
 #[test]
 fn the_committed_claims_table_is_the_committed_outcomes_table() {
-    use persson_check::report::claims::{table, MARKERS};
+    use persson_check::report::claims::{page, MARKERS};
     use persson_check::report::read_outcomes;
+    use persson_check::validation::register::{Register, REGISTER_FILE};
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let read = |scale: &str| -> Vec<Outcome> {
         read_outcomes(&root.join("results").join(scale))
@@ -220,9 +330,10 @@ fn the_committed_claims_table_is_the_committed_outcomes_table() {
     let (open, close) = MARKERS;
     let start = doc.find(open).expect("docs/claims.md: no opening marker") + open.len() + 1;
     let end = doc.find(close).expect("docs/claims.md: no closing marker");
+    let register = Register::read(&root.join(REGISTER_FILE)).unwrap();
     assert!(
-        doc[start..end] == table(&full, &reduced),
-        "docs/claims.md is not the table of results/full and results/reduced: write it again \
+        doc[start..end] == page(&full, &reduced, Some(&register), Some("figures/claims.svg")),
+        "docs/claims.md is not the page of results/full and results/reduced: write it again \
          with `persson-check claims --write docs/claims.md`"
     );
 }

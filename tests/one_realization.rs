@@ -178,10 +178,10 @@ fn every_validation_with_one_realization_writes_no_nan_and_fails_no_check() {
         .map(|s| run(s, &opts).unwrap_or_else(|e| panic!("{}: {e}", s.path.display())))
         .collect();
     for o in &outcomes {
-        for c in &o.checks {
-            assert!(c.passed || !c.decided, "{}: {c:?}", o.name);
-            if !c.decided {
-                assert!(c.detail.starts_with("not decided"), "{}: {c:?}", o.name);
+        for g in &o.guards {
+            assert!(g.passed || !g.decided, "{}: {g:?}", o.name);
+            if !g.decided {
+                assert!(g.detail.starts_with("not decided"), "{}: {g:?}", o.name);
             }
         }
         if o.std_error.is_nan() {
@@ -244,21 +244,12 @@ fn one_realization_prints_no_nan() {
     assert_no_nan("the account", &o.account);
     assert!(o.account.contains("1 realization "), "{}", o.account);
     assert!(!o.account.contains("1 realizations"), "{}", o.account);
-    for c in &o.checks {
-        assert_no_nan(&c.key, &format!("{} {}", c.name, c.detail));
+    for c in &o.claims {
+        assert_no_nan(&c.key, &format!("{} {:?}", c.statement, c.why));
     }
-    let flux = o
-        .checks
-        .iter()
-        .find(|c| c.key == "flux_in_positive")
-        .expect("the flux check");
-    assert!(!flux.decided, "{flux:?}");
-    assert!(
-        flux.detail.contains("not decided with 1 realization"),
-        "{flux:?}"
-    );
-    // Everything else may still decide, but the reproduction cannot be "yes".
-    assert_ne!(o.reproduced, Some(true));
+    // The headline share has no error bar: nothing is decided.
+    assert_eq!(o.verdict, Verdict::Inconclusive);
+    assert_eq!(o.reproduced, None);
 
     let json = std::fs::read_to_string(out.path().join("c_reentry.json")).unwrap();
     assert_no_nan("the JSON outcome", &json);
@@ -268,5 +259,5 @@ fn one_realization_prints_no_nan() {
     let card = scorecard(out.path());
     let text = std::fs::read_to_string(&card).unwrap();
     assert_no_nan("the scorecard", &text);
-    assert!(text.contains("not decided (1 realization)"));
+    assert!(text.contains("one realization: no error bar"), "{text}");
 }

@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use persson_check::engine::solver::SolverKind;
 use persson_check::error::Result;
-use persson_check::experiments::{Check, Detail, Experiment, JobContext, Jobs, Run, Work};
+use persson_check::experiments::{Detail, Experiment, Guard, JobContext, Jobs, Run, Work};
 use persson_check::stats::{decide, Claim, Estimate};
 use persson_check::validation::{Registry, RunOptions, Scale, Source, Verdict};
 
@@ -76,8 +76,8 @@ impl Experiment for Coin {
         vec![Detail::new("count", "realizations", count)]
     }
 
-    fn checks(run: &Run<Self>, s: &CoinStats) -> Vec<Check> {
-        vec![Check::new(
+    fn guards(run: &Run<Self>, s: &CoinStats) -> Vec<Guard> {
+        vec![Guard::new(
             "above_half",
             "the mean is above one half",
             decide(s.mean, Claim::Above(0.5), 0.0),

@@ -10,6 +10,7 @@
 
 #![cfg(unix)]
 
+use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::sync::OnceLock;
@@ -436,4 +437,97 @@ fn a_partial_merge_leaves_out_a_variant_whose_jobs_are_not_all_in() {
         &["--merge", "--partial"],
     ));
     assert!(err.contains(&headline), "{err}");
+}
+
+/// Each definition with one planned realization added wherever its scene takes
+/// `more_seeds` (the headline's `[full]`, each `[[full.variants]]`, `[full.waterfall]`),
+/// or the definition as it is where `[full]` refuses them.
+fn with_planned_realization(text: &str) -> String {
+    let mut out = String::new();
+    let mut section = String::new();
+    for line in text.lines() {
+        out.push_str(line);
+        out.push('\n');
+        if line.starts_with('[') {
+            section = line.trim().to_string();
+        }
+        let headline = section == "[full]" || section == "[[full.variants]]";
+        if (headline && line.starts_with("seeds = ["))
+            || (section == "[full.waterfall]" && line.starts_with("seed = "))
+        {
+            out.push_str("more_seeds = [1001]\n");
+        }
+    }
+    out
+}
+
+#[test]
+fn planned_realizations_keep_every_stored_key_and_add_only_planned_jobs() {
+    let plan = |dir: &Path| -> Vec<serde_json::Value> {
+        let out = Command::new(env!("CARGO_BIN_EXE_persson-check"))
+            .args(["validate", "--full", "--plan", "--dir"])
+            .arg(dir)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let plan: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        plan["jobs"].as_array().unwrap().clone()
+    };
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("validations");
+    let planned_dir = tempfile::tempdir().unwrap();
+    let mut refused = Vec::new();
+    for entry in std::fs::read_dir(&root).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().and_then(|e| e.to_str()) != Some("toml") {
+            continue;
+        }
+        let text = std::fs::read_to_string(&path).unwrap();
+        let planned = with_planned_realization(&text);
+        let name = path.file_name().unwrap();
+        // A scene that takes no planned realizations says so by name, and is planned as
+        // it is.
+        let one = tempfile::tempdir().unwrap();
+        std::fs::write(one.path().join(name), &planned).unwrap();
+        let check = Command::new(env!("CARGO_BIN_EXE_persson-check"))
+            .args(["validate", "--full", "--plan", "--dir"])
+            .arg(one.path())
+            .output()
+            .unwrap();
+        let kept = if check.status.success() {
+            planned
+        } else {
+            let err = String::from_utf8_lossy(&check.stderr).to_string();
+            assert!(err.contains("more_seeds"), "{name:?}: {err}");
+            refused.push(name.to_owned());
+            text
+        };
+        std::fs::write(planned_dir.path().join(name), kept).unwrap();
+    }
+    let before = plan(&root);
+    let after = plan(planned_dir.path());
+    let keys = |jobs: &[serde_json::Value]| -> BTreeSet<String> {
+        jobs.iter()
+            .map(|j| j["key"].as_str().unwrap().to_string())
+            .collect()
+    };
+    let (old, new) = (keys(&before), keys(&after));
+    assert!(old.is_subset(&new), "keys lost: {:?}", old.difference(&new));
+    let added: Vec<_> = after
+        .iter()
+        .filter(|j| !old.contains(j["key"].as_str().unwrap()))
+        .collect();
+    for j in &added {
+        let part = j["part"].as_str().unwrap_or("");
+        assert!(part.ends_with("planned"), "an unplanned new job: {j}");
+    }
+    // Every definition that takes them planned a job of its own for them.
+    let planning: BTreeSet<&str> = added
+        .iter()
+        .map(|j| j["validation"].as_str().unwrap())
+        .collect();
+    assert!(planning.len() + refused.len() >= 9, "{planning:?}, refused {refused:?}");
 }

@@ -90,6 +90,8 @@ pub fn run(args: Args) -> Result<()> {
             "s"
         }
     );
+    outln!("{}", summary.headlines);
+    outln!("the paper's claims: {}", summary.claims);
     for line in &summary.attention {
         outln!("attention: {line}");
     }

@@ -5,6 +5,7 @@ use std::sync::Arc;
 
 use clap::Args as ClapArgs;
 use persson_check::error::{Error, Result};
+use persson_check::report::claims::Counts;
 use persson_check::tasks::parse::MAX_SHARDS;
 use persson_check::tasks::SolverKind;
 use persson_check::tasks::{check_out_dir, validations};
@@ -132,7 +133,8 @@ pub fn run(args: Args) -> Result<()> {
 }
 
 /// One line per outcome: the headline with its error bar (or the plain statement that
-/// there is none), the verdict, the paper's finding, the cross-checks and the wall time.
+/// there is none), the verdict and whether it is the paper's, the cross-checks, the
+/// evidence claims by result, and the wall time.
 fn summary_line(o: &Outcome) -> String {
     let measured = if o.std_error.is_finite() {
         format!("{:.4} +- {:.4}", o.value, o.std_error)
@@ -152,18 +154,23 @@ fn summary_line(o: &Outcome) -> String {
             format!("; {} {value}, {agrees}", c.solver)
         })
         .collect();
+    let claims = Counts::of(&o.claims);
     format!(
-        "{:<16} {} = {measured} ({}; Persson {:.4}): {}, paper {}{cross} [{:.1} s]",
+        "{:<16} {} = {measured} ({}; Persson {:.4}): {}, {}{cross}; claims: {} reproduced, {} \
+         contradicted, {} not established [{:.1} s]",
         o.name,
         o.statistic,
         o.solver,
         o.persson,
         o.verdict,
         match o.reproduced {
-            Some(true) => "reproduced",
-            Some(false) => "contradicted",
-            None => "not established",
+            Some(true) => "as the paper",
+            Some(false) => "NOT as the paper",
+            None => "inconclusive",
         },
+        claims.reproduced,
+        claims.contradicted,
+        claims.not_established,
         o.wall_s
     )
 }

@@ -312,6 +312,22 @@ impl Sweep<'_, Surface> {
     ///
     /// As [`solve_for_area`].
     pub fn find_load(&mut self, zeta: f64, contact_area: f64) -> Result<f64> {
+        self.find_load_within(zeta, contact_area, &AreaSearch::default())
+    }
+
+    /// [`Sweep::find_load`] with the search's own tolerance (`search`): a step at fixed
+    /// contact area holds the area far more tightly than a load is set
+    /// ([`AreaSearch::held`]).
+    ///
+    /// # Errors
+    ///
+    /// As [`solve_for_area`].
+    pub fn find_load_within(
+        &mut self,
+        zeta: f64,
+        contact_area: f64,
+        search: &AreaSearch,
+    ) -> Result<f64> {
         self.set_zeta(zeta);
         let g_bar = self.surface.rms_gradient(zeta).max(f64::MIN_POSITIVE);
         let guess = match &self.previous {
@@ -334,7 +350,7 @@ impl Sweep<'_, Surface> {
             },
             start,
             &self.opts,
-            &AreaSearch::default(),
+            search,
         )?;
         let p0 = found.solution.p0;
         self.previous = Some(found.solution);

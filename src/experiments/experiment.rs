@@ -10,7 +10,7 @@ use std::path::PathBuf;
 use serde::de::DeserializeOwned;
 use serde::Serialize;
 
-use super::findings::{Check, Conclusion, Criteria, Detail, Table};
+use super::findings::{Conclusion, Criteria, Detail, Guard, Table};
 use super::keys::Keys;
 use super::study::Study;
 use crate::error::Result;
@@ -150,9 +150,10 @@ pub struct Run<'a, E: Experiment + ?Sized> {
 /// 1. **statistics** ([`Experiment::stats`]): the numbers, from pure functions of the
 ///    results, unit-tested on their own;
 /// 2. **findings as data**: the headline with Persson's value ([`Experiment::headline`]),
-///    secondary statistics ([`Experiment::details`]), checks of the paper's finding, each
-///    decided by the one rule of [`crate::stats::decide`] ([`Experiment::checks`]), and
-///    golden values ([`Experiment::golden`]);
+///    secondary statistics ([`Experiment::details`]), implementation guards that never
+///    enter a verdict ([`Experiment::guards`]), and golden values
+///    ([`Experiment::golden`]); the paper's statements are the definition's claims,
+///    judged by [`crate::validation::claims`];
 /// 3. **a thin builder** of what a reader sees: the account, tables and figures.
 ///
 /// [`Experiment::conclude`] runs the three steps; an experiment implements the steps only.
@@ -191,8 +192,9 @@ pub trait Experiment {
         Vec::new()
     }
 
-    /// Checks of the paper's finding beyond the headline's verdict.
-    fn checks(_run: &Run<Self>, _stats: &Self::Stats) -> Vec<Check> {
+    /// Implementation guards (a conservation law, a counting identity): shown, never part
+    /// of a verdict.
+    fn guards(_run: &Run<Self>, _stats: &Self::Stats) -> Vec<Guard> {
         Vec::new()
     }
 
@@ -240,6 +242,8 @@ pub trait Experiment {
     where
         Self: Sized,
     {
+        // The planned realizations (`more_seeds`) count as the others do.
+        let scene = &crate::experiments::scene::with_planned_folded(scene);
         let run = Run {
             criteria,
             scene,
@@ -253,7 +257,7 @@ pub trait Experiment {
             .fold(0.0, f64::max);
         Ok(Conclusion {
             details: Self::details(&run, &stats),
-            checks: Self::checks(&run, &stats),
+            guards: Self::guards(&run, &stats),
             golden: Self::golden(&run, &stats),
             studies: Self::studies(&run, &stats),
             account: Self::account(&run, &stats),

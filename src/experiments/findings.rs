@@ -1,6 +1,6 @@
 //! The findings of an experiment as data: what a conclusion is judged by ([`Criteria`]),
-//! secondary statistics ([`Detail`]), checks of the paper's finding ([`Check`], each
-//! decided by the one rule of [`crate::stats::decide`]), tables written as CSV ([`Table`])
+//! secondary statistics ([`Detail`]), implementation guards ([`Guard`], never part of a
+//! verdict), tables written as CSV ([`Table`])
 //! and the [`Conclusion`] that holds them with the headline, figures and studies.
 
 use std::collections::BTreeMap;
@@ -89,9 +89,12 @@ impl Detail {
     }
 }
 
-/// A check of the paper's finding; all must pass for the finding to count as reproduced.
+/// An implementation guard: a law the run must satisfy whatever the physics (a
+/// conservation law, a counting identity), shown beside the outcome and never part of a
+/// verdict. The paper's statements are judged once, by their claims
+/// ([`crate::validation::claims`]), never again here.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Check {
+pub struct Guard {
     /// Stable identifier.
     #[serde(default)]
     pub key: String,
@@ -101,8 +104,8 @@ pub struct Check {
     pub passed: bool,
     /// The numbers behind it.
     pub detail: String,
-    /// Whether the data decide it: false for a check that needs an error bar when there
-    /// is one realization. An undecided check leaves the reproduction undecided.
+    /// Whether the data decide it: false for a guard that needs an error bar when there
+    /// is one realization.
     #[serde(default = "decided_default", skip_serializing_if = "is_decided")]
     pub decided: bool,
 }
@@ -115,8 +118,8 @@ fn is_decided(decided: &bool) -> bool {
     *decided
 }
 
-impl Check {
-    /// A check decided by `decision`, from the one rule of [`crate::stats::decide`]:
+impl Guard {
+    /// A guard decided by `decision`, from the one rule of [`crate::stats::decide`]:
     /// passed, failed, or not decided, which the detail says first.
     pub fn new(
         key: impl Into<String>,
@@ -139,7 +142,7 @@ impl Check {
     }
 }
 
-/// What the detail of a check the data do not decide starts with.
+/// What the detail of a guard the data do not decide starts with.
 pub const UNDECIDED: &str = "not decided with 1 realization (no error bar)";
 
 /// A table of numbers, written as CSV.
@@ -208,8 +211,8 @@ pub struct Conclusion {
     pub persson: f64,
     /// Secondary statistics.
     pub details: Vec<Detail>,
-    /// Checks of the paper's finding beyond the headline verdict and range.
-    pub checks: Vec<Check>,
+    /// Implementation guards: never part of a verdict.
+    pub guards: Vec<Guard>,
     /// A short account, generated from the numbers (no wall times: it must not depend on
     /// the machine).
     pub account: String,
@@ -246,9 +249,9 @@ impl Conclusion {
         self.details.iter().find(|d| d.key == key)
     }
 
-    /// The check with key `key`, if any.
-    pub fn check(&self, key: &str) -> Option<&Check> {
-        self.checks.iter().find(|c| c.key == key)
+    /// The guard with key `key`, if any.
+    pub fn guard(&self, key: &str) -> Option<&Guard> {
+        self.guards.iter().find(|c| c.key == key)
     }
 }
 

@@ -9,15 +9,13 @@
 //! experiment reduces the jobs' results to a [`Conclusion`] in three steps, the same in
 //! every experiment ([`Experiment`]): statistics first (pure functions, unit-tested on their
 //! own, in a module of statistics), then the findings as data (the headline statistic with
-//! its standard error and Persson's value for it, secondary statistics ([`Detail`]), checks
-//! of the paper's finding ([`Check`]) and golden values), then a thin builder of the
-//! account, tables and figures.
-//!
-//! Every check is decided by one rule, [`crate::stats::decide`] ([`Check::new`]): a
-//! claim about the interval `value +- z std_error`, not decided without an error bar (one
-//! realization). An undecided check says so in its detail and leaves the reproduction
-//! undecided; texts print "(no error bar with one realization)" where an error bar would
-//! stand.
+//! its standard error and Persson's value for it, secondary statistics ([`Detail`]),
+//! implementation guards ([`Guard`]) and golden values), then a thin builder of the
+//! account, tables and figures. The paper's statements are not judged here: each is a
+//! claim of the definition, judged once on these findings by
+//! [`crate::validation::claims`]. A guard (a counting identity, a conservation law) never
+//! enters a verdict; texts print "(no error bar with one realization)" where an error bar
+//! would stand.
 //!
 //! * [`contact_area`]: the contact-area law, `a_r` against `p~0`;
 //! * [`transitions`]: assumptions (a) pressure-independent diffusion and (b) no drift;
@@ -67,7 +65,7 @@ mod findings;
 mod shipped;
 
 pub use self::experiment::{Experiment, JobContext, JobOf, Jobs, ResultOf, Run, Work};
-pub use self::findings::{figure, Check, Conclusion, Criteria, Detail, Table, UNDECIDED};
+pub use self::findings::{figure, Conclusion, Criteria, Detail, Guard, Table, UNDECIDED};
 pub use self::keys::Keys;
 #[cfg(test)]
 pub(crate) use self::shipped::{assert_refused, shipped_scenes, shipped_valid};

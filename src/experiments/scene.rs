@@ -282,9 +282,67 @@ macro_rules! fields_first {
 }
 pub(crate) use fields_first;
 
+/// The part of a scene that its planned realizations (`more_seeds`) make up
+/// ([`crate::experiments::Jobs::part`]).
+pub const PLANNED: &str = "planned";
+
+/// Whether `parts` (of a merge that leaves them out) names the planned realizations.
+pub fn leaves_out_planned(parts: &std::collections::BTreeSet<String>) -> bool {
+    parts.contains(PLANNED)
+}
+
+/// A scene's JSON as the jobs' keys see it: without the planned realizations
+/// (`more_seeds`, at any depth: a variant's or the waterfall's too), which only add jobs
+/// of their own.
+pub fn without_planned(mut scene: serde_json::Value) -> serde_json::Value {
+    fn strip(v: &mut serde_json::Value) {
+        match v {
+            serde_json::Value::Object(map) => {
+                map.remove("more_seeds");
+                map.values_mut().for_each(strip);
+            }
+            serde_json::Value::Array(items) => items.iter_mut().for_each(strip),
+            _ => {}
+        }
+    }
+    strip(&mut scene);
+    scene
+}
+
+/// A scene's JSON as its statistics see it: wherever a table lists `seeds` and
+/// `more_seeds`, the planned realizations follow the others in `seeds` (a plan with a
+/// single `seed`, the waterfall's, keeps its `more_seeds`).
+pub fn planned_folded(mut scene: serde_json::Value) -> serde_json::Value {
+    fn fold(v: &mut serde_json::Value) {
+        match v {
+            serde_json::Value::Object(map) => {
+                if map.get("seeds").is_some_and(|s| s.is_array()) {
+                    if let Some(serde_json::Value::Array(more)) = map.remove("more_seeds") {
+                        if let Some(serde_json::Value::Array(seeds)) = map.get_mut("seeds") {
+                            seeds.extend(more);
+                        }
+                    }
+                }
+                map.values_mut().for_each(fold);
+            }
+            serde_json::Value::Array(items) => items.iter_mut().for_each(fold),
+            _ => {}
+        }
+    }
+    fold(&mut scene);
+    scene
+}
+
+/// `scene` with its planned realizations folded into its `seeds` ([`planned_folded`]), as
+/// the statistics of a run see it.
+pub fn with_planned_folded<S: serde::Serialize + serde::de::DeserializeOwned>(scene: &S) -> S {
+    let json = serde_json::to_value(scene).expect("scenes serialise");
+    serde_json::from_value(planned_folded(json)).expect("a scene with its seeds folded reads back")
+}
+
 /// Declares an experiment's scene: the fields of [`Base`] (`n`, `hurst`, `lambda_l`,
-/// `lambda_s`, `seeds`, `tol`) followed by the experiment's own, with serde
-/// derives that refuse unknown keys, and a `base()` accessor.
+/// `lambda_s`, `seeds`, `more_seeds`, `tol`) followed by the experiment's own, with serde
+/// derives that refuse unknown keys, and `base()` and `all_seeds()` accessors.
 macro_rules! scene {
     ($($item:tt)*) => {
         $crate::experiments::scene::fields_first! {
@@ -299,10 +357,23 @@ macro_rules! scene {
                 lambda_s: f64,
                 /// Realizations.
                 seeds: Vec<u64>,
+                /// Realizations that a plan of sample sizes added after the scene's
+                /// results were stored (`docs/power-plan.md`): run and concluded as `seeds`
+                /// are, left out of the jobs' keys (the stored results keep theirs), and
+                /// a part of the scene of their own ([`PLANNED`](crate::experiments::scene::PLANNED))
+                /// that a merge with `--partial` leaves out until all their jobs have
+                /// results.
+                #[serde(default, skip_serializing_if = "Vec::is_empty")]
+                more_seeds: Vec<u64>,
                 /// Residual tolerance.
                 tol: f64,
             ]
             impl {
+                /// Every realization: `seeds`, then `more_seeds`.
+                pub fn all_seeds(&self) -> Vec<u64> {
+                    self.seeds.iter().chain(&self.more_seeds).copied().collect()
+                }
+
                 /// The fields every scene shares.
                 pub fn base(&self) -> $crate::experiments::scene::Base<'_> {
                     $crate::experiments::scene::Base::new(
@@ -365,3 +436,48 @@ macro_rules! step_scene {
     };
 }
 pub(crate) use step_scene;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde_json::json;
+
+    fn planned_scene() -> serde_json::Value {
+        json!({
+            "seeds": [1, 2],
+            "more_seeds": [3, 4],
+            "variants": [{"name": "v", "seeds": [1], "more_seeds": [2]}],
+            "waterfall": {"seed": 1, "more_seeds": [2, 3]},
+        })
+    }
+
+    #[test]
+    fn the_keys_never_see_planned_realizations_at_any_depth() {
+        let keyed = without_planned(planned_scene());
+        assert_eq!(
+            keyed,
+            json!({
+                "seeds": [1, 2],
+                "variants": [{"name": "v", "seeds": [1]}],
+                "waterfall": {"seed": 1},
+            })
+        );
+    }
+
+    #[test]
+    fn the_statistics_see_planned_realizations_after_the_others() {
+        let folded = planned_folded(planned_scene());
+        assert_eq!(
+            folded,
+            json!({
+                "seeds": [1, 2, 3, 4],
+                "variants": [{"name": "v", "seeds": [1, 2]}],
+                // A single seed's plan keeps its further seeds.
+                "waterfall": {"seed": 1, "more_seeds": [2, 3]},
+            })
+        );
+        // A scene without any is unchanged.
+        let plain = json!({"seeds": [1, 2], "tol": 1e-6});
+        assert_eq!(planned_folded(plain.clone()), plain);
+    }
+}

@@ -124,6 +124,20 @@ pub fn estimate_largest_error(points: usize) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// The relative error of eq. (approxDeltaPress) against the exact inversion of eq.
+/// (2ndMoment) far into its two limits, `Dp_n / p' = 1e-6` and `1e8`, the larger of the
+/// two: the paper calls the estimate exact in the limits `sigma_n -> 0` and `-> infinity`
+/// (the error falls as `t` and as `t^(-1/2)`).
+pub fn estimate_error_in_the_limits() -> f64 {
+    [1e-6, 1e8]
+        .into_iter()
+        .map(|t: f64| {
+            let sigma = excess_and_slope(t).0.sqrt();
+            (relative_width_estimate(sigma) / t - 1.0).abs()
+        })
+        .fold(0.0, f64::max)
+}
+
 /// `g(t) = <p^2>/p'^2 - 1` at `t = Dp_n / p'`, and `g'(t)` (see the module docs).
 fn excess_and_slope(t: f64) -> (f64, f64) {
     let x = 1.0 / (std::f64::consts::SQRT_2 * t);

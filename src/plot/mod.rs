@@ -3,10 +3,12 @@
 //! Experiments describe their figures as data; the runner renders each to SVG and PNG.
 //! Keeping the description plain data lets tests check a figure's content without pixels.
 
+mod intervals;
 mod render;
 mod waterfall;
 
-pub use render::{render, render_raster, render_waterfall, significant};
+pub use intervals::{IntervalChart, IntervalRow};
+pub use render::{render, render_intervals, render_raster, render_waterfall, significant};
 pub use waterfall::{CutPanel, Waterfall};
 
 use serde::{Deserialize, Serialize};

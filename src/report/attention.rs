@@ -1,12 +1,12 @@
-//! The summary's "needs attention" list: inconclusive verdicts, findings contradicted,
-//! solvers that disagree, golden values that differ.
+//! The summary's "needs attention" list: inconclusive verdicts, headline verdicts that are
+//! not the paper's, implementation guards that fail, solvers that disagree, golden values
+//! that differ. The paper's claims are counted in their own section, never here: a side
+//! claim does not make a validation "contradicted".
 
-use super::format::{no_nan, num, pm, sig};
+use super::format::{no_nan, pm, sig};
 use super::golden::GoldenMatch;
 use super::outcomes::Loaded;
-use crate::stats::{decide, Claim, Estimate};
-use crate::validation::claims::ClaimKind;
-use crate::validation::{ClaimResult, Verdict};
+use crate::validation::Verdict;
 
 /// Plain statements of what needs a reviewer's eye.
 pub(super) fn attention(loaded: &[Loaded], golden: &[GoldenMatch]) -> Vec<String> {
@@ -26,52 +26,22 @@ pub(super) fn attention(loaded: &[Loaded], golden: &[GoldenMatch]) -> Vec<String
             ));
         }
         if o.reproduced == Some(false) {
-            let failed: Vec<String> = o
-                .checks
-                .iter()
-                .filter(|c| c.decided && !c.passed)
-                .map(|c| format!("{} ({})", no_nan(&c.name), no_nan(&c.detail)))
-                .collect();
-            let claims: Vec<String> = o
-                .claims
-                .iter()
-                .filter(|c| c.kind == ClaimKind::Evidence && c.result == ClaimResult::Contradicted)
-                .map(|c| format!("`{}` ({})", c.key, no_nan(&c.paper)))
-                .collect();
-            let in_range = o.paper_range.is_none_or(|(lo, hi)| {
-                decide(
-                    Estimate::new(o.value, o.std_error),
-                    Claim::Overlaps(lo, hi),
-                    o.rule.significance,
-                )
-                .passed()
-            });
-            let mut reasons = Vec::new();
-            if o.verdict != o.paper_verdict {
-                reasons.push(format!(
-                    "this run finds the assumption {} where the paper finds it {}",
-                    o.verdict, o.paper_verdict
-                ));
-            }
-            if !in_range {
-                reasons.push(format!(
-                    "the measurement lies outside the range that reproduces the paper (paper: {})",
-                    o.paper_value.map_or_else(|| "no value stated".into(), num)
-                ));
-            }
-            if !failed.is_empty() {
-                reasons.push(format!("failed checks: {}", failed.join("; ")));
-            }
-            if !claims.is_empty() {
-                reasons.push(format!("claims contradicted: {}", claims.join(", ")));
-            }
-            if reasons.is_empty() {
-                reasons.push("the outcome names no reason (written by an older version?)".into());
-            }
-            let why = reasons.join("; ");
             lines.push(format!(
-                "{}: the paper's finding is CONTRADICTED: {why}.",
-                o.name
+                "{}: the headline verdict is NOT THE PAPER'S: this run finds the assumption {} \
+                 where the paper finds it {} ({} = {}).",
+                o.name,
+                o.verdict,
+                o.paper_verdict,
+                o.statistic,
+                pm(o.value, o.std_error)
+            ));
+        }
+        for g in o.guards.iter().filter(|g| g.decided && !g.passed) {
+            lines.push(format!(
+                "{}: an implementation guard FAILED: {} ({}).",
+                o.name,
+                no_nan(&g.name),
+                no_nan(&g.detail)
             ));
         }
         for c in o.cross_checks.iter().filter(|c| !c.agrees) {

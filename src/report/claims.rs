@@ -1,43 +1,263 @@
-//! The paper's claims as tables: the scorecard's opening section (one row per claim of
-//! every outcome, with the statement, its place in the paper, the paper's value, the
-//! measured value with its error bar and whether it reproduces), and the table of
-//! `docs/claims.md`, full and reduced scenes side by side, written between two markers of
-//! a Markdown file (`persson-check claims --write docs/claims.md`).
+//! The paper's claims as a reviewer reads them: a count table (validation by result), the
+//! contradicted claims first, one line each with the class of the contradiction (the data
+//! disagree, or a reading decides), then the claims not established (the side they lean to
+//! and what would decide them), the reproduced ones grouped by assumption, then what is
+//! counted apart (consistency checks, statements the paper makes two ways, claims not
+//! measured), and one block per claim below with its reading, rule, rival readings,
+//! amendments and the reduced scene's value. The same page is the scorecard's claims
+//! section (one scale) and `docs/claims.md` (the full scale, with the reduced scenes'
+//! values in the blocks), written between two markers of a Markdown file (`persson-check
+//! claims --write`); [`chart`] is the figure beside it: every evidence claim's measurement
+//! against its rule's region, in units of the rule's tolerance.
 //!
-//! Every cell comes from the outcomes' `claims` ([`crate::validation::claims`]): the
-//! statement, the rule and the paper's value are the definitions' data, the result is the
-//! one rule's.
+//! Every cell comes from the outcomes' `claims` ([`crate::validation::claims`]) and the
+//! register of rules ([`crate::validation::register`]): the statement, the rule and the
+//! paper's value are the definitions' data, the result is the one rule's.
 
 use std::fmt::Write as _;
 use std::path::Path;
 
-use super::format::{md, pm, prose, push_table};
+use super::format::{md, num, pm, prose, push_table};
 use crate::error::{Error, Result};
-use crate::validation::claims::{ClaimKind, ReadingOutcome};
-use crate::validation::{ClaimOutcome, ClaimResult, Outcome};
+use crate::plot::{IntervalChart, IntervalRow};
+use crate::stats::{Estimate, Region};
+use crate::validation::claims::{ClaimKind, ErrorKind, Unit};
+use crate::validation::register::{claim_id, Register};
+use crate::validation::{ClaimOutcome, ClaimResult, Outcome, Verdict};
 
-/// The marker lines of the table in `docs/claims.md`.
+/// The marker lines of the page in `docs/claims.md`.
 pub const MARKERS: (&str, &str) = ("<!-- paper-claims -->", "<!-- /paper-claims -->");
 
-/// A value as the tables print it: in % where the paper prints a percentage.
-fn value(c: &ClaimOutcome, e: Option<crate::stats::Estimate>) -> String {
-    let Some(e) = e else {
-        return "—".into();
-    };
-    if c.paper.contains('%') {
-        format!("{}%", pm(100.0 * e.value, 100.0 * e.std_error))
-    } else {
-        pm(e.value, e.std_error)
+/// The file stem of the chart of the claims ([`chart`]).
+pub const CHART: &str = "claims";
+
+/// Why an evidence claim is contradicted.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Class {
+    /// Every reading the claim states is contradicted too (or it states none).
+    DisagreesWithData,
+    /// A rival reading of the paper's words gives another result.
+    DecidedByAReading,
+}
+
+impl Class {
+    /// The class in words.
+    pub fn text(self) -> &'static str {
+        match self {
+            Class::DisagreesWithData => "disagrees with the data",
+            Class::DecidedByAReading => "decided by a reading",
+        }
+    }
+
+    /// The class of a contradicted claim: decided by a reading when a rival reading is
+    /// measured and not contradicted.
+    pub fn of(c: &ClaimOutcome) -> Self {
+        let rival_differs = c.readings.iter().any(|r| {
+            matches!(
+                r.result,
+                ClaimResult::Reproduced | ClaimResult::NotEstablished
+            )
+        });
+        if rival_differs {
+            Class::DecidedByAReading
+        } else {
+            Class::DisagreesWithData
+        }
     }
 }
 
-/// The measured value, with each other reading's value beside it.
-fn measured(c: &ClaimOutcome) -> String {
-    let mut s = value(c, c.measured);
-    for r in &c.readings {
-        let _ = write!(s, "; {}: {}", prose(&r.reading), value(c, r.measured));
+/// The claims of a set of outcomes counted by result.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Counts {
+    /// Every claim.
+    pub all: usize,
+    /// Evidence claims reproduced.
+    pub reproduced: usize,
+    /// Evidence claims contradicted.
+    pub contradicted: usize,
+    /// Of those, decided by a reading.
+    pub by_reading: usize,
+    /// Evidence claims not established.
+    pub not_established: usize,
+    /// Evidence claims not measured.
+    pub not_measured: usize,
+    /// Evidence claims not judged at this scale.
+    pub not_judged: usize,
+    /// Consistency checks.
+    pub consistency: usize,
+    /// Statements the paper makes two ways.
+    pub two_ways: usize,
+}
+
+impl Counts {
+    /// The counts of `claims`.
+    pub fn of<'a>(claims: impl IntoIterator<Item = &'a ClaimOutcome>) -> Self {
+        let mut n = Counts::default();
+        for c in claims {
+            n.all += 1;
+            match c.kind {
+                ClaimKind::Consistency => n.consistency += 1,
+                ClaimKind::Inconsistent => n.two_ways += 1,
+                ClaimKind::Evidence => match c.result {
+                    ClaimResult::Reproduced => n.reproduced += 1,
+                    ClaimResult::Contradicted => {
+                        n.contradicted += 1;
+                        if Class::of(c) == Class::DecidedByAReading {
+                            n.by_reading += 1;
+                        }
+                    }
+                    ClaimResult::NotEstablished => n.not_established += 1,
+                    ClaimResult::NotMeasured => n.not_measured += 1,
+                    ClaimResult::NotJudgedAtThisScale => n.not_judged += 1,
+                },
+            }
+        }
+        n
     }
-    s
+
+    /// Evidence claims.
+    pub fn evidence(&self) -> usize {
+        self.all - self.consistency - self.two_ways
+    }
+
+    /// The counts in words.
+    pub fn text(&self) -> String {
+        let judged = if self.not_judged > 0 {
+            format!(", {} not judged at this scale", self.not_judged)
+        } else {
+            String::new()
+        };
+        format!(
+            "{} claims; {} evidence: {} reproduced, {} contradicted ({} disagree with the \
+             data, {} decided by a reading), {} not established, {} not measured{judged}; \
+             counted apart: {} consistency checks, {} statements the paper makes two ways",
+            self.all,
+            self.evidence(),
+            self.reproduced,
+            self.contradicted,
+            self.contradicted - self.by_reading,
+            self.by_reading,
+            self.not_established,
+            self.not_measured,
+            self.consistency,
+            self.two_ways,
+        )
+    }
+}
+
+/// The claims of every outcome, in order.
+fn every_claim<'a>(outcomes: &[&'a Outcome]) -> Vec<&'a ClaimOutcome> {
+    outcomes.iter().flat_map(|o| &o.claims).collect()
+}
+
+/// The claim counts of `outcomes` in words (the scorecard's and the main job's summary).
+pub fn counts(outcomes: &[&Outcome]) -> String {
+    Counts::of(every_claim(outcomes)).text()
+}
+
+/// The headline verdicts of `outcomes` against the paper's, in words: "10 of 10 headline
+/// verdicts as the paper's (0 hold, 10 violated, 0 inconclusive)".
+pub fn headlines(outcomes: &[&Outcome]) -> String {
+    let count = |v: Verdict| outcomes.iter().filter(|o| o.verdict == v).count();
+    let same = outcomes
+        .iter()
+        .filter(|o| o.reproduced == Some(true))
+        .count();
+    let differ: Vec<String> = outcomes
+        .iter()
+        .filter(|o| o.reproduced == Some(false))
+        .map(|o| format!("`{}`", o.name))
+        .collect();
+    format!(
+        "{same} of {} headline verdicts as the paper's ({} hold, {} violated, {} \
+         inconclusive){}",
+        outcomes.len(),
+        count(Verdict::Holds),
+        count(Verdict::Violated),
+        count(Verdict::Inconclusive),
+        if differ.is_empty() {
+            String::new()
+        } else {
+            format!("; not as the paper: {}", differ.join(", "))
+        }
+    )
+}
+
+/// The assumption a validation tests, as the page groups the reproduced claims.
+fn assumption(name: &str) -> &'static str {
+    match name {
+        "a_diffusion" => "(a) pressure-independent diffusion",
+        "b_drift" => "(b) no drift",
+        "c_flux" | "c_reentry" | "c_source" => "(c) no re-entry",
+        "d_onset" => "(d) a mode holds energy only once resolved",
+        "e_frozen" | "e_frozen_h03" => "(e) a resolved mode keeps its energy",
+        "total_energy" => "the integrated elastic energy",
+        "contact_area" => "the contact-area law",
+        _ => "other",
+    }
+}
+
+/// The lines of the paper's source a place names: "tex 612-617, 660-661".
+fn tex(place: &str) -> String {
+    let mut parts = Vec::new();
+    for (k, _) in place.match_indices("tex ") {
+        let rest = &place[k + 4..];
+        let end = rest.find(')').unwrap_or(rest.len());
+        parts.push(rest[..end].replace("; ", ", "));
+    }
+    if parts.is_empty() {
+        "—".into()
+    } else {
+        format!("tex {}", parts.join(", "))
+    }
+}
+
+/// The anchor of a claim's block.
+fn anchor(validation: &str, key: &str) -> String {
+    format!(
+        "c-{}",
+        claim_id(validation, key)
+            .chars()
+            .map(|c| if c.is_ascii_alphanumeric() { c } else { '-' })
+            .collect::<String>()
+    )
+}
+
+/// The claim's key, linked to its block.
+fn key_cell(validation: &str, c: &ClaimOutcome) -> String {
+    format!(
+        "[`{}`](#{})",
+        claim_id(validation, &c.key),
+        anchor(validation, &c.key)
+    )
+}
+
+/// A value in the claim's unit (in % where it is a share or a relative change).
+fn value(c: &ClaimOutcome, e: Option<Estimate>) -> String {
+    let Some(e) = e else {
+        return "—".into();
+    };
+    let (scale, suffix) = match c.unit {
+        Some(u) => u.display(),
+        None if c.paper.contains('%') => (100.0, "%"),
+        None => (1.0, ""),
+    };
+    if e.std_error.is_finite() {
+        format!("{}{suffix}", pm(scale * e.value, scale * e.std_error))
+    } else {
+        // The unit before the mark: "5.2% (no error estimate)".
+        format!("{}{suffix} (no error estimate)", num(scale * e.value))
+    }
+}
+
+/// The measurement with its realizations: "0.644 ± 0.006 (n = 4)".
+fn measured_cell(c: &ClaimOutcome) -> String {
+    let v = value(c, c.measured);
+    match (c.measured, c.realizations) {
+        (Some(_), Some(n)) if c.error == ErrorKind::Fit => format!("{v} (fit, n = {n})"),
+        (Some(_), Some(n)) => format!("{v} (n = {n})"),
+        _ => v,
+    }
 }
 
 /// A result in words, marked where it needs attention.
@@ -49,173 +269,475 @@ fn result_text(r: ClaimResult) -> String {
     }
 }
 
-/// The result with its reason where it has one, and each other reading's result.
-fn result(c: &ClaimOutcome) -> String {
-    let mut s = match c.kind {
-        ClaimKind::Evidence => result_text(c.result),
-        ClaimKind::Consistency => format!("consistency check: {}", c.result.text()),
-        ClaimKind::Inconsistent => format!("paper inconsistent; this reading: {}", c.result.text()),
+/// The claims of `outcomes` with their validation's name, in the outcomes' order.
+fn listed<'a>(outcomes: &[&'a Outcome]) -> Vec<(&'a str, &'a ClaimOutcome)> {
+    outcomes
+        .iter()
+        .flat_map(|o| o.claims.iter().map(move |c| (o.name.as_str(), c)))
+        .collect()
+}
+
+/// The count table: one row per validation, a total, and the headline line.
+fn count_table(s: &mut String, outcomes: &[&Outcome]) {
+    let header = [
+        "validation",
+        "headline as the paper's",
+        "reproduced",
+        "contradicted",
+        "not established",
+        "not measured",
+        "consistency checks",
+        "the paper two ways",
+        "all",
+    ];
+    let row = |name: String, headline: String, n: Counts| {
+        vec![
+            name,
+            headline,
+            n.reproduced.to_string(),
+            n.contradicted.to_string(),
+            n.not_established.to_string(),
+            (n.not_measured + n.not_judged).to_string(),
+            n.consistency.to_string(),
+            n.two_ways.to_string(),
+            n.all.to_string(),
+        ]
     };
-    if let Some(why) = &c.why {
-        if c.result != ClaimResult::Reproduced || c.kind != ClaimKind::Evidence {
-            let _ = write!(s, " ({})", prose(why));
+    let mut rows: Vec<Vec<String>> = outcomes
+        .iter()
+        .map(|o| {
+            let headline = match o.reproduced {
+                Some(true) => "yes",
+                Some(false) => "**no**",
+                None => "inconclusive",
+            };
+            row(
+                format!("`{}`", o.name),
+                headline.into(),
+                Counts::of(&o.claims),
+            )
+        })
+        .collect();
+    let same = outcomes
+        .iter()
+        .filter(|o| o.reproduced == Some(true))
+        .count();
+    rows.push(row(
+        "**all**".into(),
+        format!("{same} of {}", outcomes.len()),
+        Counts::of(every_claim(outcomes)),
+    ));
+    push_table(s, &header, &rows);
+}
+
+/// The lists: contradicted, not established, reproduced by assumption, counted apart.
+fn lists(s: &mut String, outcomes: &[&Outcome]) {
+    let all = listed(outcomes);
+    let evidence = |r: ClaimResult| -> Vec<(&str, &ClaimOutcome)> {
+        all.iter()
+            .filter(|(_, c)| c.kind == ClaimKind::Evidence && c.result == r)
+            .copied()
+            .collect()
+    };
+    let contradicted = evidence(ClaimResult::Contradicted);
+    let _ = writeln!(s, "### Contradicted ({})\n", contradicted.len());
+    if !contradicted.is_empty() {
+        let rows: Vec<Vec<String>> = contradicted
+            .iter()
+            .map(|(v, c)| {
+                vec![
+                    key_cell(v, c),
+                    tex(&c.place),
+                    md(&c.paper),
+                    measured_cell(c),
+                    Class::of(c).text().into(),
+                ]
+            })
+            .collect();
+        push_table(
+            s,
+            &["claim", "where", "paper", "measured (n)", "class"],
+            &rows,
+        );
+        s.push('\n');
+    }
+    let open = evidence(ClaimResult::NotEstablished);
+    let _ = writeln!(s, "### Not established ({})\n", open.len());
+    if !open.is_empty() {
+        let rows: Vec<Vec<String>> = open
+            .iter()
+            .map(|(v, c)| {
+                vec![
+                    key_cell(v, c),
+                    tex(&c.place),
+                    md(&c.paper),
+                    measured_cell(c),
+                    format!("{} the rule's region", c.leans().unwrap_or("—")),
+                    md(&c.would_decide().unwrap_or_default()),
+                ]
+            })
+            .collect();
+        push_table(
+            s,
+            &[
+                "claim",
+                "where",
+                "paper",
+                "measured (n)",
+                "leans",
+                "would decide",
+            ],
+            &rows,
+        );
+        s.push('\n');
+    }
+    let reproduced = evidence(ClaimResult::Reproduced);
+    let _ = writeln!(s, "### Reproduced ({})\n", reproduced.len());
+    let mut groups: Vec<&str> = Vec::new();
+    for (v, _) in &reproduced {
+        if !groups.contains(&assumption(v)) {
+            groups.push(assumption(v));
         }
     }
-    for ReadingOutcome {
-        reading, result, ..
-    } in &c.readings
-    {
-        let _ = write!(s, "; {}: {}", prose(reading), result.text());
+    for g in groups {
+        let rows: Vec<Vec<String>> = reproduced
+            .iter()
+            .filter(|(v, _)| assumption(v) == g)
+            .map(|(v, c)| {
+                vec![
+                    key_cell(v, c),
+                    tex(&c.place),
+                    md(&c.paper),
+                    measured_cell(c),
+                ]
+            })
+            .collect();
+        let _ = writeln!(s, "{g}:\n");
+        push_table(s, &["claim", "where", "paper", "measured (n)"], &rows);
+        s.push('\n');
     }
-    s
-}
-
-/// The statement with the paper's scene and the reading, where given.
-fn statement(c: &ClaimOutcome) -> String {
-    let mut s = prose(&c.statement);
-    if let Some(scene) = &c.scene {
-        let _ = write!(s, " (paper's scene: {})", prose(scene));
-    }
-    if let Some(reading) = &c.reading {
-        let _ = write!(s, " [reading: {}]", prose(reading));
-    }
-    s
-}
-
-/// The claims of every outcome, in order.
-fn every_claim(outcomes: &[Outcome]) -> Vec<&ClaimOutcome> {
-    outcomes.iter().flat_map(|o| &o.claims).collect()
-}
-
-/// Counts of the results of `claims`: evidence by result, then consistency checks and
-/// statements the paper makes two ways apart.
-pub fn counts(claims: &[&ClaimOutcome]) -> String {
-    let evidence: Vec<&&ClaimOutcome> = claims
-        .iter()
-        .filter(|c| c.kind == ClaimKind::Evidence)
-        .collect();
-    let n = |r: ClaimResult| evidence.iter().filter(|c| c.result == r).count();
-    let apart = |k: ClaimKind| claims.iter().filter(|c| c.kind == k).count();
-    format!(
-        "{} claims: {} reproduced, {} contradicted, {} not established, {} not measured, {} \
-         not judged at this scale; apart: {} consistency checks, {} statements the paper \
-         makes two ways",
-        claims.len(),
-        n(ClaimResult::Reproduced),
-        n(ClaimResult::Contradicted),
-        n(ClaimResult::NotEstablished),
-        n(ClaimResult::NotMeasured),
-        n(ClaimResult::NotJudgedAtThisScale),
+    let apart = |kind: ClaimKind| -> Vec<(&str, &ClaimOutcome)> {
+        all.iter()
+            .filter(|(_, c)| c.kind == kind)
+            .copied()
+            .collect()
+    };
+    let (checks, two_ways) = (
         apart(ClaimKind::Consistency),
         apart(ClaimKind::Inconsistent),
-    )
+    );
+    let unmeasured: Vec<(&str, &ClaimOutcome)> = all
+        .iter()
+        .filter(|(_, c)| {
+            c.kind == ClaimKind::Evidence
+                && matches!(
+                    c.result,
+                    ClaimResult::NotMeasured | ClaimResult::NotJudgedAtThisScale
+                )
+        })
+        .copied()
+        .collect();
+    let _ = writeln!(s, "### Counted apart\n");
+    let _ = writeln!(
+        s,
+        "**The paper two ways ({}):** the paper states these in ways that cannot all hold; \
+         each reading is judged and shown, none is counted as evidence.\n",
+        two_ways.len()
+    );
+    if !two_ways.is_empty() {
+        let rows: Vec<Vec<String>> = two_ways
+            .iter()
+            .map(|(v, c)| {
+                let readings: Vec<String> = std::iter::once(c.result)
+                    .chain(c.readings.iter().map(|r| r.result))
+                    .map(|r| r.text().to_string())
+                    .collect();
+                vec![
+                    key_cell(v, c),
+                    tex(&c.place),
+                    md(&c.paper),
+                    measured_cell(c),
+                    readings.join(" / "),
+                ]
+            })
+            .collect();
+        push_table(
+            s,
+            &["claim", "where", "paper", "measured (n)", "readings"],
+            &rows,
+        );
+        s.push('\n');
+    }
+    let _ = writeln!(
+        s,
+        "**Consistency checks ({}):** true by construction (an identity, arithmetic on the \
+         paper's formula or on a chosen scene): they check the code, not the paper.\n",
+        checks.len()
+    );
+    if !checks.is_empty() {
+        let rows: Vec<Vec<String>> = checks
+            .iter()
+            .map(|(v, c)| {
+                vec![
+                    key_cell(v, c),
+                    tex(&c.place),
+                    measured_cell(c),
+                    c.result.text().into(),
+                ]
+            })
+            .collect();
+        push_table(s, &["claim", "where", "measured (n)", "result"], &rows);
+        s.push('\n');
+    }
+    let _ = writeln!(
+        s,
+        "**Not measured ({}):** evidence with no measure at this scale; each block says what \
+         it would take.\n",
+        unmeasured.len()
+    );
+    if !unmeasured.is_empty() {
+        let rows: Vec<Vec<String>> = unmeasured
+            .iter()
+            .map(|(v, c)| vec![key_cell(v, c), tex(&c.place), md(&c.paper)])
+            .collect();
+        push_table(s, &["claim", "where", "paper"], &rows);
+        s.push('\n');
+    }
 }
 
-/// The scorecard's section: every claim of every outcome, in the outcomes' order.
+/// The rule in words: phrase, unit, the rule as written and its region.
+fn rule_text(c: &ClaimOutcome) -> String {
+    let phrase = c.phrase.map_or("?", |p| p.name());
+    let unit = c.unit.map_or("?", Unit::name);
+    format!("phrase `{phrase}`, unit `{unit}`: `{}`", c.rule.text())
+}
+
+/// One claim's block: the statement, its reading and rule, the result with its reason,
+/// the rival readings, the amendments (with the earlier rules and their verdicts from the
+/// register) and, where given, the other scale's result.
+fn block(
+    s: &mut String,
+    validation: &str,
+    c: &ClaimOutcome,
+    other: Option<(&str, &ClaimOutcome)>,
+    register: Option<&Register>,
+) {
+    let _ = writeln!(
+        s,
+        "#### <a id=\"{}\"></a>`{}`\n",
+        anchor(validation, &c.key),
+        claim_id(validation, &c.key)
+    );
+    let _ = writeln!(s, "> {}\n", prose(&c.statement));
+    let _ = writeln!(s, "- **Where:** {}", prose(&c.place));
+    if let Some(scene) = &c.scene {
+        let _ = writeln!(s, "- **The paper's scene:** {}", prose(scene));
+    }
+    let _ = writeln!(s, "- **Paper:** {}", md(&c.paper));
+    if let Some(r) = &c.reading {
+        let _ = writeln!(s, "- **Reading:** {}", prose(r));
+    }
+    let _ = writeln!(s, "- **Rule:** {}", rule_text(c));
+    if let Some(d) = &c.departs {
+        let _ = writeln!(s, "- **Departs from the phrase's rule:** {}", prose(d));
+    }
+    let kind = match c.kind {
+        ClaimKind::Evidence => "",
+        ClaimKind::Consistency => " (consistency check, counted apart)",
+        ClaimKind::Inconsistent => " (the paper two ways, counted apart)",
+    };
+    let _ = writeln!(
+        s,
+        "- **Measured:** {}: {}{kind}",
+        measured_cell(c),
+        result_text(c.result)
+    );
+    if let Some(why) = &c.why {
+        let _ = writeln!(s, "- **Why:** {}", prose(why));
+    }
+    if let Some(commit) = &c.planned {
+        let _ = writeln!(
+            s,
+            "- **Realizations planned at `{commit}`** (`docs/power-plan.md`: from the error bar alone, before the planned jobs ran)"
+        );
+    }
+    for r in &c.readings {
+        let _ = writeln!(
+            s,
+            "- **Rival reading:** {}: {} ({})",
+            prose(&r.reading),
+            value(c, r.measured),
+            r.result.text()
+        );
+    }
+    let earlier = register.map_or(&[][..], |reg| reg.rules(&claim_id(validation, &c.key)));
+    for (a, r) in c.amendments.iter().zip(earlier) {
+        let verdict = |v: &Option<crate::validation::register::Verdicted>| match v {
+            Some(v) => format!("{} ({})", v.result.text(), value(c, v.measured)),
+            None => "no verdict recorded".into(),
+        };
+        let _ = writeln!(
+            s,
+            "- **Amended** (rule registered {} at `{}`: region `{}`; full scale {}, reduced {}): {}",
+            r.registered,
+            &r.commit[..r.commit.len().min(10)],
+            r.rule
+                .get("region")
+                .and_then(|g| g.as_str())
+                .unwrap_or("?"),
+            verdict(&r.full),
+            verdict(&r.reduced),
+            prose(&a.reason)
+        );
+    }
+    if let Some((scale, o)) = other {
+        let _ = writeln!(
+            s,
+            "- **{scale}:** {}: {}",
+            measured_cell(o),
+            o.result.text()
+        );
+    }
+    s.push('\n');
+}
+
+/// The scorecard's section: the page for one scale.
 pub fn section(s: &mut String, outcomes: &[&Outcome]) {
-    let all: Vec<&ClaimOutcome> = outcomes.iter().flat_map(|o| &o.claims).collect();
-    if all.is_empty() {
+    if every_claim(outcomes).is_empty() {
         return;
     }
     let _ = writeln!(s, "## The paper's claims\n");
     let _ = writeln!(
         s,
-        "Each quantitative statement of the paper, set against its measure by the rule its \
-         definition states (`validations/<name>.toml`, `[[claims]]`). {}.\n",
-        counts(&all)
+        "{}. {}.\n",
+        headlines(outcomes),
+        Counts::of(every_claim(outcomes)).text()
     );
-    let mut rows = Vec::new();
-    for o in outcomes {
-        for c in &o.claims {
-            rows.push(vec![
-                format!("`{}`", o.name),
-                statement(c),
-                prose(&c.place),
-                md(&c.paper),
-                measured(c),
-                result(c),
-            ]);
-        }
+    count_table(s, outcomes);
+    s.push('\n');
+    lists(s, outcomes);
+    let _ = writeln!(s, "### Each claim\n");
+    for (v, c) in listed(outcomes) {
+        block(s, v, c, None, None);
     }
-    push_table(
-        s,
-        &[
-            "validation",
-            "claim",
-            "where",
-            "paper",
-            "measured",
-            "result",
-        ],
-        &rows,
-    );
 }
 
-/// The table of `docs/claims.md`: every claim of the full outcomes and the reduced ones, side by
-/// side, in the order of the full outcomes (then any claim only the reduced have).
-pub fn table(full: &[Outcome], reduced: &[Outcome]) -> String {
-    let key = |o: &Outcome, c: &ClaimOutcome| (o.name.clone(), c.key.clone());
-    let mut order: Vec<(String, String, &ClaimOutcome)> = Vec::new();
-    for o in full.iter().chain(reduced) {
-        for c in &o.claims {
-            let k = key(o, c);
-            if !order.iter().any(|(n, ck, _)| (n, ck) == (&k.0, &k.1)) {
-                order.push((k.0, k.1, c));
-            }
-        }
+/// The page of `docs/claims.md`: the full outcomes' claims, with the reduced scenes'
+/// result in each block, the earlier rules of amended claims from `register`, and the
+/// chart (`chart_file`, relative to the page) beside the count table.
+pub fn page(
+    full: &[Outcome],
+    reduced: &[Outcome],
+    register: Option<&Register>,
+    chart_file: Option<&str>,
+) -> String {
+    let full: Vec<&Outcome> = full.iter().collect();
+    let reduced: Vec<&Outcome> = reduced.iter().collect();
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "**Full scale** (the paper's scenes, [`results/full`](../results/full/)): {}. {}.\n",
+        headlines(&full),
+        Counts::of(every_claim(&full)).text()
+    );
+    let _ = writeln!(
+        s,
+        "**Reduced scenes** (the main job, [`results/reduced`](../results/reduced/)): {}. \
+         {}.\n",
+        headlines(&reduced),
+        Counts::of(every_claim(&reduced)).text()
+    );
+    let _ = writeln!(s, "### Counts (full scale)\n");
+    count_table(&mut s, &full);
+    s.push('\n');
+    if let Some(file) = chart_file {
+        let _ = writeln!(
+            s,
+            "![Each evidence claim's measurement against its rule, in units of the rule's \
+             tolerance]({file})\n\nThe figure: one row per evidence claim measured at full \
+             scale, grouped by validation; the dot is the measurement's distance into the \
+             rule's region in units of the rule's tolerance (0 is the rule's edge, right of \
+             it inside; 1 is the centre of a two-sided region), the bar its interval (+-3 \
+             standard errors, wider for fewer than four realizations); a bar across 0 is \
+             not established, an arrow lies beyond the axis.\n"
+        );
     }
-    let find = |outcomes: &[Outcome], name: &str, claim: &str| -> Option<ClaimOutcome> {
-        outcomes
+    lists(&mut s, &full);
+    let _ = writeln!(s, "### Each claim\n");
+    for (v, c) in listed(&full) {
+        let other = reduced
             .iter()
-            .find(|o| o.name == name)?
-            .claims
-            .iter()
-            .find(|c| c.key == claim)
-            .cloned()
-    };
-    let cells = |c: Option<ClaimOutcome>, has_run: bool| match c {
-        Some(c) => (measured(&c), result(&c)),
-        None if has_run => ("—".into(), "not in this run".into()),
-        None => ("not run yet".into(), "—".into()),
-    };
-    let rows: Vec<Vec<String>> = order
+            .find(|o| o.name == v)
+            .and_then(|o| o.claims.iter().find(|r| r.key == c.key))
+            .map(|r| ("Reduced scene", r));
+        block(&mut s, v, c, other, register);
+    }
+    s
+}
+
+/// A claim's position for the chart: its measurement's distance into the rule's region in
+/// units of the tolerance (the rule's edge at 0, inside positive; a two-sided region's
+/// centre at 1) and its interval's half width in those units.
+pub fn position(c: &ClaimOutcome, resolution: f64) -> Option<(f64, f64)> {
+    let (e, region) = (c.judged()?, c.region()?);
+    if !(e.value.is_finite() && e.has_error()) {
+        return None;
+    }
+    let half = c.interval_z.unwrap_or(3.0) * e.std_error;
+    let band = c.unit.map_or(resolution, |u| u.band_width(resolution));
+    Some(match region {
+        Region::Interval { lo, hi, .. } if lo.is_finite() && hi.is_finite() => {
+            let w = 0.5 * (hi - lo);
+            let centre = 0.5 * (hi + lo);
+            ((w - (e.value - centre).abs()) / w, half / w)
+        }
+        Region::Interval { lo, .. } if lo.is_finite() => ((e.value - lo) / band, half / band),
+        Region::Interval { hi, .. } => ((hi - e.value) / band, half / band),
+        Region::Outside(lo, hi) => {
+            let w = 0.5 * (hi - lo);
+            (((e.value - 0.5 * (hi + lo)).abs() - w) / w, half / w)
+        }
+        Region::Except(t) => ((e.value - t).abs() / band, half / band),
+    })
+}
+
+/// The chart of the evidence claims of `outcomes` measured with an error bar: each
+/// claim's position against its rule ([`position`], a number of a measure's own unit in
+/// units of its validation's resolution), grouped by validation, coloured by result.
+pub fn chart(outcomes: &[&Outcome]) -> IntervalChart {
+    let kinds = ["reproduced", "contradicted", "not established"];
+    let rows = outcomes
         .iter()
-        .map(|(name, claim, c)| {
-            let has = |outcomes: &[Outcome]| outcomes.iter().any(|o| &o.name == name);
-            let (f, fr) = cells(find(full, name, claim), has(full));
-            let (r, rr) = cells(find(reduced, name, claim), has(reduced));
-            vec![
-                format!("`{name}`"),
-                statement(c),
-                prose(&c.place),
-                md(&c.paper),
-                f,
-                fr,
-                r,
-                rr,
-            ]
+        .flat_map(|o| {
+            o.claims
+                .iter()
+                .filter(|c| c.kind == ClaimKind::Evidence)
+                .filter_map(move |c| {
+                    let kind = match c.result {
+                        ClaimResult::Reproduced => 0,
+                        ClaimResult::Contradicted => 1,
+                        ClaimResult::NotEstablished => 2,
+                        _ => return None,
+                    };
+                    let (value, half) = position(c, o.rule.resolution)?;
+                    Some(IntervalRow {
+                        group: o.name.clone(),
+                        label: c.key.clone(),
+                        value,
+                        half,
+                        kind,
+                    })
+                })
         })
         .collect();
-    let mut s = format!(
-        "Full scale: {}. Reduced scenes: {}.\n\n",
-        counts(&every_claim(full)),
-        counts(&every_claim(reduced))
-    );
-    push_table(
-        &mut s,
-        &[
-            "validation",
-            "the paper's claim",
-            "where",
-            "paper",
-            "full scale",
-            "result",
-            "reduced",
-            "result",
-        ],
-        &rows,
-    );
-    s
+    IntervalChart {
+        name: CHART.into(),
+        title: "The paper's claims against their rules".into(),
+        x_label: "distance into the rule's region, in units of its tolerance (0: the edge)".into(),
+        range: (-6.0, 2.0),
+        kinds: kinds.iter().map(|k| k.to_string()).collect(),
+        rows,
+    }
 }
 
 /// Replaces the text between the [`MARKERS`] of the Markdown file `path` with `table`

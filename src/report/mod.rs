@@ -72,7 +72,12 @@ pub struct ReportSummary {
     pub path: PathBuf,
     /// Validations in it.
     pub validations: Vec<String>,
-    /// One line per inconclusive verdict, finding not reproduced, or golden mismatch.
+    /// The headline verdicts against the paper's, in words.
+    pub headlines: String,
+    /// The claims counted by result, in words.
+    pub claims: String,
+    /// One line per inconclusive verdict, headline verdict not the paper's, failed guard,
+    /// disagreeing solver or golden mismatch.
     pub attention: Vec<String>,
     /// Files written besides the scorecard (speed study, resolution figures).
     pub files: Vec<PathBuf>,
@@ -123,9 +128,12 @@ pub fn write(opts: &ReportOptions, progress: &mut dyn FnMut(&str)) -> Result<Rep
     }
     .markdown();
     crate::io::write_atomic(&opts.out, text.as_bytes())?;
+    let outcomes: Vec<&Outcome> = loaded.iter().map(|l| &l.outcome).collect();
     Ok(ReportSummary {
         path: opts.out.clone(),
         validations: loaded.iter().map(|l| l.outcome.name.clone()).collect(),
+        headlines: claims::headlines(&outcomes),
+        claims: claims::counts(&outcomes),
         attention,
         files,
         speed_error: match speed {
@@ -205,22 +213,9 @@ fn verdict_cell(v: Verdict) -> String {
 
 fn reproduced_cell(o: &Outcome) -> String {
     match o.reproduced {
-        Some(true) => "reproduced".into(),
-        Some(false) => "**contradicted**".into(),
-        None if o.verdict == Verdict::Inconclusive => {
-            "not established (verdict inconclusive)".into()
-        }
-        None => {
-            let keys: Vec<String> = crate::validation::claims::deciding(&o.claims)
-                .iter()
-                .map(|c| format!("`{}`", c.key))
-                .collect();
-            if keys.is_empty() {
-                "not established".into()
-            } else {
-                format!("not established ({})", keys.join(", "))
-            }
-        }
+        Some(true) => "as the paper".into(),
+        Some(false) => "**not as the paper**".into(),
+        None => "inconclusive".into(),
     }
 }
 
@@ -255,22 +250,6 @@ impl Scorecard<'_> {
 
     fn header(&self, s: &mut String) {
         let n = self.loaded.len();
-        let count = |v: Verdict| {
-            self.loaded
-                .iter()
-                .filter(|l| l.outcome.verdict == v)
-                .count()
-        };
-        let names = |f: &dyn Fn(&Outcome) -> bool| -> Vec<String> {
-            self.loaded
-                .iter()
-                .filter(|l| f(&l.outcome))
-                .map(|l| format!("`{}`", l.outcome.name))
-                .collect()
-        };
-        let reproduced = names(&|o| o.reproduced == Some(true));
-        let not_reproduced = names(&|o| o.reproduced == Some(false));
-        let undecided = names(&|o| o.reproduced.is_none());
         let _ = writeln!(s, "# Scorecard: Persson's assumptions against simulation\n");
         let _ = writeln!(
             s,
@@ -281,28 +260,20 @@ impl Scorecard<'_> {
             provenance::VERSION,
             provenance::commit_label()
         );
+        let outcomes: Vec<&Outcome> = self.loaded.iter().map(|l| &l.outcome).collect();
         let _ = writeln!(
             s,
-            "**Summary.** {n} validation{}: {} hold{}, {} violated, {} inconclusive. \
-             The paper's finding is reproduced in {} ({}), contradicted in {} ({}), \
-             not established in {} ({}).\n",
+            "**Summary.** {n} validation{}: {}. The paper's claims: {} (each judged once, \
+             by its rule; none makes a validation's headline).\n",
             if n == 1 { "" } else { "s" },
-            count(Verdict::Holds),
-            if count(Verdict::Holds) == 1 { "s" } else { "" },
-            count(Verdict::Violated),
-            count(Verdict::Inconclusive),
-            reproduced.len(),
-            list_or_none(&reproduced),
-            not_reproduced.len(),
-            list_or_none(&not_reproduced),
-            undecided.len(),
-            list_or_none(&undecided),
+            claims::headlines(&outcomes),
+            claims::counts(&outcomes),
         );
         if self.attention.is_empty() {
             let _ = writeln!(
                 s,
-                "No verdict is inconclusive, every finding is reproduced, and no golden value \
-                 differs.\n"
+                "No verdict is inconclusive, every headline verdict is the paper's, no guard \
+                 fails, the solvers agree, and no golden value differs.\n"
             );
         } else {
             let _ = writeln!(s, "**Needs attention:**\n");
@@ -311,13 +282,5 @@ impl Scorecard<'_> {
             }
             s.push('\n');
         }
-    }
-}
-
-pub(super) fn list_or_none(items: &[String]) -> String {
-    if items.is_empty() {
-        "none".into()
-    } else {
-        items.join(", ")
     }
 }

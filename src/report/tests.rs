@@ -4,7 +4,7 @@ use super::resolution::resolution_studies;
 use super::*;
 use crate::stats::Estimate;
 use crate::validation::outcome::CrossCheck;
-use crate::validation::{Check, Detail, Scale, VerdictRule};
+use crate::validation::{Detail, Guard, Scale, VerdictRule};
 use serde_json::json;
 use std::collections::BTreeMap;
 
@@ -36,7 +36,12 @@ fn outcome(name: &str, verdict: Verdict, reproduced: Option<bool>, scale: Scale)
         paper: "kappa ~ 2".into(),
         paper_value: Some(2.0),
         paper_range: None,
-        paper_verdict: Verdict::Violated,
+        // The paper's verdict as `reproduced` says.
+        paper_verdict: match (verdict, reproduced) {
+            (v, Some(true)) => v,
+            (Verdict::Violated, Some(false)) => Verdict::Holds,
+            _ => Verdict::Violated,
+        },
         verdict,
         reproduced,
         rule: VerdictRule {
@@ -65,11 +70,11 @@ fn outcome(name: &str, verdict: Verdict, reproduced: Option<bool>, scale: Scale)
             ),
             detail("deviation", "largest deviation", 0.08, f64::NAN, None),
         ],
-        checks: vec![Check {
+        guards: vec![Guard {
             decided: true,
-            key: "check".into(),
-            name: format!("check of {name}"),
-            passed: reproduced != Some(false),
+            key: "guard".into(),
+            name: format!("guard of {name}"),
+            passed: true,
             detail: "numbers behind it".into(),
         }],
         account: format!("Account of {name}: kappa = 2.5 +- 0.05."),
@@ -191,9 +196,9 @@ fn table_rows_state_verdicts(text: &str) {
             "1",
             "2.500 ± 0.050 (GFMD)",
             "not run",
-            "2 (violated)",
+            "2 (holds)",
             "holds",
-            "reproduced",
+            "as the paper",
             "yes",
             "64, 128",
             "3 (1-3)",
@@ -203,7 +208,7 @@ fn table_rows_state_verdicts(text: &str) {
     );
     let b = row(text, "b_violated");
     assert_eq!(b[7], "violated");
-    assert_eq!(b[8], "**contradicted**");
+    assert_eq!(b[8], "**not as the paper**");
     assert_eq!(b[9], "no (1 differ: kappa = 2.5, snapshot 2.6)");
     let c = row(text, "c_inconclusive");
     assert_eq!(
@@ -211,7 +216,7 @@ fn table_rows_state_verdicts(text: &str) {
         "NaN read back from null"
     );
     assert_eq!(c[7], "**inconclusive**");
-    assert_eq!(c[8], "not established (verdict inconclusive)");
+    assert_eq!(c[8], "inconclusive");
     assert_eq!(c[9], "not checked");
     let d = row(text, "d_full");
     assert!(d[0].ends_with("(full)"), "{d:?}");
@@ -221,15 +226,23 @@ fn table_rows_state_verdicts(text: &str) {
 /// The summary says plainly what is inconclusive or contradicted.
 fn summary_names_what_needs_attention(text: &str, summary: &ReportSummary) {
     assert!(
-        text.contains("1 holds, 2 violated, 1 inconclusive"),
+        text.contains("2 of 4 headline verdicts as the paper's (1 hold, 2 violated, 1 inconclusive)"),
         "{}",
         &text[..600]
     );
-    assert!(text.contains("contradicted in 1 (`b_violated`)"));
+    assert!(text.contains("not as the paper: `b_violated`"));
     assert!(text.contains("c\\_inconclusive: the verdict is INCONCLUSIVE"));
-    assert!(text.contains("b\\_violated: the paper's finding is CONTRADICTED: failed checks: check of b\\_violated (numbers behind it)"));
+    assert!(text.contains(
+        "b\\_violated: the headline verdict is NOT THE PAPER'S: this run finds the assumption violated where the paper finds it holds"
+    ));
+    // The verdict, a golden value that differs, an inconclusive verdict: passing guards and
+    // the paper's claims are not in the list.
     assert_eq!(summary.attention.len(), 3, "{:?}", summary.attention);
-    assert!(text.contains("| check of b\\_violated | **FAILED** | numbers behind it |"));
+    assert!(summary
+        .attention
+        .iter()
+        .any(|a| a.starts_with("b_violated: 1 golden value(s) differ")));
+    assert!(!summary.attention.iter().any(|a| a.contains("guard")));
 }
 
 /// Sections: account, details, resolution study, missing files.
@@ -338,9 +351,8 @@ fn unreadable_outcomes_and_empty_folders_are_errors() {
 }
 
 #[test]
-fn attention_names_the_reason_a_finding_is_not_reproduced() {
+fn attention_names_a_headline_verdict_not_the_papers_and_a_failed_guard() {
     let mut o = outcome("e_holds", Verdict::Holds, Some(false), Scale::Reduced);
-    o.checks.clear();
     let loaded = |o: Outcome| Loaded {
         outcome: o,
         path: PathBuf::from("e_holds.json"),
@@ -352,13 +364,13 @@ fn attention_names_the_reason_a_finding_is_not_reproduced() {
         lines[0].contains("finds the assumption holds where the paper finds it violated"),
         "{lines:?}"
     );
+    // A contradicted claim is counted in the claims section, never here.
     o.verdict = Verdict::Violated;
-    o.paper_range = Some((o.value + 10.0 * o.std_error, o.value + 20.0 * o.std_error));
-    let lines = attention::attention(&[loaded(o.clone())], &[GoldenMatch::FullScene]);
-    assert!(lines[0].contains("outside the range"), "{lines:?}");
-    o.paper_range = None;
+    o.reproduced = Some(true);
+    assert!(attention::attention(&[loaded(o.clone())], &[GoldenMatch::FullScene]).is_empty());
+    o.guards[0].passed = false;
     let lines = attention::attention(&[loaded(o)], &[GoldenMatch::FullScene]);
-    assert!(lines[0].contains("names no reason"), "{lines:?}");
+    assert!(lines[0].contains("guard FAILED"), "{lines:?}");
 }
 
 #[test]
@@ -536,7 +548,7 @@ fn outcomes_with_null_or_absent_error_bars_are_read_and_say_so() {
     let null = row(&text, "one_seed");
     assert_eq!(null[4], "0.8585 (one realization: no error bar) (GFMD)");
     assert_eq!(null[5], "CG 0.8585 (one realization: no error bar), agrees");
-    assert_eq!(null[8], "not established (verdict inconclusive)");
+    assert_eq!(null[8], "inconclusive");
     let absent = row(&text, "one_seed_absent");
     assert_eq!(absent[4], null[4], "absent reads as null");
     assert_eq!(absent[5], "not run");

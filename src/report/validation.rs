@@ -10,7 +10,7 @@ use super::golden::GoldenMatch;
 use super::outcomes::{grid_cell, seeds_cell, Loaded};
 use super::table::headline;
 use super::{anchor, reproduced_cell, verdict_cell, Scorecard};
-use crate::validation::{Check, Outcome};
+use crate::validation::{Guard, Outcome};
 
 impl Scorecard<'_> {
     pub(super) fn validation(&self, s: &mut String, l: &Loaded, g: &GoldenMatch) {
@@ -22,7 +22,7 @@ impl Scorecard<'_> {
         pending(s, o);
         super::study::studies(s, &o.studies);
         details(s, o);
-        checks(s, o);
+        guards(s, o);
         self.files(s, o);
         scene(s, o);
     }
@@ -198,18 +198,22 @@ fn details(s: &mut String, o: &Outcome) {
     });
 }
 
-/// The checks of the paper's finding and the numbers behind each.
-fn checks(s: &mut String, o: &Outcome) {
-    if o.checks.is_empty() {
+/// The implementation guards and the numbers behind each (never part of a verdict).
+fn guards(s: &mut String, o: &Outcome) {
+    if o.guards.is_empty() {
         return;
     }
-    let _ = writeln!(s, "**Checks of the paper's finding**\n");
-    push_rows(s, &["check", "result", "numbers"], &o.checks, |c| {
-        vec![prose(&c.name), check_result(c).into(), prose(&c.detail)]
+    let _ = writeln!(
+        s,
+        "**Implementation guards** (laws every run satisfies whatever the physics; never part \
+         of a verdict)\n"
+    );
+    push_rows(s, &["guard", "result", "numbers"], &o.guards, |c| {
+        vec![prose(&c.name), guard_result(c).into(), prose(&c.detail)]
     });
 }
 
-fn check_result(c: &Check) -> &'static str {
+fn guard_result(c: &Guard) -> &'static str {
     if !c.decided {
         "not decided (1 realization)"
     } else if c.passed {

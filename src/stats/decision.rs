@@ -150,7 +150,11 @@ pub enum Region {
         /// Whether `hi` belongs to the region.
         hi_closed: bool,
     },
-    /// Every value but this one (a law stated as violated, without a direction).
+    /// Every value outside the band `[lo, hi]` (a law stated as violated, without a
+    /// direction: the band is where the law holds to the resolution).
+    Outside(f64, f64),
+    /// Every value but this one (no band: never contradicted; outcomes of earlier versions
+    /// hold it).
     Except(f64),
 }
 
@@ -218,6 +222,7 @@ impl Region {
                 let below_hi = if hi_closed { x <= hi } else { x < hi };
                 above_lo && below_hi
             }
+            Region::Outside(lo, hi) => x < lo || x > hi,
             Region::Except(t) => x != t,
         }
     }
@@ -235,6 +240,15 @@ impl Region {
                     x - hi
                 }
             }
+            Region::Outside(lo, hi) => {
+                if x < lo {
+                    lo - x
+                } else if x > hi {
+                    x - hi
+                } else {
+                    (x - lo).min(hi - x)
+                }
+            }
             Region::Except(t) => (x - t).abs(),
         }
     }
@@ -243,8 +257,9 @@ impl Region {
 /// Whether the data establish that an estimate lies in `region`, in three values: passed
 /// (established) when the whole interval `value +- z std_error` lies in the region, failed
 /// (contradicted) when none of it does, undecided (not established) otherwise, and when
-/// the estimate has no error bar or no finite value. A region of every value but one is
-/// never contradicted: no interval of finite width excludes all other values.
+/// the estimate has no error bar or no finite value. A region outside a band is
+/// contradicted when the whole interval lies inside the band. A region of every value but
+/// one is never contradicted: no interval of finite width excludes all other values.
 pub fn establish(estimate: Estimate, region: Region, significance: f64) -> Decision {
     if !(estimate.value.is_finite() && estimate.has_error()) {
         return Decision::Undecided;
@@ -268,6 +283,15 @@ pub fn establish(estimate: Estimate, region: Region, significance: f64) -> Decis
                 } else {
                     Decision::Undecided
                 }
+            }
+        }
+        Region::Outside(lo, hi) => {
+            if b < lo || a > hi {
+                Decision::Passed
+            } else if a >= lo && b <= hi {
+                Decision::Failed
+            } else {
+                Decision::Undecided
             }
         }
         Region::Except(t) => {
@@ -320,6 +344,14 @@ mod tests {
             establish(e(1.0, 0.1), Region::Except(1.1), 3.0),
             Decision::Undecided
         );
+        // A law violated: outside its band is established, inside it contradicted.
+        let violated = Region::Outside(0.9, 1.1);
+        assert_eq!(establish(e(0.41, 0.015), violated, 3.0), Decision::Passed);
+        assert_eq!(establish(e(1.0, 0.02), violated, 3.0), Decision::Failed);
+        assert_eq!(establish(e(1.05, 0.02), violated, 3.0), Decision::Undecided);
+        assert!(violated.contains(0.5) && !violated.contains(1.0));
+        assert!((violated.margin(1.0) - 0.1).abs() < 1e-12);
+        assert!((violated.margin(0.5) - 0.4).abs() < 1e-12);
         assert!(Region::closed(0.9, 1.1).contains(1.0));
         assert!((Region::closed(0.9, 1.1).margin(1.0) - 0.1).abs() < 1e-12);
         assert!((Region::above(0.0).margin(-0.5) - 0.5).abs() < 1e-12);

@@ -42,6 +42,7 @@
 use serde::{Deserialize, Serialize};
 
 pub use super::phrase::{Phrase, Rule, ABOUT, ORDER, PHRASES};
+pub use super::unit::{Unit, UNITS};
 use crate::error::{Error, Result};
 use crate::stats::{establish, Decision, Estimate, Region};
 
@@ -89,12 +90,35 @@ pub struct ClaimSpec {
     pub paper: String,
     /// The paper's wording, which fixes the rule.
     pub phrase: Phrase,
-    /// The paper's value as a number, where it states one.
+    /// The paper's value as a number, where it states one (for a sign, the reference the
+    /// direction is taken from).
     #[serde(default)]
     pub value: Option<f64>,
     /// The measure it is compared with (absent: not measured, see `not_measured`).
     #[serde(default)]
     pub measure: Option<String>,
+    /// What the measure is: the page prints it in this unit, and the phrase's tolerance is
+    /// this unit's ([`Unit`]).
+    pub unit: Unit,
+    /// Where in the scene the realizations behind the measure's error bar are listed:
+    /// paths of seed lists (`seeds`, `low_load_seeds`, `variants.eps16.seeds` for the
+    /// variant named eps16, `resolutions.n1024.seeds`, ...); the measure has as many
+    /// realizations as the shortest. Default: the scene's `seeds`.
+    #[serde(default = "scene_seeds")]
+    pub realizations: Vec<String>,
+    /// What the error bar measures: the spread over realizations (the default: more
+    /// realizations shrink it as 1/sqrt(n)), or the scatter of points about a fitted law
+    /// (`fit`: more realizations do not shrink it).
+    #[serde(default)]
+    pub error: ErrorKind,
+    /// Changes of the rule after an outcome existed, each with its reason: the register
+    /// (`validations/register.json`) keeps the earlier rules and their verdicts.
+    #[serde(default)]
+    pub amendments: Vec<Amendment>,
+    /// The commit of the sample-size plan (`docs/power-plan.md`) that set this claim's
+    /// realizations from its error bar alone, before the planned jobs ran.
+    #[serde(default)]
+    pub planned: Option<String>,
     /// The rule.
     pub rule: Rule,
     /// Why the rule departs from its phrase's, where it does.
@@ -134,6 +158,31 @@ pub struct ClaimSpec {
 
 fn yes() -> bool {
     true
+}
+
+fn scene_seeds() -> Vec<String> {
+    vec!["seeds".into()]
+}
+
+/// What a measure's error bar measures.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ErrorKind {
+    /// The spread over realizations: more realizations shrink it as 1/sqrt(n).
+    #[default]
+    Realizations,
+    /// The scatter of points about a fitted law: more realizations do not shrink it.
+    Fit,
+}
+
+/// A change of a claim's rule after an outcome existed.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Amendment {
+    /// The first characters of the registered hash of the rule it replaces.
+    pub from: String,
+    /// Why, in words.
+    pub reason: String,
 }
 
 /// What a claim's measurement says.
@@ -232,6 +281,32 @@ pub struct ClaimOutcome {
     pub paper_value: Option<f64>,
     /// The measure (empty when not measured).
     pub measure: String,
+    /// What the measure is (absent in outcomes written before units existed).
+    #[serde(default)]
+    pub unit: Option<Unit>,
+    /// The realizations behind the measure's error bar, where the scene lists them.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub realizations: Option<usize>,
+    /// The interval's half width in standard errors: the validation's significance, or
+    /// Student's t at the same coverage for fewer than four realizations.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub interval_z: Option<f64>,
+    /// What the error bar measures.
+    #[serde(default)]
+    pub error: ErrorKind,
+    /// The hash of the rule it was decided under ([`ClaimSpec::rule_sha256`]); absent in
+    /// outcomes written before the register.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rule_sha256: Option<String>,
+    /// Why the rule departs from its phrase's, where it does.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub departs: Option<String>,
+    /// The rule's amendments, each with its reason.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub amendments: Vec<Amendment>,
+    /// The commit of the sample-size plan that set the claim's realizations, if any.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub planned: Option<String>,
     /// The paper's scene, where it differs.
     pub scene: Option<String>,
     /// The reading taken.
@@ -241,6 +316,9 @@ pub struct ClaimOutcome {
     pub rule: Rule,
     /// The measurement (absent when not measured).
     pub measured: Option<Estimate>,
+    /// For an ordering (`exceeds`), the difference of the two measures the rule judged.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub difference: Option<Estimate>,
     /// The result.
     pub result: ClaimResult,
     /// Evidence, a consistency check, or a statement the paper makes two ways.
@@ -259,20 +337,33 @@ pub struct ClaimOutcome {
 /// ordering's second measure, each other reading's) is one that a run of the scene has by
 /// the keys its experiment declares (`keys`); on the reduced scene (`reduced_scene`) the
 /// claims it does not judge (`reduced = false`) are left out. `fixed_solver`: the scene
-/// fixes its solver, so a run has no cross-checks.
+/// fixes its solver, so a run has no cross-checks. Every claim's realizations name seed
+/// lists of the scene (`scene`, as run).
 ///
 /// # Errors
 ///
 /// A measure the experiment does not declare, naming the claim and the field and listing
-/// the declared keys closest to the one named.
+/// the declared keys closest to the one named; a path of realizations the scene does not
+/// have.
 pub fn check_declared(
     claims: &[ClaimSpec],
     keys: &Keys,
+    scene: &serde_json::Value,
     reduced_scene: bool,
     fixed_solver: bool,
 ) -> Result<()> {
     for c in claims.iter().filter(|c| c.reduced || !reduced_scene) {
         let Some(measure) = &c.measure else { continue };
+        for path in &c.realizations {
+            if super::measures::realizations_at(scene, path).is_none() {
+                return Err(Error::invalid(
+                    &format!("claims.{}.realizations", c.key),
+                    path,
+                    "the path of a seed list of the scene (e.g. seeds, low_load_seeds, \
+                     variants.NAME.seeds)",
+                ));
+            }
+        }
         let mut named = vec![("measure".to_string(), measure)];
         if let Rule::Exceeds(other) = &c.rule {
             named.push(("rule.exceeds".into(), other));
@@ -318,36 +409,32 @@ impl ClaimSpec {
         for (k, r) in self.other_readings.iter().enumerate() {
             check_measure(&field(&format!("other_readings[{k}].measure")), &r.measure)?;
         }
-        match &self.rule {
-            Rule::Near(r) if !(r.is_finite() && *r >= 0.0) => {
-                return Err(Error::invalid(
-                    &field("rule.near"),
-                    r,
-                    "a relative tolerance >= 0",
-                ))
-            }
-            Rule::Near(_) if self.value.is_none() => {
-                return Err(Error::invalid(
-                    &field("value"),
-                    "none",
-                    "the paper's value, which rule `near` compares with",
-                ))
-            }
-            // Refused when lo > hi or either is not a number.
-            Rule::Within((lo, hi)) if lo.partial_cmp(hi).is_none_or(|o| o.is_gt()) => {
-                return Err(Error::invalid(
-                    &field("rule.within"),
-                    format!("[{lo}, {hi}]"),
-                    "a range [lo, hi] with lo <= hi",
-                ))
-            }
-            Rule::Exceeds(m) => check_measure(&field("rule.exceeds"), m)?,
-            _ => {}
+        self.validate_rule(&field)?;
+        let ordering = matches!(self.rule, Rule::Exceeds(_));
+        if self.phrase.needs_value() && self.value.is_none() && !ordering {
+            return Err(Error::invalid(
+                &field("value"),
+                "none",
+                format!(
+                    "the paper's value (for \"{}\": {}), which the phrase's rule reads",
+                    self.phrase.name(),
+                    self.phrase.rule_text()
+                ),
+            ));
         }
-        if !self.phrase.fits(&self.rule, self.value, resolution) && self.departs.is_none() {
+        if !self
+            .phrase
+            .fits(&self.rule, self.value, self.unit, resolution)
+            && self.departs.is_none()
+        {
             return Err(Error::invalid(
                 &field("rule"),
-                format!("{:?} for phrase \"{}\"", self.rule, self.phrase.name()),
+                format!(
+                    "{} for phrase \"{}\" on a measure in {}",
+                    self.rule.text(),
+                    self.phrase.name(),
+                    self.unit.name()
+                ),
                 format!(
                     "the phrase's rule, {}, or `departs` saying why not",
                     self.phrase.rule_text()
@@ -370,7 +457,48 @@ impl ClaimSpec {
                 "a consistency check or a statement the paper makes two ways, not both",
             ));
         }
+        if self.realizations.is_empty() {
+            return Err(Error::invalid(
+                &field("realizations"),
+                "[]",
+                "the paths of the scene's seed lists behind the error bar",
+            ));
+        }
         Ok(())
+    }
+
+    /// The rule's own checks: a tolerance, a range, an ordering's measure.
+    fn validate_rule(&self, field: &dyn Fn(&str) -> String) -> Result<()> {
+        match &self.rule {
+            Rule::Near(r) if !(r.is_finite() && *r >= 0.0) => Err(Error::invalid(
+                &field("rule.near"),
+                r,
+                "a relative tolerance >= 0",
+            )),
+            Rule::Near(_) if self.value.is_none() => Err(Error::invalid(
+                &field("value"),
+                "none",
+                "the paper's value, which rule `near` compares with",
+            )),
+            // Refused when lo > hi or either is not a number.
+            Rule::Within((lo, hi)) | Rule::Outside((lo, hi))
+                if lo.partial_cmp(hi).is_none_or(|o| o.is_gt()) =>
+            {
+                Err(Error::invalid(
+                    &field("rule"),
+                    format!("[{lo}, {hi}]"),
+                    "a range [lo, hi] with lo <= hi",
+                ))
+            }
+            Rule::Differs(t) => Err(Error::invalid(
+                &field("rule.differs"),
+                t,
+                "outside = [x - r, x + r]: a law is violated beyond a band, so that the claim \
+                 can be contradicted where the law holds",
+            )),
+            Rule::Exceeds(m) => check_measure(&field("rule.exceeds"), m),
+            _ => Ok(()),
+        }
     }
 
     /// What the claim counts as.
@@ -384,11 +512,54 @@ impl ClaimSpec {
         }
     }
 
+    /// The rule as it decides, in a fixed form: the phrase, the measure, the region (the
+    /// tolerance and unit resolved), the alternative, the significance, the kind and the
+    /// reading. The register keeps its hash ([`ClaimSpec::rule_sha256`]).
+    pub fn decisive(&self) -> serde_json::Value {
+        let region = match &self.rule {
+            Rule::Exceeds(other) => format!("{} - {other} in (0, inf)", self.measure_name()),
+            r => r
+                .region(self.value)
+                .map(|g| region_text(&g))
+                .unwrap_or_default(),
+        };
+        serde_json::json!({
+            "phrase": self.phrase.name(),
+            "measure": self.measure,
+            "region": region,
+            "alternative": self.alternative.as_ref().map(|a| a.value),
+            "significance": self.significance,
+            "kind": self.kind(),
+            "reading": self.reading,
+        })
+    }
+
+    /// The SHA-256 (hex) of the rule as it decides ([`ClaimSpec::decisive`]).
+    pub fn rule_sha256(&self) -> String {
+        use sha2::{Digest, Sha256};
+        let text = serde_json::to_string(&self.decisive()).expect("a JSON value serialises");
+        Sha256::digest(text.as_bytes())
+            .iter()
+            .map(|b| format!("{b:02x}"))
+            .collect()
+    }
+
+    fn measure_name(&self) -> &str {
+        self.measure.as_deref().unwrap_or("")
+    }
+
     /// Judges the claim on a run (of the reduced scene when `reduced_scene`), at the
     /// validation's significance `z` unless the claim states its own: the one rule of every
     /// claim.
     pub fn judge(&self, measures: &Measures, reduced_scene: bool, z: f64) -> ClaimOutcome {
-        let z = self.significance.unwrap_or(z);
+        let n = measures.realizations(&self.realizations);
+        let base = self.significance.unwrap_or(z);
+        let iv = Interval {
+            base,
+            z: interval_z(base, n),
+            n,
+        };
+        let z = iv.z;
         let measured = self.measure.as_deref().and_then(|m| measures.get(m));
         let (result, why) = match (&self.measure, measured) {
             (None, _) => (ClaimResult::NotMeasured, self.not_measured.clone()),
@@ -405,7 +576,7 @@ impl ClaimSpec {
                     None => format!("this run has no {m}"),
                 }),
             ),
-            (Some(_), Some(e)) => self.verdict(e, measures, z),
+            (Some(_), Some(e)) => self.verdict(e, measures, iv),
         };
         let why = match self.kind() {
             ClaimKind::Consistency => Some(join(
@@ -427,30 +598,7 @@ impl ClaimSpec {
         let readings = self
             .other_readings
             .iter()
-            .map(|r| {
-                let measured = measures.get(&r.measure);
-                let result = match measured {
-                    _ if reduced_scene && !self.reduced => ClaimResult::NotJudgedAtThisScale,
-                    None => ClaimResult::NotMeasured,
-                    Some(e) => match &r.rule {
-                        Some(rule) => {
-                            ClaimSpec {
-                                rule: rule.clone(),
-                                ..self.clone()
-                            }
-                            .verdict(e, measures, z)
-                            .0
-                        }
-                        None => self.verdict(e, measures, z).0,
-                    },
-                };
-                ReadingOutcome {
-                    reading: r.reading.clone(),
-                    measure: r.measure.clone(),
-                    measured,
-                    result,
-                }
-            })
+            .map(|r| self.reading_outcome(r, measures, reduced_scene, iv))
             .collect();
         ClaimOutcome {
             key: self.key.clone(),
@@ -460,10 +608,24 @@ impl ClaimSpec {
             phrase: Some(self.phrase),
             paper_value: self.value,
             measure: self.measure.clone().unwrap_or_default(),
+            unit: Some(self.unit),
+            realizations: n,
+            interval_z: Some(z),
+            error: self.error,
+            rule_sha256: Some(self.rule_sha256()),
+            departs: self.departs.clone(),
+            amendments: self.amendments.clone(),
+            planned: self.planned.clone(),
             scene: self.scene.clone(),
             reading: self.reading.clone(),
             rule: self.rule.clone(),
             measured,
+            difference: match (&self.rule, measured) {
+                (Rule::Exceeds(other), Some(e)) => {
+                    measures.get(other).map(|o| Estimate::difference(e, o))
+                }
+                _ => None,
+            },
             result,
             kind: self.kind(),
             why,
@@ -471,9 +633,67 @@ impl ClaimSpec {
         }
     }
 
-    /// The rule applied to the measured estimate `e`: the result and, where it is not
-    /// established, why and what would decide it.
-    fn verdict(&self, e: Estimate, measures: &Measures, z: f64) -> (ClaimResult, Option<String>) {
+    /// Another reading judged by the claim's rule, or by its own.
+    fn reading_outcome(
+        &self,
+        r: &OtherReading,
+        measures: &Measures,
+        reduced_scene: bool,
+        iv: Interval,
+    ) -> ReadingOutcome {
+        let measured = measures.get(&r.measure);
+        let result = match measured {
+            _ if reduced_scene && !self.reduced => ClaimResult::NotJudgedAtThisScale,
+            None => ClaimResult::NotMeasured,
+            Some(e) => match &r.rule {
+                Some(rule) => {
+                    ClaimSpec {
+                        rule: rule.clone(),
+                        ..self.clone()
+                    }
+                    .verdict(e, measures, iv)
+                    .0
+                }
+                None => self.verdict(e, measures, iv).0,
+            },
+        };
+        ReadingOutcome {
+            reading: r.reading.clone(),
+            measure: r.measure.clone(),
+            measured,
+            result,
+        }
+    }
+
+    /// The result of the rule on an estimate of what it judges (for an ordering, the
+    /// difference of its two measures), at `z` standard errors: what a measurement of this
+    /// value would give. The suite walks every claim with one estimate inside its region
+    /// and one outside.
+    pub fn judge_estimate(&self, e: Estimate, z: f64) -> ClaimResult {
+        let region = match &self.rule {
+            Rule::Exceeds(_) => Region::above(0.0),
+            r => match r.region(self.value) {
+                Some(region) => region,
+                None => return ClaimResult::NotEstablished,
+            },
+        };
+        let iv = Interval {
+            base: z,
+            z,
+            n: None,
+        };
+        self.decide_on(e, region, iv).0
+    }
+
+    /// The rule applied to the measured estimate `e` with the interval `e +- z s` (`n`
+    /// realizations behind it, where known): the result and, where it is not established,
+    /// why and what would decide it.
+    fn verdict(
+        &self,
+        e: Estimate,
+        measures: &Measures,
+        iv: Interval,
+    ) -> (ClaimResult, Option<String>) {
         let (e, region) = match (&self.rule, self.rule.region(self.value)) {
             (Rule::Exceeds(other), _) => match measures.get(other) {
                 Some(o) => (Estimate::difference(e, o), Region::above(0.0)),
@@ -487,42 +707,224 @@ impl ClaimSpec {
             (_, Some(r)) => (e, r),
             (_, None) => unreachable!("every rule but an ordering has a region"),
         };
+        self.decide_on(e, region, iv)
+    }
+
+    /// The rule's region applied to the estimate it judges, `e` (for an ordering, the
+    /// difference of the two measures), with the interval of `iv`: the alternative first,
+    /// then the region.
+    fn decide_on(
+        &self,
+        e: Estimate,
+        region: Region,
+        iv: Interval,
+    ) -> (ClaimResult, Option<String>) {
+        let z = iv.z;
         if let Some(alt) = &self.alternative {
-            if region.contains(alt.value) {
+            let holds_alternative = (e.value - alt.value).abs() <= z * e.std_error;
+            if region.contains(alt.value) && e.has_error() && holds_alternative {
                 return (
                     ClaimResult::NotEstablished,
                     Some(format!(
-                        "does not discriminate: the rule's region also holds the alternative, \
-                         {} = {}; a reading that excludes it would decide",
-                        alt.what, alt.value
+                        "does not discriminate: the interval +-{} standard errors also holds \
+                         the alternative, {} = {}",
+                        short(z),
+                        alt.what,
+                        alt.value
                     )),
                 );
             }
         }
         let result = ClaimResult::of(establish(e, region, z));
-        let why = (result == ClaimResult::NotEstablished).then(|| decider(e, region, z));
+        let why =
+            (result == ClaimResult::NotEstablished).then(|| decider(e, region, iv, self.error));
         (result, why)
     }
 }
 
-/// What would decide a claim the data do not establish: realizations enough to shrink
-/// the interval inside (or outside) the region, if the value held.
-fn decider(e: Estimate, region: Region, z: f64) -> String {
+/// The interval a claim is judged with: the significance stated (`base`), the half width
+/// in standard errors it takes for the realizations behind the measure (`z`), and how many
+/// those are (`n`, where the scene lists them).
+#[derive(Debug, Clone, Copy)]
+struct Interval {
+    base: f64,
+    z: f64,
+    n: Option<usize>,
+}
+
+/// The interval's half width in standard errors for `n` realizations: `z` for four or
+/// more (or where the count is not known), and for two or three Student's t with `n - 1`
+/// degrees of freedom at the coverage of `+-z` of a normal distribution (with two
+/// realizations, +-3 standard errors would hold the mean only about 80% of the time).
+pub fn interval_z(z: f64, n: Option<usize>) -> f64 {
+    use statrs::distribution::{ContinuousCDF, Normal, StudentsT};
+    match n {
+        Some(n @ 2..=3) => {
+            let coverage = Normal::standard().cdf(z);
+            StudentsT::new(0.0, 1.0, (n - 1) as f64)
+                .expect("a positive number of degrees of freedom")
+                .inverse_cdf(coverage)
+        }
+        _ => z,
+    }
+}
+
+/// The normal significance whose coverage Student's t with `n - 1` degrees of freedom
+/// has at `t` standard errors: the inverse of [`interval_z`].
+fn normal_z(t: f64, n: usize) -> f64 {
+    use statrs::distribution::{ContinuousCDF, Normal, StudentsT};
+    let coverage = StudentsT::new(0.0, 1.0, (n.max(2) - 1) as f64)
+        .expect("a positive number of degrees of freedom")
+        .cdf(t);
+    Normal::standard().inverse_cdf(coverage)
+}
+
+/// A number of standard errors as the texts print it: 3, 19.2, 235.8.
+fn short(z: f64) -> String {
+    if (z - z.round()).abs() < 1e-9 {
+        format!("{}", z.round())
+    } else {
+        format!("{z:.1}")
+    }
+}
+
+/// A region in a fixed notation: `[lo, hi]`, `(t, inf)`, `outside [lo, hi]`, `not t`.
+fn region_text(r: &Region) -> String {
+    match *r {
+        Region::Interval {
+            lo,
+            lo_closed,
+            hi,
+            hi_closed,
+        } => format!(
+            "{}{lo}, {hi}{}",
+            if lo_closed { "[" } else { "(" },
+            if hi_closed { "]" } else { ")" }
+        ),
+        Region::Outside(lo, hi) => format!("outside [{lo}, {hi}]"),
+        Region::Except(t) => format!("not {t}"),
+    }
+}
+
+/// What would decide a claim the data do not establish, never from its value's side
+/// alone: for an error over realizations, the realizations that shrink the interval inside
+/// (or outside) the region if the value held (Student's t below four realizations); for
+/// the scatter about a fitted law, that more realizations would not shrink it.
+fn decider(e: Estimate, region: Region, iv: Interval, error: ErrorKind) -> String {
+    let (z, n) = (iv.z, iv.n);
     if !(e.value.is_finite() && e.has_error()) {
         return "no error bar (one realization): two or more realizations would decide".into();
     }
     let margin = region.margin(e.value);
-    let inside = region.contains(e.value);
-    let goal = if inside { "establish" } else { "contradict" };
+    let goal = if region.contains(e.value) {
+        "establish"
+    } else {
+        "contradict"
+    };
     if !(margin.is_finite() && margin > 0.0) {
         return "the value lies on the region's edge: no number of realizations decides".into();
     }
-    let factor = (z * e.std_error / margin).powi(2);
-    format!(
-        "the interval +-{z} standard errors reaches both sides of the rule's edge; about \
-         {:.1} times the realizations would {goal} it if the value held",
-        factor.max(1.0)
-    )
+    let reaches = format!(
+        "the interval +-{} standard errors reaches both sides of the rule's edge",
+        short(z)
+    );
+    if error == ErrorKind::Fit {
+        return format!(
+            "{reaches}; the error is the scatter of the points about a fitted law, which more \
+             realizations do not shrink: more loads or targets would"
+        );
+    }
+    match n {
+        Some(n) if n < 4 => {
+            let needed = realizations_needed(e.std_error, n, margin, iv.base);
+            format!(
+                "{reaches} (only {n} realizations: Student's t with {} degree{} of freedom); \
+                 about {needed} realizations would {goal} it if the value held",
+                n - 1,
+                if n == 2 { "" } else { "s" }
+            )
+        }
+        _ => {
+            let factor = (z * e.std_error / margin).powi(2);
+            format!(
+                "{reaches}; about {:.1} times the realizations would {goal} it if the value \
+                 held",
+                factor.max(1.0)
+            )
+        }
+    }
+}
+
+impl ClaimOutcome {
+    /// The estimate the rule judged: the measurement, or for an ordering the difference.
+    pub fn judged(&self) -> Option<Estimate> {
+        self.difference.or(self.measured)
+    }
+
+    /// The region the rule asserts for [`ClaimOutcome::judged`].
+    pub fn region(&self) -> Option<Region> {
+        match &self.rule {
+            Rule::Exceeds(_) => Some(Region::above(0.0)),
+            r => r.region(self.paper_value),
+        }
+    }
+
+    /// What would decide a claim the data do not establish, in a few words: the
+    /// realizations (a factor, or a count below four), or more loads for a fitted law; for
+    /// the page's table.
+    pub fn would_decide(&self) -> Option<String> {
+        if self.result != ClaimResult::NotEstablished {
+            return None;
+        }
+        let (e, region) = (self.judged()?, self.region()?);
+        if !(e.value.is_finite() && e.has_error()) {
+            return Some("2 or more realizations".into());
+        }
+        let margin = region.margin(e.value);
+        if !(margin.is_finite() && margin > 0.0) {
+            return Some("no count of realizations (on the edge)".into());
+        }
+        if self.error == ErrorKind::Fit {
+            return Some("more loads or targets (a fit's scatter)".into());
+        }
+        let z = self.interval_z.unwrap_or(3.0);
+        Some(match self.realizations {
+            Some(n) if n < 4 => {
+                let base = normal_z(z, n);
+                format!(
+                    "{} realizations (now {n})",
+                    realizations_needed(e.std_error, n, margin, base)
+                )
+            }
+            _ => format!(
+                "{:.1} x the realizations",
+                ((z * e.std_error / margin).powi(2)).max(1.0)
+            ),
+        })
+    }
+
+    /// The side of the rule's edge the value lies on, for a claim not established.
+    pub fn leans(&self) -> Option<&'static str> {
+        let (e, region) = (self.judged()?, self.region()?);
+        (self.result == ClaimResult::NotEstablished && e.value.is_finite()).then(|| {
+            if region.contains(e.value) {
+                "inside"
+            } else {
+                "outside"
+            }
+        })
+    }
+}
+
+/// The fewest realizations whose interval (`interval_z(z, m)` standard errors of
+/// `std_error sqrt(n / m)`) fits within `margin`, from `n` now.
+pub fn realizations_needed(std_error: f64, n: usize, margin: f64, z: f64) -> usize {
+    let half = |m: usize| interval_z(z, Some(m)) * std_error * (n as f64 / m as f64).sqrt();
+    let mut m = n.max(2);
+    while half(m) > margin && m < 1_000_000 {
+        m = if m < 16 { m + 1 } else { m + m / 8 };
+    }
+    m
 }
 
 fn join(head: String, tail: Option<String>) -> String {
@@ -586,6 +988,11 @@ mod tests {
             phrase,
             value,
             measure: Some("headline".into()),
+            unit: Unit::Ratio,
+            realizations: scene_seeds(),
+            error: ErrorKind::Realizations,
+            amendments: Vec::new(),
+            planned: None,
             rule,
             departs: None,
             alternative: None,
@@ -607,6 +1014,7 @@ mod tests {
             studies: &[],
             cross_checks: vec![("cg".into(), Estimate::new(0.5, 0.01))],
             pending: &[],
+            scene: &serde_json::Value::Null,
         }
     }
 
@@ -689,17 +1097,20 @@ mod tests {
     }
 
     #[test]
-    fn a_test_that_also_passes_the_alternative_does_not_discriminate() {
+    fn a_test_whose_interval_holds_the_alternative_does_not_discriminate() {
         // The former reading of "overestimated by ~10%": E_exa / E_c about 0.91, a region
-        // that holds 1.
+        // that holds 1. An interval that reaches 1 cannot tell the two apart; one that
+        // excludes it can.
         let mut s = spec(Phrase::About, Rule::Near(0.1), Some(0.91));
         s.alternative = Some(Alternative {
             value: 1.0,
             what: "a perfect theory".into(),
         });
-        let o = s.judge(&measures(Estimate::new(0.935, 0.001)), false, 3.0);
+        let o = s.judge(&measures(Estimate::new(0.935, 0.03)), false, 3.0);
         assert_eq!(o.result, ClaimResult::NotEstablished);
         assert!(o.why.unwrap().contains("does not discriminate"));
+        let o = s.judge(&measures(Estimate::new(0.935, 0.001)), false, 3.0);
+        assert_eq!(o.result, ClaimResult::Reproduced);
     }
 
     #[test]
@@ -806,18 +1217,92 @@ mod tests {
     }
 
     #[test]
-    fn each_phrase_has_one_rule() {
-        let fits = |p: Phrase, r: Rule, v: Option<f64>| p.fits(&r, v, 0.02);
-        assert!(fits(Phrase::About, Rule::Near(0.1), Some(0.62)));
-        assert!(!fits(Phrase::About, Rule::Near(0.5), Some(0.62)));
-        assert!(fits(Phrase::Order, Rule::Within((0.05, 0.45)), Some(0.15)));
-        assert!(!fits(Phrase::Order, Rule::Within((0.05, 0.3)), Some(0.15)));
-        assert!(!fits(Phrase::Order, Rule::AtMost(0.1), Some(0.1)));
-        assert!(fits(Phrase::Negligible, Rule::Within((-0.02, 0.02)), None));
-        assert!(fits(Phrase::All, Rule::AtLeast(0.98), None));
-        assert!(!fits(Phrase::All, Rule::Near(0.1), Some(1.0)));
-        assert!(fits(Phrase::Sign, Rule::Below(0.0), None));
-        assert!(fits(Phrase::Within, Rule::AtMost(0.03), Some(0.03)));
+    fn each_phrase_has_one_rule_per_unit() {
+        let fits = |p: Phrase, r: Rule, v: Option<f64>, u: Unit| p.fits(&r, v, u, 0.01);
+        assert!(fits(
+            Phrase::About,
+            Rule::Near(0.1),
+            Some(0.62),
+            Unit::Fraction
+        ));
+        assert!(!fits(
+            Phrase::About,
+            Rule::Near(0.5),
+            Some(0.62),
+            Unit::Fraction
+        ));
+        assert!(fits(
+            Phrase::Order,
+            Rule::Within((0.05, 0.45)),
+            Some(0.15),
+            Unit::Ratio
+        ));
+        assert!(!fits(
+            Phrase::Order,
+            Rule::Within((0.05, 0.3)),
+            Some(0.15),
+            Unit::Ratio
+        ));
+        // O(L^x) on an exponent: growth no faster than L^x, within the exponent's band.
+        assert!(fits(
+            Phrase::Order,
+            Rule::AtMost(0.6),
+            Some(0.5),
+            Unit::Exponent
+        ));
+        assert!(!fits(
+            Phrase::Order,
+            Rule::Within((0.5 / 3.0, 1.5)),
+            Some(0.5),
+            Unit::Exponent
+        ));
+        // "negligible": two points on a share, 5% on a ratio, the resolution on a number.
+        assert!(fits(
+            Phrase::Negligible,
+            Rule::Within((-0.02, 0.02)),
+            Some(0.0),
+            Unit::Points
+        ));
+        assert!(fits(
+            Phrase::Negligible,
+            Rule::Within((-0.05, 0.05)),
+            Some(0.0),
+            Unit::Relative
+        ));
+        assert!(!fits(
+            Phrase::Negligible,
+            Rule::Within((-0.1, 0.1)),
+            Some(0.0),
+            Unit::Relative
+        ));
+        assert!(fits(
+            Phrase::Negligible,
+            Rule::Within((-0.01, 0.01)),
+            Some(0.0),
+            Unit::Number
+        ));
+        assert!(fits(Phrase::All, Rule::AtLeast(0.98), None, Unit::Fraction));
+        assert!(!fits(
+            Phrase::All,
+            Rule::Near(0.1),
+            Some(1.0),
+            Unit::Fraction
+        ));
+        assert!(fits(Phrase::Sign, Rule::Below(0.0), Some(0.0), Unit::Ratio));
+        // The check is not skipped without the paper's value: a sign needs its reference.
+        assert!(!fits(Phrase::Sign, Rule::Below(0.0), None, Unit::Ratio));
+        assert!(fits(
+            Phrase::Within,
+            Rule::AtMost(0.03),
+            Some(0.03),
+            Unit::Relative
+        ));
+        assert!(fits(
+            Phrase::Violates,
+            Rule::Outside((0.9, 1.1)),
+            Some(1.0),
+            Unit::Exponent
+        ));
         // A departure is refused without its reason, accepted with it.
         let mut s = spec(Phrase::About, Rule::Within((0.5, 0.7)), Some(0.62));
         let e = validate_claims(std::slice::from_ref(&s), 0.02)
@@ -826,6 +1311,94 @@ mod tests {
         assert!(e.contains("claims.k.rule") && e.contains("departs"), "{e}");
         s.departs = Some("why".into());
         assert!(validate_claims(&[s], 0.02).is_ok());
+        // A law without a band cannot be contradicted: refused.
+        let differs = spec(Phrase::Violates, Rule::Differs(1.0), Some(1.0));
+        let e = validate_claims(&[differs], 0.02).unwrap_err().to_string();
+        assert!(e.contains("claims.k.rule.differs"), "{e}");
+    }
+
+    #[test]
+    fn an_alternative_is_judged_against_the_data() {
+        // c2 about 1.025 (+-10% holds the alternative 1): an interval that excludes 1
+        // discriminates; one that holds it does not.
+        let mut s = spec(Phrase::About, Rule::Near(0.1), Some(1.025));
+        s.alternative = Some(Alternative {
+            value: 1.0,
+            what: "Persson's c2 = 1".into(),
+        });
+        let judged = |e| s.judge(&measures(e), false, 3.0);
+        assert_eq!(
+            judged(Estimate::new(1.0381, 0.0013)).result,
+            ClaimResult::Reproduced
+        );
+        let o = judged(Estimate::new(1.01, 0.01));
+        assert_eq!(o.result, ClaimResult::NotEstablished);
+        assert!(o.why.unwrap().contains("does not discriminate"));
+        assert_eq!(
+            judged(Estimate::new(1.5, 0.01)).result,
+            ClaimResult::Contradicted
+        );
+    }
+
+    #[test]
+    fn a_violated_law_can_be_contradicted() {
+        let mut s = spec(Phrase::Violates, Rule::Outside((0.9, 1.1)), Some(1.0));
+        s.unit = Unit::Exponent;
+        let r = |v, e| s.judge(&measures(Estimate::new(v, e)), false, 3.0).result;
+        assert_eq!(r(0.409, 0.015), ClaimResult::Reproduced);
+        assert_eq!(r(1.0, 0.01), ClaimResult::Contradicted);
+        assert_eq!(r(1.08, 0.02), ClaimResult::NotEstablished);
+    }
+
+    #[test]
+    fn few_realizations_widen_the_interval_to_students_t() {
+        // Two realizations: +-3 standard errors would hold the mean some 80% of the time;
+        // the interval at the same coverage as three normal standard errors is far wider.
+        assert!((interval_z(3.0, Some(4)) - 3.0).abs() < 1e-12);
+        assert!((interval_z(3.0, None) - 3.0).abs() < 1e-12);
+        let two = interval_z(3.0, Some(2));
+        let three = interval_z(3.0, Some(3));
+        assert!(two > 200.0 && two < 260.0, "{two}");
+        assert!(three > 15.0 && three < 25.0 && three < two, "{three}");
+        let scene = serde_json::json!({ "seeds": [1, 2], "variants": [{ "name": "v", "seeds": [1, 2, 3, 4] }] });
+        let m = Measures {
+            scene: &scene,
+            ..measures(Estimate::new(0.0, 0.001))
+        };
+        assert_eq!(m.realizations(&["seeds".into()]), Some(2));
+        assert_eq!(m.realizations(&["variants.v.seeds".into()]), Some(4));
+        assert_eq!(
+            m.realizations(&["variants.v.seeds".into(), "seeds".into()]),
+            Some(2)
+        );
+        assert_eq!(m.realizations(&["nothing".into()]), None);
+        // A list's planned realizations count with it.
+        let planned = serde_json::json!({ "seeds": [1, 2], "more_seeds": [3] });
+        let p = Measures {
+            scene: &planned,
+            ..measures(Estimate::new(0.0, 0.001))
+        };
+        assert_eq!(p.realizations(&["seeds".into()]), Some(3));
+        // A shift of 0.01 +- 0.001 against +-0.02: established with four realizations,
+        // not with two (+-0.23), which say how many would decide it.
+        let s = spec(Phrase::Negligible, Rule::Within((-0.02, 0.02)), Some(0.0));
+        let o = s.judge(&m, false, 3.0);
+        assert_eq!(o.realizations, Some(2));
+        assert_eq!(o.result, ClaimResult::NotEstablished);
+        let why = o.why.unwrap();
+        assert!(
+            why.contains("only 2 realizations") && why.contains("Student"),
+            "{why}"
+        );
+        // A fitted law's scatter: no count of realizations is promised.
+        let mut fit = s.clone();
+        fit.error = ErrorKind::Fit;
+        let why = fit.judge(&m, false, 3.0).why.unwrap();
+        assert!(
+            why.contains("do not shrink") && !why.contains("times"),
+            "{why}"
+        );
+        assert!(realizations_needed(0.001, 2, 0.01, 3.0) >= 4);
     }
 
     #[test]
@@ -849,9 +1422,9 @@ mod tests {
         );
         refused(
             spec(Phrase::Order, Rule::Within((2.0, 1.0)), None),
-            "claims.k.rule.within",
+            "claims.k.rule",
         );
-        let mut s = spec(Phrase::Sign, Rule::Above(0.0), None);
+        let mut s = spec(Phrase::Sign, Rule::Above(0.0), Some(0.0));
         s.measure = Some("study:a/b".into());
         refused(s.clone(), "claims.k.measure");
         s.measure = None;
@@ -860,7 +1433,7 @@ mod tests {
         assert!(validate_claims(&[s.clone()], 0.02).is_ok());
         s.measure = Some("headline".into());
         refused(s, "claims.k.not_measured");
-        let a = spec(Phrase::Sign, Rule::Above(0.0), None);
+        let a = spec(Phrase::Sign, Rule::Above(0.0), Some(0.0));
         let e = validate_claims(&[a.clone(), a], 0.02)
             .unwrap_err()
             .to_string();

@@ -1,19 +1,19 @@
 //! From the jobs' results to a validation's outcome: each solver's conclusion
 //! ([`Experiment::conclude`]), the cross-checks against the first solver, the claims judged
-//! on the measures ([`claims`]), the verdict against the paper's finding, and the tables
+//! on the measures ([`claims`]), the headline verdict against the paper's, and the tables
 //! and figures written beside the outcome. The runner ([`super::runner`]) calls it once
 //! every job has a result.
 
 use std::path::Path;
 
-use super::claims::{self, ClaimOutcome, Measures};
+use super::claims::{ClaimOutcome, Measures};
 use super::definition::{Definition, Scale, Verdict};
 use super::outcome::{CrossCheck, MergeRecord, Outcome, PendingPart};
 use super::source::Source;
 use crate::engine::solver::SolverKind;
 use crate::error::{Error, Result};
-use crate::experiments::{Check, Conclusion, Detail, Experiment, JobOf, ResultOf};
-use crate::stats::{decide, Claim, Decision, Estimate};
+use crate::experiments::{Conclusion, Detail, Experiment, JobOf, ResultOf};
+use crate::stats::Estimate;
 
 /// The jobs of one solver with their results, in job order.
 pub(crate) type Results<E> = Vec<(JobOf<E>, ResultOf<E>)>;
@@ -49,9 +49,16 @@ pub(crate) fn conclude<E: Experiment>(
     let verdict = def.verdict.judge(measured, conclusion.persson);
     let mut conclusion = conclusion;
     let pending = merge.as_ref().map_or(&[][..], |m| &m.pending[..]);
-    let claims = judge_claims(def, &conclusion, measured, &cross_checks, pending, scale);
+    let claims = judge_claims(
+        def,
+        &conclusion,
+        measured,
+        &cross_checks,
+        pending,
+        (scene_json, scale),
+    );
     papers_values(&mut conclusion.details, &claims);
-    let reproduced = reproduced(def, verdict, measured, &conclusion.checks, &claims);
+    let reproduced = reproduced(def, verdict);
     let files = write_files(out, &def.name, &conclusion)?;
     let outcome = Outcome {
         name: def.name.clone(),
@@ -75,7 +82,7 @@ pub(crate) fn conclude<E: Experiment>(
         wall_s,
         max_residual,
         details: conclusion.details,
-        checks: conclusion.checks,
+        guards: conclusion.guards,
         account: conclusion.account,
         golden: conclusion.golden,
         claims,
@@ -122,10 +129,11 @@ fn judge_claims<S>(
     measured: Estimate,
     cross_checks: &[CrossCheck],
     pending: &[PendingPart],
-    scale: Scale,
+    (scene, scale): (&serde_json::Value, Scale),
 ) -> Vec<ClaimOutcome> {
     let measures = Measures {
         pending,
+        scene,
         headline: measured,
         details: &conclusion.details,
         studies: &conclusion.studies,
@@ -162,35 +170,12 @@ fn papers_values(details: &mut [Detail], claims: &[ClaimOutcome]) {
     }
 }
 
-/// Whether the run reproduces the paper's finding: the paper's verdict, its range (the
-/// interval `measured +- z error` overlaps it), every check and every claim judged at this
-/// scale, in the three-valued logic of [`Decision::all`]. `None` when the verdict is
-/// inconclusive, or when a check or claim the data do not decide (one realization) is all
-/// that stands in the way.
-fn reproduced<S>(
-    def: &Definition<S>,
-    verdict: Verdict,
-    measured: Estimate,
-    checks: &[Check],
-    claims: &[ClaimOutcome],
-) -> Option<bool> {
-    if verdict == Verdict::Inconclusive {
-        return None;
-    }
-    let same_verdict = Decision::from_bool(verdict == def.paper.verdict);
-    let in_range = match def.paper.range {
-        Some((lo, hi)) => decide(measured, Claim::Overlaps(lo, hi), def.verdict.significance),
-        None => Decision::Passed,
-    };
-    let checks = checks.iter().map(|c| match (c.decided, c.passed) {
-        (false, _) => Decision::Undecided,
-        (true, passed) => Decision::from_bool(passed),
-    });
-    let claims = claims::decision(claims);
-    match Decision::all([same_verdict, in_range, claims].into_iter().chain(checks)) {
-        Decision::Undecided => None,
-        d => Some(d.passed()),
-    }
+/// Whether the run's headline verdict is the paper's: Persson's assumption holds or is
+/// violated as the paper finds. `None` when the verdict is inconclusive. Only the headline
+/// decides it: each of the paper's statements is judged once, by its claim, and the claims
+/// are counted apart, never folded into this.
+fn reproduced<S>(def: &Definition<S>, verdict: Verdict) -> Option<bool> {
+    (verdict != Verdict::Inconclusive).then(|| verdict == def.paper.verdict)
 }
 
 /// Writes the conclusion's tables (the first as `<out>/<name>.csv`, the others and the

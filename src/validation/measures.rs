@@ -28,9 +28,23 @@ pub struct Measures<'a> {
     /// The optional parts of the scene a merge left out, with the measures only they give
     /// ([`PendingPart`]).
     pub pending: &'a [PendingPart],
+    /// The scene as run, where the realizations behind each measure are listed (`Null`
+    /// where not known).
+    pub scene: &'a serde_json::Value,
 }
 
 impl Measures<'_> {
+    /// How many realizations the seed lists at `paths` of the scene hold: the shortest
+    /// (`None` where the scene is not known or a path does not resolve).
+    pub fn realizations(&self, paths: &[String]) -> Option<usize> {
+        paths
+            .iter()
+            .map(|p| realizations_at(self.scene, p))
+            .collect::<Option<Vec<usize>>>()?
+            .into_iter()
+            .min()
+    }
+
     /// The estimate a measure names, if the run has it.
     pub fn get(&self, measure: &str) -> Option<Estimate> {
         let (kind, rest) = measure.split_once(':').unwrap_or((measure, ""));
@@ -58,6 +72,37 @@ impl Measures<'_> {
                 .map(|(_, e)| *e),
             _ => None,
         }
+    }
+}
+
+/// The realizations listed at `path` of `scene`: dot-separated keys, where a list of
+/// named tables (`variants`, `resolutions`) is entered by the table's `name`; a list of
+/// seeds counts its entries, a single seed counts one, and a plan with a `seed` and
+/// `more_seeds` (the waterfall's) counts both.
+pub fn realizations_at(scene: &serde_json::Value, path: &str) -> Option<usize> {
+    // A list's planned realizations (`more_seeds`) count with it.
+    let folded = crate::experiments::scene::planned_folded(scene.clone());
+    let mut at = &folded;
+    for part in path.split('.') {
+        at = match at {
+            serde_json::Value::Object(map) => map.get(part)?,
+            serde_json::Value::Array(items) => items
+                .iter()
+                .find(|t| t.get("name").and_then(|n| n.as_str()) == Some(part))?,
+            _ => return None,
+        };
+    }
+    match at {
+        serde_json::Value::Array(seeds) => Some(seeds.len()),
+        serde_json::Value::Number(_) => Some(1),
+        // A plan of one seed and its further ones (the waterfall's).
+        serde_json::Value::Object(plan) if plan.get("seed").is_some_and(|s| s.is_u64()) => Some(
+            1 + plan
+                .get("more_seeds")
+                .and_then(|m| m.as_array())
+                .map_or(0, Vec::len),
+        ),
+        _ => None,
     }
 }
 

@@ -20,6 +20,8 @@
 //! * [`measures`]: where a claim finds its numbers, and the check at load that each measure
 //!   a claim names is one its experiment declares;
 //! * [`phrase`]: the paper's wordings, each with the one rule it maps to;
+//! * [`unit`]: what a claim's measure is, and the tolerance each phrase takes on it;
+//! * [`register`]: every rule a claim has been decided under, and its amendments;
 //! * [`source`]: the built-in definitions and definition folders;
 //! * [`outcome`]: the record of a run;
 //! * [`store`]: job results and checkpoints on disk;
@@ -38,11 +40,13 @@ pub mod outcome;
 mod pending;
 pub mod phrase;
 pub mod plan;
+pub mod register;
 pub mod registry;
 pub mod runner;
 pub mod shard;
 pub mod source;
 pub mod store;
+pub mod unit;
 
 pub use claims::{ClaimOutcome, ClaimResult, ClaimSpec};
 pub use definition::{Definition, PaperFinding, Scale, Verdict, VerdictRule};
@@ -52,4 +56,4 @@ pub use runner::{Mode, RunOptions};
 pub use source::Source;
 
 // The outcome's secondary statistics and checks are the experiments' own records.
-pub use crate::experiments::{Check, Detail};
+pub use crate::experiments::{Detail, Guard};

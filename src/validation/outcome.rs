@@ -19,7 +19,7 @@ use super::definition::{Scale, Verdict, VerdictRule};
 pub use super::measures::PendingPart;
 use super::store::JobRun;
 use crate::experiments::study::Study;
-use crate::experiments::{Check, Detail};
+use crate::experiments::{Detail, Guard};
 use crate::stats::{nan, null_as_nan, null_as_nan_values};
 
 /// The record of one validation run: `<name>.json` ([`crate::conventions`], section 7).
@@ -55,7 +55,8 @@ pub struct Outcome {
     pub paper_verdict: Verdict,
     /// The verdict of this run.
     pub verdict: Verdict,
-    /// Whether the run reproduces the paper's finding (`None` when inconclusive).
+    /// Whether the headline verdict is the paper's (`None` when inconclusive). The paper's
+    /// statements are the `claims`, each judged on its own and counted apart.
     pub reproduced: Option<bool>,
     /// The verdict rule used.
     pub rule: VerdictRule,
@@ -74,8 +75,11 @@ pub struct Outcome {
     pub max_residual: f64,
     /// Secondary statistics.
     pub details: Vec<Detail>,
-    /// Checks of the paper's finding.
-    pub checks: Vec<Check>,
+    /// Implementation guards (a counting identity, a conservation law): never part of a
+    /// verdict. Outcomes written before the claims judged every statement held the
+    /// paper's findings here as `checks`; they read as guards.
+    #[serde(default, alias = "checks")]
+    pub guards: Vec<Guard>,
     /// Account generated from the numbers.
     pub account: String,
     /// Golden values.

@@ -273,8 +273,8 @@ mod tests {
         );
         let e = refused(&edited(
             "c_source",
-            "phrase = \"sign\"\nmeasure = \"headline\"",
-            "phrase = \"sign\"\nmeasure = \"cross_check:gfmd\"",
+            "value = 0.0\nmeasure = \"headline\"\nrule = { above = 0.0 }",
+            "value = 0.0\nmeasure = \"cross_check:gfmd\"\nrule = { above = 0.0 }",
         ));
         assert!(
             e.contains("claims.points_re_enter.measure") && e.contains("fixes its solver"),

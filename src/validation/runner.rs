@@ -171,7 +171,7 @@ pub(crate) fn prepare<E: Experiment>(
     let scene = def.scene(opts.scale);
     let jobs = scene.jobs();
     let scene_json = serde_json::to_value(scene).expect("scenes serialise");
-    let key_json = scene.key_scene();
+    let key_json = crate::experiments::scene::without_planned(scene.key_scene());
     let state = jobs_dir(&opts.out, <E::Scene as Jobs>::FAMILY, opts.scale);
     let solvers = scene
         .solver()
@@ -183,7 +183,9 @@ pub(crate) fn prepare<E: Experiment>(
                 continue;
             }
             // A job shared with another scene is keyed and stored as that scene's job.
-            let shared = scene.shared_job(job);
+            let shared = scene
+                .shared_job(job)
+                .map(|(s, j)| (crate::experiments::scene::without_planned(s), j));
             let (key_scene, keyed) = match &shared {
                 Some((s, j)) => (s, j),
                 None => (&key_json, job),
@@ -477,6 +479,7 @@ fn checked_scene<'a, E: Experiment>(
     claims::check_declared(
         &def.claims,
         &E::keys(scene),
+        &serde_json::to_value(scene).expect("scenes serialise"),
         scale == Scale::Reduced,
         scene.solver().is_some(),
     )

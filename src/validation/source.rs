@@ -130,3 +130,20 @@ pub fn select(sources: Vec<Source>, names: &[String]) -> Result<Vec<Source>> {
     }
     Ok(out)
 }
+
+/// Each definition's name with its claims, for the register of the claims' rules
+/// ([`super::register`]): read as written, not checked (the register records a rule
+/// whether or not it fits its phrase; loading a definition checks that).
+///
+/// # Errors
+///
+/// A definition that does not parse, naming its file.
+pub fn claims_of(sources: &[Source]) -> Result<Vec<(String, Vec<super::ClaimSpec>)>> {
+    sources
+        .iter()
+        .map(|s| {
+            let d: Definition<toml::Value> = crate::engine::scene::parse_toml(&s.path, &s.text)?;
+            Ok((d.name, d.claims))
+        })
+        .collect()
+}

@@ -47,6 +47,11 @@ pub struct AreaResult {
 }
 
 impl AreaScene {
+    /// Every realization: `seeds`, then `more_seeds`.
+    pub fn all_seeds(&self) -> Vec<u64> {
+        self.seeds.iter().chain(&self.more_seeds).copied().collect()
+    }
+
     pub(super) fn params(&self, job: &AreaJob) -> SurfaceModel {
         let r = job.refine as f64;
         SurfaceModel::new(
@@ -117,10 +122,11 @@ impl AreaScene {
     /// The load ladders: every refinement, Hurst exponent and realization, then the finer
     /// grid's.
     pub(super) fn ladders(&self) -> Vec<AreaJob> {
+        let seeds = self.all_seeds();
         let mut jobs = Vec::new();
         for &refine in &self.refinements {
             for &hurst in &self.hursts {
-                for &seed in &self.seeds {
+                for &seed in &seeds {
                     jobs.push(AreaJob {
                         hurst,
                         seed,
@@ -131,7 +137,7 @@ impl AreaScene {
         }
         if let Some(f) = &self.finer_grid {
             for &hurst in &f.hursts {
-                for &seed in &self.seeds {
+                for &seed in &seeds {
                     jobs.push(AreaJob {
                         hurst,
                         seed,

@@ -51,6 +51,7 @@ pub mod stats;
 mod study;
 pub mod system_size;
 
+use std::collections::BTreeSet;
 use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
@@ -61,13 +62,13 @@ pub use self::ladder::{AreaJob, AreaResult, FinerGrid};
 use self::scaling::{ScalingJob, ScalingPlan, ScalingResult};
 use self::stats::{AreaStats, NEAR_FULL_CONTACT};
 use self::system_size::{SizeJob, SizePlan};
-use super::scene::{check_increasing, increasing, list_error};
+use super::scene::{check_increasing, increasing, leaves_out_planned, list_error, PLANNED};
 use super::study::Study;
-use super::{Check, Detail, Experiment, JobContext, Jobs, Keys, Table, Work};
+use super::{Detail, Experiment, JobContext, Jobs, Keys, Table, Work};
 use crate::engine::solver::SolveOptions;
 use crate::error::{check_open, check_positive, Error, Result};
 use crate::plot::Figure;
-use crate::stats::{decide, realizations, round_sig, Claim, Estimate};
+use crate::stats::{realizations, round_sig, Estimate};
 
 /// Scene of the contact-area experiment.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -83,6 +84,11 @@ pub struct AreaScene {
     pub lambda_s: f64,
     /// Realizations.
     pub seeds: Vec<u64>,
+    /// Realizations a plan of sample sizes added after the scene's results were stored
+    /// (`docs/power-plan.md`): run and concluded as `seeds` are, left out of the jobs'
+    /// keys, and a part of their own ([`PLANNED`]) until all their jobs have results.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub more_seeds: Vec<u64>,
     /// Grid refinements: each realization is also solved with `n`, `lambda_l` and
     /// `lambda_s` multiplied by these factors (increasing, starting at 1).
     pub refinements: Vec<usize>,
@@ -220,12 +226,34 @@ impl Jobs for AreaScene {
             jobs.extend(plan.jobs().into_iter().map(ContactAreaJob::Scaling));
         }
         if let Some(plan) = &self.gap {
-            jobs.extend(plan.jobs(&self.seeds).into_iter().map(ContactAreaJob::Gap));
+            jobs.extend(
+                plan.jobs(&self.all_seeds())
+                    .into_iter()
+                    .map(ContactAreaJob::Gap),
+            );
         }
         if let Some(plan) = &self.system_size {
             jobs.extend(plan.jobs(self).into_iter().map(ContactAreaJob::Size));
         }
         jobs
+    }
+
+    /// The planned realizations' jobs ([`PLANNED`]): their ladders, gaps and larger
+    /// systems.
+    fn part(&self, job: &ContactAreaJob) -> Option<String> {
+        let seed = match job {
+            ContactAreaJob::Ladder(j) => j.seed,
+            ContactAreaJob::Gap(j) => j.seed,
+            ContactAreaJob::Size(j) => j.seed,
+            ContactAreaJob::Scaling(_) => return None,
+        };
+        self.more_seeds.contains(&seed).then(|| PLANNED.into())
+    }
+
+    fn leave_out(&mut self, parts: &BTreeSet<String>) {
+        if leaves_out_planned(parts) {
+            self.more_seeds.clear();
+        }
     }
 
     /// The mean gaps and the larger system are read on the headline solver's solutions.
@@ -456,33 +484,6 @@ impl Experiment for ContactArea {
             );
         }
         details
-    }
-
-    /// The paper's finding: eq. (contactArea) holds to within the tolerance over the range.
-    fn checks(run: &Run, s: &AreaStats) -> Vec<Check> {
-        let (scene, label) = (run.scene, grid_label(run.scene));
-        let (hurst, p, a) = s.law.at;
-        vec![Check::new(
-            "law_within_tolerance",
-            format!(
-                "eq. (contactArea) within {:.0}% for a_r in [{}, {}]",
-                100.0 * scene.law_tolerance,
-                scene.law_range.0,
-                scene.law_range.1
-            ),
-            decide(
-                s.law.estimate(),
-                Claim::Near {
-                    target: 0.0,
-                    tolerance: scene.law_tolerance,
-                },
-                0.0,
-            ),
-            format!(
-                "largest deviation {:.1}% (H = {hurst}, p~0 = {p}, a_r = {a:.4}, {label})",
-                100.0 * s.law.worst,
-            ),
-        )]
     }
 
     /// The golden values: the slopes and the law's deviation.

@@ -74,7 +74,7 @@ impl SizePlan {
         self.hursts
             .iter()
             .flat_map(|&hurst| {
-                scene.seeds.iter().map(move |&seed| SizeJob {
+                scene.all_seeds().into_iter().map(move |seed| SizeJob {
                     n: scene.n * self.factor,
                     hurst,
                     lambda_l: scene.lambda_l,

@@ -48,16 +48,16 @@ pub mod study;
 
 use serde::{Deserialize, Serialize};
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 use self::stats::FluxStats;
 use self::study::reading::{self, PaperFlux};
 use self::study::sensitivity::{self, SensitivityPlan, SensitivityRow, StudyJob, StudyResult};
 use self::study::waterfall::{self, WaterfallPlan, WaterfallResult};
 use super::contact_change::{categories, pack_categories, ENTERED, LEFT};
-use super::scene::{step_scene, Step};
+use super::scene::{leaves_out_planned, step_scene, Step, PLANNED};
 use super::study::Study;
-use super::{Check, Detail, Experiment, JobContext, Jobs, Keys, Work};
+use super::{Detail, Experiment, Guard, JobContext, Jobs, Keys, Work};
 use crate::error::{Error, Result};
 use crate::plot::{Figure, Raster, Waterfall};
 use crate::stats::Estimate;
@@ -71,6 +71,9 @@ step_scene! {
         /// The cross-section waterfall (none: not drawn).
         #[serde(default, skip_serializing_if = "Option::is_none")]
         pub waterfall: Option<WaterfallPlan>,
+        /// The parts a merge left out ([`Jobs::leave_out`]): not part of a definition.
+        #[serde(skip)]
+        pub left_out: BTreeSet<String>,
     }
 }
 
@@ -80,8 +83,11 @@ step_scene! {
 pub enum FluxJob {
     /// The sensitivity study.
     Study(StudyJob),
-    /// The waterfall of the scene's plan.
+    /// The waterfall of the scene's plan (its seed: the figure's).
     Waterfall,
+    /// The waterfall of one of the plan's further seeds (`more_seeds`): its details join
+    /// the figure's.
+    WaterfallOf(u64),
     /// The headline step of one seed.
     #[serde(untagged)]
     Step(u64),
@@ -167,31 +173,66 @@ impl Jobs for FluxScene {
     }
 
     fn jobs(&self) -> Vec<FluxJob> {
-        let mut jobs: Vec<FluxJob> = self.seeds.iter().map(|&s| FluxJob::Step(s)).collect();
+        let mut jobs: Vec<FluxJob> = self
+            .all_seeds()
+            .into_iter()
+            .map(FluxJob::Step)
+            .collect();
         if let Some(plan) = &self.sensitivity {
+            let held_area_left_out = self.left_out.contains(HELD_AREA);
             jobs.extend(
                 plan.jobs(self.relative_step())
                     .into_iter()
+                    .filter(|j| !(held_area_left_out && j.config.fixed_area))
                     .map(FluxJob::Study),
             );
         }
-        if self.waterfall.is_some() {
+        if let Some(plan) = &self.waterfall {
             jobs.push(FluxJob::Waterfall);
+            jobs.extend(plan.more_seeds.iter().map(|&s| FluxJob::WaterfallOf(s)));
         }
         jobs
+    }
+
+    /// The planned realizations' steps and further waterfalls ([`PLANNED`]), and the
+    /// study's steps at fixed area ([`HELD_AREA`]), run again since the area is held to
+    /// [`crate::engine::load::HELD_AREA_REL_TOL`].
+    fn part(&self, job: &FluxJob) -> Option<String> {
+        match job {
+            FluxJob::Step(s) if self.more_seeds.contains(s) => Some(PLANNED.into()),
+            FluxJob::WaterfallOf(_) => Some(PLANNED.into()),
+            FluxJob::Study(j) if j.config.fixed_area => Some(HELD_AREA.into()),
+            _ => None,
+        }
+    }
+
+    fn leave_out(&mut self, parts: &BTreeSet<String>) {
+        if leaves_out_planned(parts) {
+            self.more_seeds.clear();
+            if let Some(w) = &mut self.waterfall {
+                w.more_seeds.clear();
+            }
+        }
+        if parts.contains(HELD_AREA) {
+            self.left_out.insert(HELD_AREA.into());
+        }
     }
 
     fn headline_only(job: &FluxJob) -> bool {
         !matches!(job, FluxJob::Step(_))
     }
 
-    /// The scene without the study's later Hurst exponents (`later_hurst_values`): the
-    /// keys of the jobs stored before they were added stay those of the plan that had
-    /// none. A later row's jobs differ by their configuration, which names the exponent.
+    /// The scene without the study's later Hurst exponents (`later_hurst_values`) and the
+    /// waterfall's further seeds (`more_seeds`): the keys of the jobs stored before they
+    /// were added stay those of the plan that had none. A later row's jobs differ by their
+    /// configuration, which names the exponent, and a further waterfall's by its seed.
     fn key_scene(&self) -> serde_json::Value {
         let mut scene = self.clone();
         if let Some(plan) = &mut scene.sensitivity {
             plan.later_hurst_values.clear();
+        }
+        if let Some(plan) = &mut scene.waterfall {
+            plan.more_seeds.clear();
         }
         serde_json::to_value(scene).expect("scenes serialise")
     }
@@ -200,7 +241,7 @@ impl Jobs for FluxScene {
         match job {
             FluxJob::Step(_) => Work::search_then(self.n, 1, 0),
             FluxJob::Study(j) => Work::search_then(j.config.n, 1, 0),
-            FluxJob::Waterfall => {
+            FluxJob::Waterfall | FluxJob::WaterfallOf(_) => {
                 let panels = self.waterfall.as_ref().map_or(0, |w| w.zetas.len());
                 Work::search_then(self.n, panels, 0)
             }
@@ -211,12 +252,16 @@ impl Jobs for FluxScene {
         match job {
             FluxJob::Step(seed) => step(self, *seed, ctx).map(FluxOutput::Step),
             FluxJob::Study(j) => sensitivity::run(self.hurst, j).map(FluxOutput::Study),
-            FluxJob::Waterfall => {
+            FluxJob::Waterfall | FluxJob::WaterfallOf(_) => {
                 let plan = self
                     .waterfall
                     .as_ref()
                     .ok_or_else(|| Error::invalid("waterfall", "none", "a waterfall plan"))?;
-                waterfall::run(self, plan).map(FluxOutput::Waterfall)
+                let seed = match job {
+                    FluxJob::WaterfallOf(s) => *s,
+                    _ => plan.seed,
+                };
+                waterfall::run(self, plan, seed).map(FluxOutput::Waterfall)
             }
         }
     }
@@ -232,6 +277,9 @@ impl Jobs for FluxScene {
 }
 
 type Run<'a> = super::Run<'a, Flux>;
+
+/// The part of the scene that the study's steps at fixed contact area make up.
+pub const HELD_AREA: &str = "held_area";
 
 impl Experiment for Flux {
     type Scene = FluxScene;
@@ -259,18 +307,24 @@ impl Experiment for Flux {
         keys
     }
 
-    /// The steps' details, then the waterfall's (where the scene draws one).
+    /// The steps' details, then the waterfall's over its seeds (where the scene draws
+    /// one).
     fn details(run: &Run, s: &FluxStats) -> Vec<Detail> {
         let mut details = stats::details(&s.steps);
-        details.extend(run.results.iter().flat_map(|(_, r)| match r {
-            FluxOutput::Waterfall(w) => waterfall::details(w),
-            _ => Vec::new(),
-        }));
+        let waterfalls: Vec<&WaterfallResult> = run
+            .results
+            .iter()
+            .filter_map(|(_, r)| match r {
+                FluxOutput::Waterfall(w) => Some(w),
+                _ => None,
+            })
+            .collect();
+        details.extend(waterfall::details(&waterfalls));
         details
     }
 
-    fn checks(run: &Run, s: &FluxStats) -> Vec<Check> {
-        vec![stats::check(run.criteria, &s.steps)]
+    fn guards(run: &Run, s: &FluxStats) -> Vec<Guard> {
+        vec![stats::identity_guard(run.scene.n, &s.steps)]
     }
 
     fn golden(_run: &Run, s: &FluxStats) -> BTreeMap<String, f64> {
@@ -318,10 +372,13 @@ impl Experiment for Flux {
         let Some(plan) = &run.scene.waterfall else {
             return Vec::new();
         };
+        // The figure's seed alone; the further seeds give the details' error bars.
         run.results
             .iter()
-            .filter_map(|(_, r)| match r {
-                FluxOutput::Waterfall(w) => Some(waterfall::figure(run.scene, plan, w)),
+            .filter_map(|(job, r)| match (job, r) {
+                (FluxJob::Waterfall, FluxOutput::Waterfall(w)) => {
+                    Some(waterfall::figure(run.scene, plan, w))
+                }
                 _ => None,
             })
             .collect()

@@ -1,5 +1,5 @@
 //! The statistics of the one-step flux: the headline from the steps of every realization
-//! (means over realizations), then its findings (details, the check, golden values); and
+//! (means over realizations), then its findings (details, the guard, golden values); and
 //! the rows of the sensitivity study.
 
 use std::collections::BTreeMap;
@@ -7,8 +7,8 @@ use std::collections::BTreeMap;
 use super::study::sensitivity::{SensitivityRow, StudyJob, StudyResult};
 use super::{net_flow_residual, FluxJob, FluxOutput, FluxResult, FluxScene};
 use crate::experiments::contact_change::net_over_gross;
-use crate::experiments::{Check, Criteria, Detail};
-use crate::stats::{decide, round_sig, Claim, Estimate};
+use crate::experiments::{Detail, Guard};
+use crate::stats::{round_sig, Decision, Estimate};
 
 /// The keys of the details ([`crate::experiments::Experiment::keys`]).
 const FLUX_IN: &str = "flux_in";
@@ -72,16 +72,22 @@ impl StepStats {
     }
 }
 
-/// The paper's finding: points enter contact in the step.
-pub fn check(criteria: &Criteria, s: &StepStats) -> Check {
-    Check::new(
-        "points_enter_contact",
+/// The net-flow identity on a grid of `n` points a side, a guard of the counting (never
+/// part of a verdict): `(out - in) + (a_r after - a_r before)` within half a point, its
+/// mean and its error bar, as it must be for any two sets of points in contact.
+pub fn identity_guard(n: usize, s: &StepStats) -> Guard {
+    let half_point = 0.5 / (n as f64).powi(2);
+    let e = s.net_flow_residual;
+    let holds = e.value.abs() < half_point && (!e.has_error() || e.std_error < half_point);
+    Guard::new(
+        "net_flow_identity",
+        "net flow to non-contact equals the fall of a_r over the step (the points in contact \
+         after it are those before, plus those that entered, less those that left)",
+        Decision::from_bool(holds),
         format!(
-            "points enter contact in the step (flux in more than {} standard errors above 0)",
-            criteria.significance
+            "residual {} of A0 (half a point: {half_point:.1e})",
+            e.text(1.0, 9, "")
         ),
-        decide(s.flux_in, Claim::Above(0.0), criteria.significance),
-        format!("flux in = {}", s.flux_in.text(1.0, 5, "")),
     )
 }
 

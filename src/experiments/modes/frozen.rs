@@ -11,9 +11,9 @@ use crate::engine::tolerance::ZETA_SLACK;
 use crate::error::{Error, Result};
 use crate::experiments::ensemble::by_load;
 use crate::experiments::study::{Cell, Study};
-use crate::experiments::{Check, Criteria, Detail, Experiment, Jobs, Keys, Table};
+use crate::experiments::{Criteria, Detail, Experiment, Jobs, Keys, Table};
 use crate::plot::Figure;
-use crate::stats::{decide, round_sig, Claim, Estimate};
+use crate::stats::{round_sig, Estimate};
 
 /// Assumption (e): a resolved mode's energy no longer changes.
 pub struct ModeFrozen;
@@ -193,52 +193,6 @@ impl Experiment for ModeFrozen {
         }
         details.extend(new_details(scene, s));
         details
-    }
-
-    /// The paper's findings: the asymptote falls as the contact area shrinks faster, long
-    /// wavelengths recede at low load, and the change is smaller near full contact.
-    fn checks(run: &Run, s: &FrozenStats) -> Vec<Check> {
-        let (criteria, scene) = (run.criteria, run.scene);
-        let mut checks = Vec::new();
-        if let Some((_, k2)) = s.k() {
-            checks.push(Check::new(
-                "k2_positive",
-                "the asymptote falls as the contact area shrinks faster (K2 > 0)",
-                decide(k2, Claim::Above(0.0), 0.0),
-                format!("K2 = {} (x over the frozen window)", k2.text(1.0, 3, "")),
-            ));
-        }
-        let (lowest, highest) = (s.lowest, s.highest);
-        let low = s.at(lowest, 0).change;
-        checks.push(Check::new(
-            "long_wavelengths_recede",
-            "long-wavelength energy recedes after resolution at the lowest load",
-            decide(low, Claim::Below(0.0), criteria.significance),
-            format!(
-                "change {} at a_r = {lowest}, zeta_t = {}",
-                low.text(1.0, 3, ""),
-                scene.targets[0]
-            ),
-        ));
-        if highest > lowest {
-            let high = s.at(highest, 0).change;
-            // How much smaller |change| is near full contact than at the lowest load.
-            let smaller = Estimate::new(
-                low.value.abs() - high.value.abs(),
-                low.std_error.hypot(high.std_error),
-            );
-            checks.push(Check::new(
-                "smaller_near_full_contact",
-                "the change is smaller near full contact than at the lowest load",
-                decide(smaller, Claim::Above(0.0), 0.0),
-                format!(
-                    "|change| {:.3} at a_r = {highest} against {:.3} at a_r = {lowest}",
-                    high.value.abs(),
-                    low.value.abs()
-                ),
-            ));
-        }
-        checks
     }
 
     /// The golden values: every change, the headline, the long-minus-short difference and the

@@ -93,11 +93,12 @@ pub use frozen::ModeFrozen;
 pub use onset::{ModeOnset, OnsetStats};
 pub use stats::FrozenStats;
 
+use std::collections::BTreeSet;
 use serde::{Deserialize, Serialize};
 
 use super::climb::{check_steps_per_octave, climb, ladder, step_of, Recorder};
 use super::ensemble::{check_headline, seed_load_jobs, SeedLoad};
-use super::scene::{check_increasing, scene};
+use super::scene::{check_increasing, leaves_out_planned, scene, PLANNED};
 use super::{JobContext, Jobs, Work};
 use crate::engine::contact::{ContactSolution, Model};
 use crate::engine::solver::SolverKind;
@@ -340,7 +341,7 @@ impl Jobs for ModeScene {
 
     /// The sweeps, then the same sweeps with the narrow bands.
     fn jobs(&self) -> Vec<ModeJob> {
-        let sweeps = seed_load_jobs(&self.contact_areas, &self.seeds);
+        let sweeps = seed_load_jobs(&self.contact_areas, &self.all_seeds());
         let mut jobs: Vec<ModeJob> = sweeps.iter().cloned().map(ModeJob::Sweep).collect();
         if let Some(band) = self.narrow_band {
             jobs.extend(sweeps.into_iter().map(|j| {
@@ -359,6 +360,22 @@ impl Jobs for ModeScene {
             );
         }
         jobs
+    }
+
+    /// The planned realizations' sweeps ([`PLANNED`]).
+    fn part(&self, job: &ModeJob) -> Option<String> {
+        let seed = match job {
+            ModeJob::Sweep(j) => j.seed,
+            ModeJob::Narrow(j) => j.seed,
+            ModeJob::Reference(_) => return None,
+        };
+        self.more_seeds.contains(&seed).then(|| PLANNED.into())
+    }
+
+    fn leave_out(&mut self, parts: &BTreeSet<String>) {
+        if leaves_out_planned(parts) {
+            self.more_seeds.clear();
+        }
     }
 
     /// The narrow bands' sweeps read the headline solver's peaks only, and the reference

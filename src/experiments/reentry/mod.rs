@@ -64,17 +64,17 @@ use self::figures::{maps, table};
 use self::history_job::run_history;
 pub use self::history_job::ReentryResult;
 use self::range::{range_gains, RangeGain};
-use self::stats::{ReentryStats, Share};
+use self::stats::ReentryStats;
 use self::tolerance::{ToleranceJob, TolerancePlan, ToleranceResult};
 use self::variants::{Variant, VariantJob, VariantResult, VariantStats};
 use super::ensemble::{by_load, check_contact_areas, seed_load_jobs, SeedLoad};
-use super::scene::scene;
+use super::scene::{scene, PLANNED};
 use super::study::Study;
-use super::{Check, Detail, Experiment, JobContext, Jobs, Keys, Table, Work};
+use super::{Detail, Experiment, JobContext, Jobs, Keys, Table, Work};
 use crate::engine::scene::check_zeta;
 use crate::error::{check_positive, Error, Result};
 use crate::plot::Raster;
-use crate::stats::{decide, round_sig, Claim, Decision, Estimate};
+use crate::stats::{round_sig, Estimate};
 
 scene! {
     /// Scene of the re-entry experiment.
@@ -152,7 +152,7 @@ impl Jobs for ReentryScene {
 
     /// The headline's histories, then the study's that the headline does not hold.
     fn jobs(&self) -> Vec<ReentryJob> {
-        let mut jobs: Vec<ReentryJob> = seed_load_jobs(&self.contact_areas, &self.seeds)
+        let mut jobs: Vec<ReentryJob> = seed_load_jobs(&self.contact_areas, &self.all_seeds())
             .into_iter()
             .map(ReentryJob::History)
             .collect();
@@ -184,19 +184,36 @@ impl Jobs for ReentryScene {
     }
 
     /// A variant is an optional part, named by its name: its histories are scenes of
-    /// their own, outside the headline's keys.
+    /// their own, outside the headline's keys. The histories of a variant's planned
+    /// realizations (its `more_seeds`) are a part of their own, `<name>.planned`, so that
+    /// the variant's stored histories conclude while they run; the headline's planned
+    /// histories are the part `planned`.
     fn part(&self, job: &ReentryJob) -> Option<String> {
-        let ReentryJob::Variant(j) = job else {
-            return None;
+        let j = match job {
+            ReentryJob::History(h) if self.more_seeds.contains(&h.seed) => {
+                return Some(PLANNED.into())
+            }
+            ReentryJob::Variant(j) => j,
+            _ => return None,
         };
-        self.variants
-            .iter()
-            .find(|v| v.jobs().contains(j))
-            .map(|v| v.name.clone())
+        let v = self.variants.iter().find(|v| v.jobs().contains(j))?;
+        Some(if v.more_seeds.contains(&j.seed) {
+            format!("{}.{PLANNED}", v.name)
+        } else {
+            v.name.clone()
+        })
     }
 
     fn leave_out(&mut self, parts: &BTreeSet<String>) {
         self.variants.retain(|v| !parts.contains(&v.name));
+        if parts.contains(PLANNED) {
+            self.more_seeds.clear();
+        }
+        for v in &mut self.variants {
+            if parts.contains(&format!("{}.{PLANNED}", v.name)) {
+                v.more_seeds.clear();
+            }
+        }
     }
 
     fn work(&self, job: &ReentryJob) -> Work {
@@ -473,37 +490,6 @@ impl Experiment for Reentry {
             details.extend(variants::details(v, &s.shares, zeta_max));
         }
         details
-    }
-
-    /// The paper's findings: points enter contact, and the share falls as the load grows.
-    fn checks(run: &Run, s: &RunStats) -> Vec<Check> {
-        let criteria = run.criteria;
-        let z = criteria.significance;
-        let mut order: Vec<&Share> = s.shares.iter().collect();
-        order.sort_by(|a, b| a.load.total_cmp(&b.load));
-        // No share below the next larger load's (compared as values: z = 0).
-        let falls = Decision::all(order.windows(2).map(|w| {
-            let step = Estimate::difference(w[0].share, w[1].share);
-            !decide(step, Claim::Below(0.0), 0.0)
-        }));
-        vec![
-            Check::new(
-                "flux_in_positive",
-                format!("flux into contact above zero beyond {z} standard errors"),
-                decide(s.flux_in, Claim::Above(0.0), z),
-                format!("{} of A0", s.flux_in.text(1.0, 5, "")),
-            ),
-            Check::new(
-                "share_falls_with_area",
-                "re-entry share falls as the contact area grows",
-                falls,
-                order
-                    .iter()
-                    .map(|s| format!("a_r {}: {:.3}", s.load, s.share.value))
-                    .collect::<Vec<_>>()
-                    .join(", "),
-            ),
-        ]
     }
 
     /// The golden values: every share (the variants' too, with their shell statistics) and

@@ -56,9 +56,10 @@ mod stats;
 pub use diffusion::{Diffusion, DiffusionStats};
 pub use drift::{contact_drift, Drift, DriftStats};
 
+use std::collections::BTreeSet;
 use serde::{Deserialize, Serialize};
 
-use super::scene::{step_scene, Step};
+use super::scene::{leaves_out_planned, step_scene, Step, PLANNED};
 use super::{JobContext, Jobs, Work};
 use crate::engine::distance::squared_distance_to;
 use crate::engine::solver::SolverKind;
@@ -263,16 +264,34 @@ impl Jobs for TransitionScene {
 
     /// The realizations, then those of the other scene, then the walkers' distances.
     fn jobs(&self) -> Vec<TransitionJob> {
-        let own = self.seeds.iter().map(|&s| TransitionJob::Realization(s));
+        let seeds = self.all_seeds();
+        let own = seeds.iter().map(|&s| TransitionJob::Realization(s));
         let other = self.other_scene.iter().flat_map(|o| &o.seeds);
-        let distances = self
-            .seeds
+        let distances = seeds
             .iter()
             .filter(|_| self.contact_line_distances)
             .map(|&s| TransitionJob::Distances(s));
         own.chain(other.map(|&s| TransitionJob::Other(s)))
             .chain(distances)
             .collect()
+    }
+
+    /// The planned realizations' jobs ([`PLANNED`]).
+    fn part(&self, job: &TransitionJob) -> Option<String> {
+        match job {
+            TransitionJob::Realization(s) | TransitionJob::Distances(s)
+                if self.more_seeds.contains(s) =>
+            {
+                Some(PLANNED.into())
+            }
+            _ => None,
+        }
+    }
+
+    fn leave_out(&mut self, parts: &BTreeSet<String>) {
+        if leaves_out_planned(parts) {
+            self.more_seeds.clear();
+        }
     }
 
     /// The other scene and the distances are read on the headline solver's solutions.
@@ -342,6 +361,7 @@ impl TransitionScene {
             zeta: o.zeta,
             dzeta: o.dzeta,
             seeds: o.seeds.clone(),
+            more_seeds: Vec::new(),
             other_scene: None,
             ..self.clone()
         })
@@ -477,6 +497,7 @@ fn synthetic_scene(bins: usize, bin_width: f64) -> TransitionScene {
         lambda_l: 4.0,
         lambda_s: 2.0,
         seeds: vec![1],
+        more_seeds: Vec::new(),
         tol: 1e-9,
         contact_area: 0.3,
         zeta: 1.0,

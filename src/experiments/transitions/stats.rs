@@ -365,6 +365,40 @@ pub fn lost_over_persson(scene: &TransitionScene, r: &TransitionResult) -> Optio
     (persson > 0.0).then(|| lost / persson)
 }
 
+/// Per realization: the share of the walkers of the lowest analysed bin that left contact
+/// over the step, less the share of the walkers at `p >= high` (units of `p0 / a_r`) that
+/// did (walker-weighted over those bins). `None` without both.
+pub fn lost_lowest_minus_high(
+    scene: &TransitionScene,
+    r: &TransitionResult,
+    high: f64,
+) -> Option<f64> {
+    let bins = analysed_bins(scene, r);
+    let lowest = bins.first()?.analysis.lost;
+    let (lost, walkers) = bins
+        .iter()
+        .map(|a| a.analysis)
+        .filter(|a| a.mean_old >= high)
+        .fold((0.0, 0.0), |(l, w), a| {
+            (l + a.lost * a.walkers, w + a.walkers)
+        });
+    (walkers > 0.0).then(|| lowest - lost / walkers)
+}
+
+/// Per realization: the share of the walkers in the analysed bins whose mean lies below
+/// the broadening (unsuited for the moment analysis) that left contact over the step.
+/// `None` without such bins.
+pub fn lost_unsuited(scene: &TransitionScene, r: &TransitionResult) -> Option<f64> {
+    let (lost, walkers) = analysed_bins(scene, r)
+        .iter()
+        .map(|a| a.analysis)
+        .filter(|a| !a.suited)
+        .fold((0.0, 0.0), |(l, w), a| {
+            (l + a.lost * a.walkers, w + a.walkers)
+        });
+    (walkers > 0.0).then(|| lost / walkers)
+}
+
 /// The mean contact pressure `p0 / a_r` in its own units: the bins below it are those the
 /// paper's count of drifting walkers speaks of (tex 676-677).
 pub const MEAN_CONTACT_PRESSURE: f64 = 1.0;

@@ -27,12 +27,14 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 mod axes;
 mod draw;
+mod intervals;
 #[cfg(test)]
 mod tests;
 mod waterfall;
 
 pub use self::axes::significant;
 use self::draw::{Layout, Plot};
+pub use self::intervals::render_intervals;
 pub use self::waterfall::render_waterfall;
 use super::{Axis, Figure, Point, Raster, Side, Style};
 use crate::error::{Error, Result};

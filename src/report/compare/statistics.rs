@@ -143,18 +143,18 @@ pub fn statistics(outcome: &Outcome) -> Vec<Statistic> {
 pub fn readings(outcome: &Outcome) -> Vec<Reading> {
     let mut out: Vec<(String, String)> = vec![("verdict".into(), outcome.verdict.to_string())];
     let reproduced = match outcome.reproduced {
-        Some(true) => "reproduced",
-        Some(false) => "contradicted",
-        None => "not established",
+        Some(true) => "as the paper",
+        Some(false) => "not as the paper",
+        None => "inconclusive",
     };
     out.push(("reproduced".into(), reproduced.into()));
-    for check in &outcome.checks {
-        let words = match (check.decided, check.passed) {
+    for guard in &outcome.guards {
+        let words = match (guard.decided, guard.passed) {
             (false, _) => "undecided",
             (true, true) => "passed",
             (true, false) => "failed",
         };
-        out.push((format!("check:{}", check.key), words.into()));
+        out.push((format!("guard:{}", guard.key), words.into()));
     }
     for claim in &outcome.claims {
         out.push((format!("claim:{}", claim.key), spelled(&claim.result)));

@@ -11,15 +11,17 @@
 //! Two details read the caption ("the overall shape does not change at large
 //! magnification, the local topology does"): the shape change between the last two
 //! panels, `1 - r` with `r` the Pearson correlation of the elastic body's displacement
-//! along the cut, and the share of the cut's points re-entered in the last panel. One
-//! realization: neither has an error bar.
+//! along the cut, and the share of the cut's points re-entered in the last panel. With the
+//! plan's further seeds (`more_seeds`, each run as the figure's seed is, its own busiest
+//! row cut) each is a mean over the realizations with its standard error; with one
+//! realization, neither has an error bar.
 //!
 //! A third reads the text ("even though we did not select the location of the cut
 //! specifically for this effect, we happened to find a re-entry point", tex 705-706): the
 //! share of grid rows that hold a re-entered point in some panel, i.e. the chance that an
-//! unselected cut shows one. Its error is the standard error over [`ROW_BLOCKS`] blocks of
-//! consecutive rows (rows next to each other cut the same contact patches, so single rows
-//! are not independent).
+//! unselected cut shows one. With one realization its error is the standard error over
+//! [`ROW_BLOCKS`] blocks of consecutive rows (rows next to each other cut the same contact
+//! patches, so single rows are not independent); with several, over the realizations.
 
 use serde::{Deserialize, Serialize};
 
@@ -45,8 +47,12 @@ pub const ROW_BLOCKS: usize = 16;
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct WaterfallPlan {
-    /// The realization.
+    /// The realization of the figure.
     pub seed: u64,
+    /// Further realizations, for the details' error bars (the jobs' keys leave this list
+    /// out, so the figure's stored result keeps its key).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub more_seeds: Vec<u64>,
     /// Magnifications of the panels, increasing.
     pub zetas: Vec<f64>,
     /// Contact area at the largest magnification (sets the load).
@@ -165,10 +171,10 @@ pub fn rows_with_reentry(counts: &[u32]) -> Option<Estimate> {
     Some(Estimate::new(all, Estimate::mean_of(&shares).std_error))
 }
 
-/// Solves the panels and cuts the busiest row.
-pub fn run(scene: &FluxScene, plan: &WaterfallPlan) -> Result<WaterfallResult> {
+/// Solves the panels of realization `seed` and cuts the busiest row.
+pub fn run(scene: &FluxScene, plan: &WaterfallPlan, seed: u64) -> Result<WaterfallResult> {
     let base = scene.base();
-    let r = base.realization(plan.seed)?;
+    let r = base.realization(seed)?;
     let mut sweep = base.sweep(&r, plan.solver);
     let last = *plan.zetas.last().expect("validated: not empty");
     let p0 = sweep.find_load(last, plan.contact_area)?;
@@ -230,21 +236,38 @@ pub fn reentered_last(r: &WaterfallResult) -> Option<f64> {
     Some(marked as f64 / last.reentered.len().max(1) as f64)
 }
 
-/// The waterfall's details ([`DETAILS`]), one realization: no error bars.
-pub fn details(r: &WaterfallResult) -> Vec<Detail> {
-    let zetas = |k: usize| r.cuts.iter().rev().nth(k).map_or(f64::NAN, |c| c.zeta);
-    let one = |v: Option<f64>| Estimate::new(v.unwrap_or(f64::NAN), f64::NAN);
+/// The waterfall's details ([`DETAILS`]) over its realizations (the figure's first):
+/// means with their standard errors over the realizations, or, for one, the figure's own
+/// values without error bars (the rows' share with its error over blocks of rows). None
+/// without a waterfall.
+pub fn details(results: &[&WaterfallResult]) -> Vec<Detail> {
+    let Some(first) = results.first() else {
+        return Vec::new();
+    };
+    let n = results.len();
+    let zetas = |k: usize| first.cuts.iter().rev().nth(k).map_or(f64::NAN, |c| c.zeta);
+    let over = |f: &dyn Fn(&WaterfallResult) -> Option<f64>| {
+        if n == 1 {
+            Estimate::new(f(first).unwrap_or(f64::NAN), f64::NAN)
+        } else {
+            Estimate::mean_of(&results.iter().filter_map(|r| f(r)).collect::<Vec<_>>())
+        }
+    };
+    let realizations = if n == 1 {
+        format!("row {}, one realization", first.row)
+    } else {
+        format!("each realization's busiest row, {n} realizations")
+    };
     let mut details = vec![
         Detail::new(
             SHAPE_CHANGE,
             format!(
                 "1 - Pearson correlation of the displacement along the waterfall's cut, \
-                 zeta = {} against {} (row {}, one realization)",
+                 zeta = {} against {} ({realizations})",
                 zetas(1),
                 zetas(0),
-                r.row
             ),
-            one(shape_change(r)),
+            over(&shape_change),
         ),
         Detail::new(
             REENTERED_LAST,
@@ -253,18 +276,32 @@ pub fn details(r: &WaterfallResult) -> Vec<Detail> {
                  panel above)",
                 zetas(0)
             ),
-            one(reentered_last(r)),
+            over(&reentered_last),
         ),
     ];
     // Results stored before the rows were counted have none.
-    if let Some(e) = rows_with_reentry(&r.row_reentries) {
+    let rows = if n == 1 {
+        rows_with_reentry(&first.row_reentries)
+    } else {
+        let shares: Vec<f64> = results
+            .iter()
+            .filter_map(|r| rows_with_reentry(&r.row_reentries).map(|e| e.value))
+            .collect();
+        (shares.len() == n).then(|| Estimate::mean_of(&shares))
+    };
+    if let Some(e) = rows {
+        let error = if n == 1 {
+            format!("error over {ROW_BLOCKS} blocks of rows, one realization")
+        } else {
+            format!("error over {n} realizations")
+        };
         details.push(Detail::new(
             ROWS_WITH_REENTRY,
             format!(
                 "share of the grid rows holding a point re-entered in some panel (in \
-                 contact, out in a panel above), zeta = {}; error over {ROW_BLOCKS} blocks \
-                 of rows, one realization",
-                r.cuts
+                 contact, out in a panel above), zeta = {}; {error}",
+                first
+                    .cuts
                     .iter()
                     .map(|c| c.zeta.to_string())
                     .collect::<Vec<_>>()
@@ -386,15 +423,19 @@ mod tests {
         // r(u, reversed u) = -0.6 for this profile: 1 - r = 1.6.
         assert!((shape_change(&flipped).unwrap() - 1.6).abs() < 1e-12);
         assert_eq!(shape_change(&r(vec![cut(8.0, u, vec![false; 4])])), None);
-        let d = details(&kept);
+        let d = details(&[&kept]);
         assert_eq!(d.len(), DETAILS.len());
         assert!(d[0].value.std_error.is_nan());
         assert_eq!(d[2].value.value, 0.5);
+        // Two realizations: means over them, with error bars.
+        let two = details(&[&kept, &flipped]);
+        assert!((two[0].value.value - 0.8).abs() < 1e-12, "{:?}", two[0]);
+        assert!(two[0].value.std_error > 0.0);
         // A result stored before the rows were counted.
         let old = WaterfallResult {
             row_reentries: Vec::new(),
             ..kept
         };
-        assert_eq!(details(&old).len(), DETAILS.len() - 1);
+        assert_eq!(details(&[&old]).len(), DETAILS.len() - 1);
     }
 }

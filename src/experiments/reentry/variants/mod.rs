@@ -166,7 +166,7 @@ impl Variant {
     pub fn jobs(&self) -> Vec<VariantJob> {
         self.contact_areas
             .iter()
-            .flat_map(|&a| self.seeds.iter().map(move |&s| self.job(s, a)))
+            .flat_map(|&a| self.all_seeds().into_iter().map(move |s| self.job(s, a)))
             .collect()
     }
 
@@ -357,6 +357,7 @@ mod tests {
             lambda_s: 4.0,
             zeta_from: 0.0,
             seeds: vec![1, 2],
+            more_seeds: Vec::new(),
             contact_areas: vec![0.14, 0.88],
             tol: 1e-6,
             record_shells: false,
