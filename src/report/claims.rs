@@ -203,7 +203,11 @@ fn tex(place: &str) -> String {
     for (k, _) in place.match_indices("tex ") {
         let rest = &place[k + 4..];
         let end = rest.find(')').unwrap_or(rest.len());
-        parts.push(rest[..end].replace("; ", ", "));
+        for range in rest[..end].split([',', ';']).map(str::trim) {
+            if !range.is_empty() && !parts.contains(&range) {
+                parts.push(range);
+            }
+        }
     }
     if parts.is_empty() {
         "—".into()
@@ -505,11 +509,42 @@ fn lists(s: &mut String, outcomes: &[&Outcome]) {
     }
 }
 
-/// The rule in words: phrase, unit, the rule as written and its region.
+/// The rule in words: phrase, unit, the rule as written and, for a unit the page prints
+/// scaled (a share in %, a difference of shares in points), its region in the printed
+/// unit, so that the rule and the measured value read alike.
 fn rule_text(c: &ClaimOutcome) -> String {
     let phrase = c.phrase.map_or("?", |p| p.name());
     let unit = c.unit.map_or("?", Unit::name);
-    format!("phrase `{phrase}`, unit `{unit}`: `{}`", c.rule.text())
+    let written = format!("phrase `{phrase}`, unit `{unit}`: `{}`", c.rule.text());
+    match (c.unit.map(Unit::display), c.region()) {
+        (Some((factor, suffix)), Some(region)) if factor != 1.0 && c.difference.is_none() => {
+            format!("{written}, that is {}", region_in(region, factor, suffix))
+        }
+        _ => written,
+    }
+}
+
+/// A region with its bounds scaled by `factor` and followed by `suffix`: "-4 to 4 points",
+/// "at most 5%", "outside 0.9 to 1.1%".
+fn region_in(region: Region, factor: f64, suffix: &str) -> String {
+    let n = |x: f64| {
+        let t = format!("{:.4}", x * factor);
+        let t = t.trim_end_matches('0').trim_end_matches('.');
+        if t == "-0" {
+            "0".to_string()
+        } else {
+            t.to_string()
+        }
+    };
+    match region {
+        Region::Interval { lo, hi, .. } if lo.is_finite() && hi.is_finite() => {
+            format!("{} to {}{suffix}", n(lo), n(hi))
+        }
+        Region::Interval { lo, .. } if lo.is_finite() => format!("at least {}{suffix}", n(lo)),
+        Region::Interval { hi, .. } => format!("at most {}{suffix}", n(hi)),
+        Region::Outside(lo, hi) => format!("outside {} to {}{suffix}", n(lo), n(hi)),
+        Region::Except(t) => format!("not {}{suffix}", n(t)),
+    }
 }
 
 /// One claim's block: the statement, its reading and rule, the result with its reason,
@@ -578,16 +613,14 @@ fn block(
         };
         let _ = writeln!(
             s,
-            "- **Amended** (rule registered {} at `{}`: region `{}`; full scale {}, reduced {}): {}",
+            "- **Amended:** {} *The earlier rule* (registered {} at `{}`, no longer in force): \
+             region `{}`, under which the full scale was {} and the reduced scale {}.",
+            prose(&a.reason),
             r.registered,
             &r.commit[..r.commit.len().min(10)],
-            r.rule
-                .get("region")
-                .and_then(|g| g.as_str())
-                .unwrap_or("?"),
+            r.rule.get("region").and_then(|g| g.as_str()).unwrap_or("?"),
             verdict(&r.full),
             verdict(&r.reduced),
-            prose(&a.reason)
         );
     }
     if let Some((scale, o)) = other {
@@ -659,7 +692,8 @@ pub fn page(
              rule's region in units of the rule's tolerance (0 is the rule's edge, right of \
              it inside; 1 is the centre of a two-sided region), the bar its interval (+-3 \
              standard errors, wider for fewer than four realizations); a bar across 0 is \
-             not established, an arrow lies beyond the axis.\n"
+             not established, an arrow lies beyond the axis (a dot beyond it is not drawn). \
+             A claim measured without an error bar (one realization) has no row.\n"
         );
     }
     lists(&mut s, &full);

@@ -226,7 +226,9 @@ fn table_rows_state_verdicts(text: &str) {
 /// The summary says plainly what is inconclusive or contradicted.
 fn summary_names_what_needs_attention(text: &str, summary: &ReportSummary) {
     assert!(
-        text.contains("2 of 4 headline verdicts as the paper's (1 hold, 2 violated, 1 inconclusive)"),
+        text.contains(
+            "2 of 4 headline verdicts as the paper's (1 hold, 2 violated, 1 inconclusive)"
+        ),
         "{}",
         &text[..600]
     );

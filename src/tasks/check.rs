@@ -21,22 +21,6 @@ use crate::measured::units::eng;
 /// The file of every solve's outcome, one JSON line each, written as it ends.
 pub const SOLVES_FILE: &str = "solves.jsonl";
 
-/// Reads the scans in `paths` (one surface, several scans).
-///
-/// # Errors
-///
-/// If `paths` is empty, or a file cannot be read or holds no height map.
-pub fn read_scans(paths: &[impl AsRef<Path>], s: &dyn Spelling) -> Result<Vec<Scan>> {
-    if paths.is_empty() {
-        return Err(s.rename(Error::invalid(
-            "heights",
-            "no file",
-            "at least one height map (.npy or a text matrix)",
-        )));
-    }
-    paths.iter().map(|p| Scan::read(p.as_ref())).collect()
-}
-
 /// What the inputs of a check are: height maps of one surface, or line scans of one.
 #[derive(Debug, Clone)]
 pub enum Input {
