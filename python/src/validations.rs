@@ -45,8 +45,8 @@ fn run_definitions(
 ) -> persson_check::Result<Vec<persson_check::validation::Outcome>> {
     let registry = Registry::builtin();
     task::check(&registry, sources)?;
+    // Once cancelled, the worker's caller raises `KeyboardInterrupt` whatever this returns.
     let results = task::run(&registry, sources, opts, &|| !hook.cancelled());
-    hook.stop_if_cancelled();
     let mut outcomes = Vec::new();
     let mut failed = Vec::new();
     for (path, result) in results {
