@@ -529,5 +529,8 @@ fn planned_realizations_keep_every_stored_key_and_add_only_planned_jobs() {
         .iter()
         .map(|j| j["validation"].as_str().unwrap())
         .collect();
-    assert!(planning.len() + refused.len() >= 9, "{planning:?}, refused {refused:?}");
+    assert!(
+        planning.len() + refused.len() >= 9,
+        "{planning:?}, refused {refused:?}"
+    );
 }

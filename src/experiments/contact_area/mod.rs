@@ -51,8 +51,8 @@ pub mod stats;
 mod study;
 pub mod system_size;
 
-use std::collections::BTreeSet;
 use std::collections::BTreeMap;
+use std::collections::BTreeSet;
 
 use serde::{Deserialize, Serialize};
 

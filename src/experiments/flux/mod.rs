@@ -173,11 +173,7 @@ impl Jobs for FluxScene {
     }
 
     fn jobs(&self) -> Vec<FluxJob> {
-        let mut jobs: Vec<FluxJob> = self
-            .all_seeds()
-            .into_iter()
-            .map(FluxJob::Step)
-            .collect();
+        let mut jobs: Vec<FluxJob> = self.all_seeds().into_iter().map(FluxJob::Step).collect();
         if let Some(plan) = &self.sensitivity {
             let held_area_left_out = self.left_out.contains(HELD_AREA);
             jobs.extend(

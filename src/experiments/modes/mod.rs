@@ -93,8 +93,8 @@ pub use frozen::ModeFrozen;
 pub use onset::{ModeOnset, OnsetStats};
 pub use stats::FrozenStats;
 
-use std::collections::BTreeSet;
 use serde::{Deserialize, Serialize};
+use std::collections::BTreeSet;
 
 use super::climb::{check_steps_per_octave, climb, ladder, step_of, Recorder};
 use super::ensemble::{check_headline, seed_load_jobs, SeedLoad};

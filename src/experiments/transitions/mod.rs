@@ -56,8 +56,8 @@ mod stats;
 pub use diffusion::{Diffusion, DiffusionStats};
 pub use drift::{contact_drift, Drift, DriftStats};
 
-use std::collections::BTreeSet;
 use serde::{Deserialize, Serialize};
+use std::collections::BTreeSet;
 
 use super::scene::{leaves_out_planned, step_scene, Step, PLANNED};
 use super::{JobContext, Jobs, Work};
