@@ -93,20 +93,6 @@ fn speed_n_out_of_range() {
 }
 
 #[test]
-fn report_has_no_speed_flags() {
-    // The speed study is its own command: `report` only reads.
-    let dir = tempdir();
-    outcomes(dir.path(), &[]);
-    for flag in ["--no-speed", "--speed-n=256"] {
-        rejected(
-            dir.path(),
-            &["report", "--from", "from", "--out", "card.md", flag],
-            &["unexpected argument"],
-        );
-    }
-}
-
-#[test]
 fn report_golden_missing() {
     let dir = tempdir();
     outcomes(dir.path(), &[]);
