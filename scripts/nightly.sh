@@ -17,7 +17,8 @@
 #   scripts/nightly.sh audit OUT BUDGET SEED
 #       `audit --from results/full --budget BUDGET --seed SEED --out OUT`
 #   scripts/nightly.sh summary OUT HISTORY REDUCED FULL AUDIT
-#       the scorecards of REDUCED and FULL with the trend of the headlines (HISTORY, one
+#       the speed study into REDUCED (`speed --out REDUCED`), then the scorecards of
+#       REDUCED and FULL with the trend of the headlines (HISTORY, one
 #       JSON line per night, gets tonight's line), and OUT/summary.md, which opens with
 #       "What changed since the committed results"
 #
@@ -125,10 +126,11 @@ summary)
     out="$2" history="$3" reduced="$4" full="$5" audit="$6"
     mkdir -p "$out" "$(dirname "$history")"
     if compgen -G "$reduced/*.json" >/dev/null; then
+        run "speed study" "$BIN" speed --out "$reduced"
         run "reduced scorecard" "$BIN" report --from "$reduced" --out "$reduced/scorecard.md" --history "$history"
     fi
     if compgen -G "$full/*.json" >/dev/null; then
-        run "full scorecard" "$BIN" report --from "$full" --out "$full/scorecard.md" --no-speed --history "$history"
+        run "full scorecard" "$BIN" report --from "$full" --out "$full/scorecard.md" --history "$history"
     fi
     step="what changed since the committed results"
     python3 - "$out/summary.md" "$reduced" "$full" "$audit" "$COMMITTED_REDUCED" "$COMMITTED_FULL" <<'PY'

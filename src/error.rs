@@ -74,6 +74,22 @@ pub enum Error {
         /// The mean pressure of the problem.
         p0: f64,
     },
+    /// A solve stopped from outside (its monitor answered stop): cancelled, or over its
+    /// time budget. Not a failure of the method: the solver is left ready for its next
+    /// solve, and the stop passes through sweeps and load searches to their callers.
+    #[error(
+        "{solver} stopped ({reason}) at iteration {iteration}, residual estimate {residual:.3e}"
+    )]
+    Stopped {
+        /// Solver name.
+        solver: &'static str,
+        /// Why it was stopped.
+        reason: StopReason,
+        /// The last progress the monitor saw: its iteration...
+        iteration: usize,
+        /// ...and the method's residual estimate there.
+        residual: f64,
+    },
     /// Root finding on the load failed (for example, a target contact area not reachable).
     #[error("load search: {0}")]
     LoadSearch(String),
@@ -101,6 +117,36 @@ pub enum Termination {
     NonFinite,
     /// No point was left in contact to carry the load.
     LostContact,
+    /// Stopped from outside: cancelled (Ctrl-C in Python) ([`StopReason::Cancelled`]).
+    Cancelled,
+    /// Stopped from outside: over its time budget ([`StopReason::OutOfTime`]).
+    OutOfTime,
+}
+
+/// Why a solve was stopped from outside: what a monitor answers when it asks a running
+/// solve to stop (`ControlFlow::Break(reason)`, see `engine::solver::executor`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StopReason {
+    /// The caller cancelled it (Ctrl-C in Python, a closed sweep).
+    Cancelled,
+    /// Its time budget ran out.
+    OutOfTime,
+}
+
+impl From<StopReason> for Termination {
+    fn from(reason: StopReason) -> Self {
+        match reason {
+            StopReason::Cancelled => Termination::Cancelled,
+            StopReason::OutOfTime => Termination::OutOfTime,
+        }
+    }
+}
+
+impl std::fmt::Display for StopReason {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        Termination::from(*self).fmt(f)
+    }
 }
 
 impl std::fmt::Display for Termination {
@@ -111,18 +157,31 @@ impl std::fmt::Display for Termination {
             Termination::Stalled => "stalled at the rounding floor",
             Termination::NonFinite => "non-finite value",
             Termination::LostContact => "contact set emptied",
+            Termination::Cancelled => "cancelled",
+            Termination::OutOfTime => "over its time budget",
         })
     }
 }
 
 impl Error {
     /// Why the solve behind this error stopped, for errors that come from an iterative
-    /// solve ([`Error::NotConverged`], [`Error::NonFinite`], [`Error::LostContact`]).
+    /// solve ([`Error::NotConverged`], [`Error::NonFinite`], [`Error::LostContact`],
+    /// [`Error::Stopped`]).
     pub fn termination(&self) -> Option<Termination> {
         match self {
             Error::NotConverged { reason, .. } => Some(*reason),
+            Error::Stopped { reason, .. } => Some((*reason).into()),
             Error::NonFinite { .. } => Some(Termination::NonFinite),
             Error::LostContact { .. } => Some(Termination::LostContact),
+            _ => None,
+        }
+    }
+
+    /// Why the solve behind this error was stopped from outside, for an
+    /// [`Error::Stopped`].
+    pub fn stopped(&self) -> Option<StopReason> {
+        match self {
+            Error::Stopped { reason, .. } => Some(*reason),
             _ => None,
         }
     }
@@ -286,5 +345,19 @@ mod tests {
         assert!(text.contains("contact set emptied at iteration 9"), "{e}");
         assert!(!text.contains("non-finite"), "{e}");
         assert_eq!(Error::invalid("n", 3, "> 4").termination(), None);
+        let e = Error::Stopped {
+            solver: "fire",
+            reason: StopReason::OutOfTime,
+            iteration: 7,
+            residual: 2e-3,
+        };
+        assert_eq!(e.termination(), Some(Termination::OutOfTime));
+        assert_eq!(e.stopped(), Some(StopReason::OutOfTime));
+        assert!(
+            e.to_string()
+                .contains("stopped (over its time budget) at iteration 7"),
+            "{e}"
+        );
+        assert_eq!(Error::invalid("n", 3, "> 4").stopped(), None);
     }
 }

@@ -6,7 +6,7 @@
 //! persson-check solve    (--heights FILE.npy | --scene FILE.toml) (--p0 P | --contact-area A)
 //!                        [--zeta Z] [--solver gfmd|cg|fire] [--tol T] --out DIR
 //! persson-check validate [NAME ...] [--full] [--solvers S1,S2,...] --out DIR
-//! persson-check report   [--from DIR] --out FILE.md [--golden DIR] [--no-speed] [--speed-n N]
+//! persson-check report   [--from DIR] --out FILE.md [--golden DIR] [--history FILE]
 //! persson-check speed    [--n N] [--floor-n N ...] [--repeats K] --out DIR
 //! persson-check check-surface --heights FILE... --pixel-size DX [--periodic]
 //!                        [--loads P1,P2,...] [--solver gfmd|cg|fire] [--no-cross-check] --out DIR
@@ -51,9 +51,11 @@ enum Command {
     Solve(commands::solve::Args),
     /// Run named validations (all by default) and write their outcomes.
     Validate(commands::validate::Args),
-    /// Write the scorecard of the outcomes in a folder, with the speed-against-error study.
+    /// Write the scorecard of the outcomes in a folder (and of the speed study there, if
+    /// any); reads the folder only.
     Report(commands::report::Args),
-    /// Run the speed-against-error study alone (floor and warm starts on chosen grids).
+    /// Run the speed-against-error study and write speed.json and its figures into a folder
+    /// (which `report` then shows).
     Speed(commands::speed::Args),
     /// Check Persson's theory on measured height maps (contact area, pressures, energy).
     CheckSurface(commands::check_surface::Args),

@@ -320,3 +320,157 @@ fn the_front_ends_import_no_engine_item() {
         wrong.join("\n")
     );
 }
+
+/// `report` only formats what is in its `--from` folder: no file under `src/report/`, its
+/// tests included, runs the speed study (`speed::run`, or `run` imported from
+/// `crate::speed`); the study is `persson-check speed`'s step. A file's comments are not
+/// read.
+#[test]
+fn the_report_runs_no_speed_study() {
+    fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                walk(&path, out);
+            } else if path.extension().is_some_and(|e| e == "rs") {
+                out.push(path);
+            }
+        }
+    }
+    let mut files = Vec::new();
+    walk(
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("src/report"),
+        &mut files,
+    );
+    assert!(files.len() >= 10, "{files:?}");
+    let wrong: Vec<String> = files
+        .iter()
+        .filter(|path| {
+            let text = std::fs::read_to_string(path).unwrap();
+            let code: String = text
+                .lines()
+                .map(|l| l.find("//").map_or(l, |i| &l[..i]))
+                .collect::<Vec<_>>()
+                .join(" ")
+                .split_whitespace()
+                .collect();
+            runs_the_speed_study(&code)
+        })
+        .map(|path| path.display().to_string())
+        .collect();
+    assert!(
+        wrong.is_empty(),
+        "files of the report that run the speed study:\n{}",
+        wrong.join("\n")
+    );
+}
+
+/// Whether `code` (without comments or whitespace) names `speed::run`, or imports `run`
+/// (or everything) from a `speed::{...}` group.
+fn runs_the_speed_study(code: &str) -> bool {
+    if code.contains("speed::run") || code.contains("speed::*") {
+        return true;
+    }
+    code.match_indices("speed::{").any(|(i, m)| {
+        let group = &code[i + m.len()..];
+        let group = &group[..group.find('}').unwrap_or(group.len())];
+        group
+            .split(',')
+            .any(|item| item == "run" || item.starts_with("runas") || item == "*")
+    })
+}
+
+#[test]
+fn the_speed_study_finder_finds_its_forms() {
+    for code in [
+        "crate::speed::run(&o,&mut|_|{})",
+        "usecrate::speed::{run,SpeedOptions};",
+        "usecrate::speed::{SpeedStudy,runasstudy};",
+        "usecrate::speed::*;",
+    ] {
+        assert!(runs_the_speed_study(code), "{code}");
+    }
+    for code in [
+        "usecrate::speed::{SpeedStudy,SOLVERS};",
+        "crate::speed::SpeedStudy::read(&p)",
+        "fnrun_speed(){}",
+    ] {
+        assert!(!runs_the_speed_study(code), "{code}");
+    }
+}
+
+/// Every file under `dir` (relative path) with its bytes.
+fn snapshot(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
+    fn walk(root: &Path, dir: &Path, out: &mut BTreeMap<PathBuf, Vec<u8>>) {
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                walk(root, &path, out);
+            } else {
+                let bytes = std::fs::read(&path).unwrap();
+                out.insert(path.strip_prefix(root).unwrap().to_path_buf(), bytes);
+            }
+        }
+    }
+    let mut out = BTreeMap::new();
+    walk(dir, dir, &mut out);
+    out
+}
+
+/// Copies every file under `from` into `to`.
+fn copy_tree(from: &Path, to: &Path) {
+    for (rel, bytes) in snapshot(from) {
+        let path = to.join(rel);
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        std::fs::write(path, bytes).unwrap();
+    }
+}
+
+/// `report` writes nothing into its `--from` folder: run on a copy of the committed
+/// reduced outcomes (with a history, whose trend figure it draws), the copy's files and
+/// their bytes are as before, and the scorecard and its figures are beside `--out`.
+#[test]
+fn report_writes_nothing_into_its_from_folder() {
+    let root = tempfile::tempdir().unwrap();
+    let (from, review) = (root.path().join("from"), root.path().join("review"));
+    copy_tree(
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("results/reduced"),
+        &from,
+    );
+    std::fs::create_dir(&review).unwrap();
+    let before = snapshot(&from);
+    assert!(before.len() > 10, "{} files", before.len());
+    let card = review.join("scorecard.md");
+    let history = review.join("headlines.jsonl");
+    let run = std::process::Command::new(env!("CARGO_BIN_EXE_persson-check"))
+        .arg("report")
+        .arg("--from")
+        .arg(&from)
+        .arg("--out")
+        .arg(&card)
+        .arg("--history")
+        .arg(&history)
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "report failed:\n{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let after = snapshot(&from);
+    let changed: Vec<&PathBuf> = before
+        .keys()
+        .chain(after.keys())
+        .filter(|k| before.get(*k) != after.get(*k))
+        .collect();
+    assert!(
+        changed.is_empty(),
+        "report changed its --from folder: {changed:?}"
+    );
+    let text = std::fs::read_to_string(&card).unwrap();
+    assert!(
+        text.contains("No speed study in `"),
+        "the speed section says how to run it"
+    );
+    assert!(review.join("trend").is_dir() && history.is_file());
+}

@@ -10,16 +10,25 @@
 //! 3. Westergaard's sinusoid, periodic, has an exact solution: in partial contact the
 //!    area within two grid spacings and the peak pressure within 1e-3 (the bounds of
 //!    `hard_scenes`), in full contact the pressure exact to 1e-9 `p0` point by point;
-//! 4. a sphere on the free boundary gives Hertz's contact ([`assert_hertz`]).
+//! 4. a sphere on the free boundary gives Hertz's contact ([`assert_hertz`]);
+//! 5. a solve stopped by its monitor at iteration `k` (cancelled, or over its time) ends
+//!    in [`Error::Stopped`] at `k`, and leaves the solver sound: its next warm solve
+//!    converges to the cold answer, bit for bit as a solver that was never stopped
+//!    ([`stopped_then_warm`]).
 //!
 //! The scenes are the smallest that resolve each property, so that the check costs a few
 //! seconds in release; the solver tests (`solvers`, `hard_scenes`) go further.
 
+use std::ops::ControlFlow;
+
 use persson_check::engine::contact::{ContactProblem, ContactSolution, Model};
 use persson_check::engine::field;
 use persson_check::engine::reference::{Hertz, Westergaard};
-use persson_check::engine::solver::{SolveOptions, Solver, SolverKind, Start};
+use persson_check::engine::solver::{
+    Progress, SolveOptions, Solver, SolverKind, Start, StopReason,
+};
 use persson_check::engine::surface::{Surface, SurfaceModel};
+use persson_check::error::Error;
 
 use crate::common::contact::{
     assert_agree, assert_hertz, check_solution, sinusoid, sphere_on_free_boundary,
@@ -81,6 +90,108 @@ fn warm_from_the_solution(kind: SolverKind) {
         cold.stats.iterations
     );
     assert_agree(scene, &cold, &warm, TOL);
+}
+
+/// The iteration at which [`stopped_then_warm`] stops a solve: past the first few, where
+/// every method is mid-way.
+const STOP_AT: usize = 4;
+
+/// On the random surface of [`warm_from_the_solution`]: solved at `p0 = 0.1`, then a solve
+/// at `p0 = 0.12` warm from it (and another cold) stopped at iteration [`STOP_AT`] by its
+/// monitor; then the same warm solve again, not stopped, by the same solver.
+fn stopped_then_warm(kind: SolverKind) {
+    let surface = Surface::generate(&SurfaceModel::new(64, 0.8, 32.0, 4.0, 3)).unwrap();
+    let model = Model::new(surface.grid().clone(), 1.0).unwrap();
+    let h = surface.heights_at(f64::INFINITY, &model.fft);
+    let (first, second) = (
+        ContactProblem::new(&model, &h, 0.1).unwrap(),
+        ContactProblem::new(&model, &h, 0.12).unwrap(),
+    );
+    let opts = SolveOptions::with_tol(TOL);
+    let scene = "random surface, stopped";
+    let name = kind.name();
+
+    let mut solver = kind.build();
+    let from = converged(scene, kind, solver.as_mut(), &first, Start::Cold, TOL);
+    for (start, reason) in [
+        (Start::Warm(&from), StopReason::Cancelled),
+        (Start::Cold, StopReason::OutOfTime),
+    ] {
+        let mut seen = Vec::new();
+        let stopped = solver.solve_monitored(&second, start, &opts, &mut |p: Progress| {
+            seen.push(p.iteration);
+            if p.iteration == STOP_AT {
+                ControlFlow::Break(reason)
+            } else {
+                ControlFlow::Continue(())
+            }
+        });
+        match stopped {
+            Err(Error::Stopped {
+                solver: by,
+                reason: why,
+                iteration,
+                residual,
+            }) => {
+                assert_eq!((by, why, iteration), (name, reason, STOP_AT), "{name}");
+                assert!(residual.is_finite(), "{name}: estimate {residual}");
+            }
+            other => panic!("{name}: a solve stopped at {STOP_AT} gave {other:?}"),
+        }
+        assert_eq!(
+            seen.last(),
+            Some(&STOP_AT),
+            "{name}: the monitor is not asked again after it answers stop"
+        );
+    }
+
+    let warm = converged(
+        scene,
+        kind,
+        solver.as_mut(),
+        &second,
+        Start::Warm(&from),
+        TOL,
+    );
+    let cold = converged(
+        scene,
+        kind,
+        kind.build().as_mut(),
+        &second,
+        Start::Cold,
+        TOL,
+    );
+    assert_agree(scene, &cold, &warm, TOL);
+
+    // A solver that was never stopped, through the same converged solves.
+    let mut fresh = kind.build();
+    let from_fresh = converged(scene, kind, fresh.as_mut(), &first, Start::Cold, TOL);
+    let unstopped = converged(
+        scene,
+        kind,
+        fresh.as_mut(),
+        &second,
+        Start::Warm(&from_fresh),
+        TOL,
+    );
+    assert_eq!(
+        (
+            warm.stats.iterations,
+            field_bits(&warm.pressure),
+            field_bits(&warm.displacement)
+        ),
+        (
+            unstopped.stats.iterations,
+            field_bits(&unstopped.pressure),
+            field_bits(&unstopped.displacement)
+        ),
+        "{name}: the stops changed the next solve (iterations, pressure and displacement bits)"
+    );
+}
+
+/// A field's bits, for comparisons that must be exact.
+fn field_bits(values: &[f64]) -> Vec<u64> {
+    values.iter().map(|v| v.to_bits()).collect()
 }
 
 /// Westergaard's sinusoid on 64^2, `h0 = 1`: partial contact at `0.3 p*` and full contact
@@ -155,6 +266,7 @@ fn hertz_on_the_free_boundary(kind: SolverKind) {
 /// Every property of the module docs, for one solver.
 fn check_solver(kind: SolverKind) {
     warm_from_the_solution(kind);
+    stopped_then_warm(kind);
     westergaard(kind);
     hertz_on_the_free_boundary(kind);
 }

@@ -8,7 +8,7 @@
 
 use std::path::{Path, PathBuf};
 
-use persson_check::report::{read_outcome, write, ReportOptions, SpeedChoice};
+use persson_check::report::{read_outcome, write, ReportOptions};
 use persson_check::validation::Outcome;
 use serde_json::Value;
 
@@ -40,9 +40,8 @@ fn read_and_render(dir: &Path, json: &Value) -> (Outcome, String) {
         from: dir.to_path_buf(),
         out: card.clone(),
         golden: None,
-        speed: SpeedChoice::Skip,
     };
-    let summary = write(&opts, &mut |_| {}).unwrap();
+    let summary = write(&opts).unwrap();
     assert_eq!(summary.validations, ["b_drift"]);
     (outcome, std::fs::read_to_string(card).unwrap())
 }

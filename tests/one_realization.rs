@@ -6,7 +6,7 @@
 use std::path::Path;
 
 use persson_check::engine::solver::SolverKind;
-use persson_check::report::{write, ReportOptions, SpeedChoice};
+use persson_check::report::{write, ReportOptions};
 use persson_check::validation::source::sources_in;
 use persson_check::validation::{run, Outcome, RunOptions, Scale, Source, Verdict};
 
@@ -214,18 +214,14 @@ fn every_validation_with_one_realization_writes_no_nan_and_fails_no_check() {
     assert!(csv.lines().nth(1).unwrap().contains(",,"), "{csv}");
 }
 
-/// Writes the scorecard of the outcomes in `dir` (no speed section); returns its path.
+/// Writes the scorecard of the outcomes in `dir` (no speed study there); returns its path.
 fn scorecard(dir: &std::path::Path) -> std::path::PathBuf {
     let card = dir.join("scorecard.md");
-    write(
-        &ReportOptions {
-            from: dir.to_path_buf(),
-            out: card.clone(),
-            golden: None,
-            speed: SpeedChoice::Skip,
-        },
-        &mut |_| {},
-    )
+    write(&ReportOptions {
+        from: dir.to_path_buf(),
+        out: card.clone(),
+        golden: None,
+    })
     .unwrap();
     card
 }

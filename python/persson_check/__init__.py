@@ -175,8 +175,8 @@ def merge(
     return _native.merge(names, out, full, solver, accept_other_commit, dir, partial)
 
 
-def report(source="out", out="scorecard.md", golden=None, speed=False, speed_n=256):
-    return _native.report(source, out, golden, speed, speed_n)
+def report(source="out", out="scorecard.md", golden=None):
+    return _native.report(source, out, golden)
 
 
 def _is_topography(value):

@@ -194,10 +194,8 @@ def report(
     source: Path = "out",
     out: Path = "scorecard.md",
     golden: Optional[Path] = None,
-    speed: bool = False,
-    speed_n: int = 256,
 ) -> dict[str, Any]:
-    """Writes the Markdown scorecard of the outcomes in source."""
+    """Writes the Markdown scorecard of the outcomes in source (which it only reads)."""
 
 def check_surface(
     heights: Union[npt.ArrayLike, Any, Sequence[Union[npt.ArrayLike, Any]]],

@@ -2,6 +2,7 @@
 //! scans, as `persson-check check-surface` checks them (the same library tasks, the same
 //! numbers and the same `surface.json`).
 
+use std::ops::ControlFlow;
 use std::path::PathBuf;
 
 use numpy::{PyReadonlyArrayDyn, PyUntypedArrayMethods};
@@ -15,6 +16,7 @@ use persson_check::measured::line::profiles::Profiles;
 use persson_check::measured::psd::Boundary;
 use persson_check::measured::scan::Scan;
 use persson_check::tasks::check as task;
+use persson_check::tasks::solve::StopReason;
 use persson_check::tasks::{parse, Keywords};
 
 use crate::conversions::record;
@@ -35,15 +37,16 @@ pub fn defaults(py: Python<'_>) -> PyResult<Bound<'_, pyo3::types::PyDict>> {
     Ok(d)
 }
 
-/// What a check's event tells Python: the progress of a solve, and a line per load (and
-/// per scan's outliers) among `count` scans.
-fn log_event(hook: &Hook, count: usize, e: Event) {
+/// What a check's event tells Python: the progress of a solve (and the answer to stop it
+/// once cancelled), and a line per load (and per scan's outliers) among `count` scans.
+fn log_event(hook: &Hook, count: usize, e: Event) -> ControlFlow<StopReason> {
     match e {
         Event::Iteration { progress, .. } => hook.iteration(progress),
         Event::Load { .. } | Event::Outliers { .. } => {
             if let Some(line) = task::load_line(count, &e) {
                 hook.line(format!("check_surface: {line}"));
             }
+            ControlFlow::Continue(())
         }
     }
 }

@@ -1,6 +1,7 @@
 //! The library's errors as the Python exceptions a caller expects, in one place: bad
 //! input is a `ValueError` (the command line's message, the parameter named by its
-//! keyword), a file system failure an `OSError`, and everything else a solve or a load
+//! keyword), a file system failure an `OSError`, a solve cancelled by Ctrl-C a
+//! `KeyboardInterrupt`, and everything else a solve or a load
 //! search can end with (the iteration budget, a stall at the rounding floor, a non-finite
 //! value, no load for the target area) a [`SolveError`].
 
@@ -8,7 +9,7 @@ use pyo3::create_exception;
 use pyo3::exceptions::{PyKeyboardInterrupt, PyOSError, PyRuntimeError, PyValueError};
 use pyo3::PyErr;
 
-use persson_check::error::Error;
+use persson_check::error::{Error, StopReason};
 
 create_exception!(
     persson_check,
@@ -24,6 +25,11 @@ pub fn to_py(e: Error) -> PyErr {
     match e {
         Error::InvalidInput { .. } | Error::BadFile { .. } => PyValueError::new_err(text),
         Error::Io { .. } => PyOSError::new_err(text),
+        // A solve stopped by Ctrl-C (the worker's cancel).
+        Error::Stopped {
+            reason: StopReason::Cancelled,
+            ..
+        } => interrupted(),
         // Every other ending is the end of a solve or a load search.
         _ => SolveError::new_err(text),
     }

@@ -3,10 +3,10 @@
 //! iterator is advanced (so `tqdm(sweep(...))` shows real progress and a loop that breaks
 //! early costs nothing more).
 
-use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{self, Receiver, Sender};
 use std::sync::{Arc, Mutex};
+use std::thread::JoinHandle;
 
 use numpy::{PyArray1, PyArray2, PyReadonlyArrayDyn};
 use pyo3::exceptions::{PyRuntimeError, PyStopIteration};
@@ -107,10 +107,7 @@ impl SweepJob {
                     if requests.recv().is_err() {
                         return;
                     }
-                    let result = match catch_unwind(AssertUnwindSafe(|| run.step(zeta))) {
-                        Ok(r) => r.map_err(Failure::Lib),
-                        Err(payload) => Err(Failure::from_panic(payload)),
-                    };
+                    let result = run.step(zeta).map_err(Failure::from_error);
                     let ends = result.as_ref().is_err_and(Failure::ends_worker);
                     if send(result).is_err() || ends {
                         return;
@@ -130,6 +127,20 @@ struct SweepState {
     /// In a Mutex only to enter the GIL-free waits (a Receiver is not Sync).
     results: Mutex<Receiver<Event>>,
     next_step: usize,
+    /// The worker thread, joined once its results end: a panic comes back from it.
+    worker: Option<JoinHandle<()>>,
+}
+
+impl SweepState {
+    /// The end of the sweep once the worker has gone: `StopIteration`, or the internal
+    /// error of a worker that panicked.
+    fn ended(&mut self, py: Python<'_>) -> PyErr {
+        let joined = self.worker.take().map(|w| py.detach(|| w.join()));
+        match joined {
+            Some(Err(payload)) => Failure::from_panic(payload).into_py(),
+            _ => PyStopIteration::new_err(()),
+        }
+    }
 }
 
 /// Iterator over a magnification sweep: one `SweepStep` per magnification, each solve
@@ -172,8 +183,9 @@ impl Sweep {
             return Err(PyStopIteration::new_err(()));
         };
         if state.requests.send(()).is_err() {
+            let end = state.ended(py);
             *guard = None;
-            return Err(PyStopIteration::new_err(()));
+            return Err(end);
         }
         let progress = self.progress.as_ref().map(|p| p.bind(py).clone());
         let (result, raised) = wait(
@@ -194,8 +206,9 @@ impl Sweep {
         }
         match result {
             None => {
+                let end = state.ended(py);
                 *guard = None;
-                Err(PyStopIteration::new_err(()))
+                Err(end)
             }
             Some(Ok(s)) => SweepStep::new(py, step, self.n, s),
             Some(Err(failure)) => {
@@ -268,7 +281,7 @@ pub fn sweep(
         settled,
         fields,
     };
-    std::thread::Builder::new()
+    let worker = std::thread::Builder::new()
         .name("persson-check sweep".to_string())
         .spawn(move || match pool {
             Some(pool) => pool.install(move || job.run(req_rx, out_tx, hook)),
@@ -280,6 +293,7 @@ pub fn sweep(
             requests: req_tx,
             results: Mutex::new(out_rx),
             next_step: 0,
+            worker: Some(worker),
         })),
         cancel,
         zetas: steps,

@@ -8,10 +8,8 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use persson_check::error::Error;
-use persson_check::report::{ReportOptions, SpeedChoice};
-use persson_check::speed::SpeedOptions;
+use persson_check::report::ReportOptions;
 use persson_check::tasks::parse::{self, MAX_SHARDS};
-use persson_check::tasks::surface::MAX_N;
 use persson_check::tasks::{check_out_dir, check_out_file, validations as task, Keywords};
 use persson_check::validation::source::Source;
 use persson_check::validation::{Registry, RunOptions};
@@ -45,8 +43,8 @@ fn run_definitions(
 ) -> persson_check::Result<Vec<persson_check::validation::Outcome>> {
     let registry = Registry::builtin();
     task::check(&registry, sources)?;
+    // Once cancelled, the worker's caller raises `KeyboardInterrupt` whatever this returns.
     let results = task::run(&registry, sources, opts, &|| !hook.cancelled());
-    hook.stop_if_cancelled();
     let mut outcomes = Vec::new();
     let mut failed = Vec::new();
     for (path, result) in results {
@@ -162,31 +160,17 @@ pub fn merge<'py>(
     outcomes.iter().map(|o| record(py, o)).collect()
 }
 
-/// The speed study's choice: skipped, or run on an `n x n` grid.
-fn speed_choice(speed: bool, speed_n: i64) -> PyResult<SpeedChoice> {
-    if !speed {
-        return Ok(SpeedChoice::Skip);
-    }
-    let n = parse::integer("speed_n", speed_n, 0, MAX_N as u64, &Keywords).or_raise()?;
-    let opts = SpeedOptions::with_n(n as usize);
-    opts.validate()
-        .map_err(|e| to_py(e.with_field("speed_n")))?;
-    Ok(SpeedChoice::Run(opts))
-}
-
 /// Writes the Markdown scorecard of the outcomes in folder `source`, as
-/// `persson-check report --from SOURCE --out OUT` does (`speed=False` is `--no-speed`;
-/// `golden` is a folder of `<name>.snap` files to compare golden values with), and
-/// returns a dict: path, validations, attention, files, speed_error.
+/// `persson-check report --from SOURCE --out OUT` does (`golden` is a folder of
+/// `<name>.snap` files to compare golden values with; a speed study in `source` is
+/// shown), reading `source` only, and returns a dict: path, validations, attention, files.
 #[pyfunction(name = "report")]
-#[pyo3(signature = (source, out, golden, speed, speed_n))]
+#[pyo3(signature = (source, out, golden))]
 pub fn report_md<'py>(
     py: Python<'py>,
     source: PathBuf,
     out: PathBuf,
     golden: Option<PathBuf>,
-    speed: bool,
-    speed_n: i64,
 ) -> PyResult<Bound<'py, PyDict>> {
     if !source.is_dir() {
         return Err(to_py(Error::invalid(
@@ -207,10 +191,9 @@ pub fn report_md<'py>(
         from: source,
         out,
         golden,
-        speed: speed_choice(speed, speed_n)?,
     };
     let summary = py
-        .detach(|| persson_check::report::write(&opts, &mut |_| {}))
+        .detach(|| persson_check::report::write(&opts))
         .or_raise()?;
     let d = PyDict::new(py);
     d.set_item("path", summary.path.display().to_string())?;
@@ -222,6 +205,5 @@ pub fn report_md<'py>(
         .map(|p| p.display().to_string())
         .collect();
     d.set_item("files", files)?;
-    d.set_item("speed_error", summary.speed_error)?;
     Ok(d)
 }

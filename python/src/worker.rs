@@ -2,11 +2,11 @@
 //! released, while the calling thread waits for it and checks for signals every
 //! [`POLL`]. On Ctrl-C (or an exception from a progress callback) it raises a flag that
 //! the watch of every solve sees ([`Hook::iteration`]; iteration 0 of every solve comes
-//! right after its set-up), and the worker stops at its next
-//! iteration by unwinding with [`Cancelled`] out of the solver's loop; the exception is
-//! raised once the worker has stopped.
+//! right after its set-up): the watch answers stop ([`StopReason::Cancelled`]), the solve
+//! ends in the library's `Error::Stopped`, which passes through sweeps and load searches
+//! to the worker, and the exception is raised once the worker has stopped.
 
-use std::panic::{catch_unwind, resume_unwind, AssertUnwindSafe};
+use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{self, Receiver, RecvTimeoutError, Sender};
 use std::sync::{Arc, Mutex};
@@ -17,15 +17,11 @@ use pyo3::prelude::*;
 
 use persson_check::error::Error;
 use persson_check::tasks::parse::{self, MAX_THREADS};
-use persson_check::tasks::solve::Progress;
+use persson_check::tasks::solve::{Progress, StopReason};
 use persson_check::tasks::sweep::SweepStep;
 use persson_check::tasks::Keywords;
 
 use crate::errors::{internal, interrupted, to_py};
-
-/// The payload a cancelled solve unwinds with (never printed: `resume_unwind` skips the
-/// panic hook).
-pub struct Cancelled;
 
 /// How often the waiting thread looks for signals.
 pub const POLL: Duration = Duration::from_millis(20);
@@ -62,13 +58,6 @@ impl Hook {
         self.cancel.load(Ordering::Relaxed)
     }
 
-    /// Stops the worker here (by unwinding) when it is to stop.
-    pub fn stop_if_cancelled(&self) {
-        if self.cancelled() {
-            resume_unwind(Box::new(Cancelled));
-        }
-    }
-
     /// Sends `text` to be written to Python's `sys.stderr` (a notebook shows it), when the
     /// caller asked for lines.
     pub fn line(&self, text: String) {
@@ -77,15 +66,19 @@ impl Hook {
         }
     }
 
-    /// A solver's iteration: stops here when the worker is to stop, and forwards every
-    /// [`PROGRESS_EVERY`]th iteration's progress when a callback wants it.
-    pub fn iteration(&self, p: Progress) {
-        self.stop_if_cancelled();
+    /// A solver's iteration: answers stop ([`StopReason::Cancelled`]) when the worker is
+    /// to stop, and forwards every [`PROGRESS_EVERY`]th iteration's progress when a
+    /// callback wants it.
+    pub fn iteration(&self, p: Progress) -> ControlFlow<StopReason> {
+        if self.cancelled() {
+            return ControlFlow::Break(StopReason::Cancelled);
+        }
         if p.iteration % PROGRESS_EVERY == 0 {
             if let Some(tx) = &self.progress {
                 let _ = tx.send(Event::Progress(p));
             }
         }
+        ControlFlow::Continue(())
     }
 }
 
@@ -100,11 +93,17 @@ pub enum Failure {
 }
 
 impl Failure {
-    /// The failure of a worker that unwound with `payload`.
-    pub fn from_panic(payload: Box<dyn std::any::Any + Send>) -> Self {
-        if payload.is::<Cancelled>() {
-            return Failure::Cancelled;
+    /// The failure of a worker that ended with the library's error `e`: a solve stopped
+    /// by the cancel flag is [`Failure::Cancelled`].
+    pub fn from_error(e: Error) -> Self {
+        match e.stopped() {
+            Some(StopReason::Cancelled) => Failure::Cancelled,
+            _ => Failure::Lib(e),
         }
+    }
+
+    /// The failure of a worker thread that panicked with `payload` (a bug).
+    pub fn from_panic(payload: Box<dyn std::any::Any + Send>) -> Self {
         let text = payload
             .downcast_ref::<String>()
             .cloned()
@@ -228,24 +227,26 @@ pub fn run_logged<T: Send>(
     let rx = Mutex::new(rx);
     let cancel = hook.cancel.clone();
     std::thread::scope(|scope| {
+        // A panic ends the worker thread (its sender goes with it, which ends the wait)
+        // and comes back from `join` as an internal error.
         let worker = scope.spawn(move || {
             let run = move || work(&hook);
-            let result = catch_unwind(AssertUnwindSafe(|| match &pool {
+            let result = match &pool {
                 Some(pool) => pool.install(run),
                 None => run(),
-            }));
+            };
             let _ = tx.send(Event::Done);
             result
         });
         let (_, raised) = wait(py, &rx, &cancel, progress, |e| {
             matches!(e, Event::Done).then_some(())
         });
-        let result = py.detach(|| worker.join()).unwrap_or_else(Err);
+        let result = py.detach(|| worker.join());
         if let Some(e) = raised {
             return Err(e);
         }
         match result {
-            Ok(r) => r.map_err(to_py),
+            Ok(r) => r.map_err(|e| Failure::from_error(e).into_py()),
             Err(payload) => Err(Failure::from_panic(payload).into_py()),
         }
     })

@@ -2,11 +2,12 @@
 //! (a 1D input, or 2D inputs with `--line`: [`persson_check::measured::line`]).
 
 use std::io::IsTerminal;
+use std::ops::ControlFlow;
 use std::path::PathBuf;
 
 use clap::Args as ClapArgs;
 use indicatif::{ProgressBar, ProgressStyle};
-use persson_check::error::{Error, Result};
+use persson_check::error::{Error, Result, StopReason};
 use persson_check::measured::check::{CheckOptions, Event, SurfaceCheck};
 use persson_check::measured::fill::Fill;
 use persson_check::measured::line::check::{LineOptions, DEFAULT_SEEDS, DEFAULT_SIDE};
@@ -138,7 +139,7 @@ pub fn run(args: Args) -> Result<()> {
         Input::Line(_) => usize::try_from(line.seeds).unwrap_or(usize::MAX),
     };
     let out = args.out.as_path();
-    let run = |events: &mut dyn FnMut(Event)| -> Result<SurfaceCheck> {
+    let run = |events: &mut dyn FnMut(Event) -> ControlFlow<StopReason>| -> Result<SurfaceCheck> {
         match &input {
             Input::Surface(scans) => check_surface(scans, &opts, Some(out), &FLAGS, events),
             Input::Line(profiles) => {
@@ -156,29 +157,32 @@ pub fn run(args: Args) -> Result<()> {
             .expect("static template"),
         );
         bar.set_prefix("check-surface");
-        let mut events = |e: Event| match e {
-            Event::Iteration {
-                scan, solver, load, ..
-            } => bar.set_message(format!(
-                "scan {}, {}, load {}",
-                scan + 1,
-                solver.name(),
-                load + 1
-            )),
-            Event::Outliers { .. } => {
-                if let Some(line) = load_line(count, &e) {
-                    bar.println(line);
+        let mut events = |e: Event| {
+            match e {
+                Event::Iteration {
+                    scan, solver, load, ..
+                } => bar.set_message(format!(
+                    "scan {}, {}, load {}",
+                    scan + 1,
+                    solver.name(),
+                    load + 1
+                )),
+                Event::Outliers { .. } => {
+                    if let Some(line) = load_line(count, &e) {
+                        bar.println(line);
+                    }
+                }
+                Event::Load { load, loads, .. } => {
+                    if let Some(line) = load_line(count, &e) {
+                        bar.println(line);
+                    }
+                    // Both curves end at the last load.
+                    if load + 1 == loads {
+                        bar.inc(1);
+                    }
                 }
             }
-            Event::Load { load, loads, .. } => {
-                if let Some(line) = load_line(count, &e) {
-                    bar.println(line);
-                }
-                // Both curves end at the last load.
-                if load + 1 == loads {
-                    bar.inc(1);
-                }
-            }
+            ControlFlow::Continue(())
         };
         let result = run(&mut events);
         bar.finish_and_clear();
@@ -189,6 +193,7 @@ pub fn run(args: Args) -> Result<()> {
             if let Some(line) = load_line(count, &e) {
                 eprintln!("check-surface: {line}");
             }
+            ControlFlow::Continue(())
         };
         run(&mut events)?
     };

@@ -1,34 +1,28 @@
-//! `report`: the scorecard of the outcomes in a folder (conventions, section 7, in the library's docs), with the
-//! speed-against-error study.
+//! `report`: the scorecard of the outcomes in a folder (conventions, section 7, in the
+//! library's docs). It only reads `--from` (the speed study shows when `speed --out` has
+//! written one there) and writes the scorecard and its figures beside `--out`.
 
 use std::path::PathBuf;
 
 use clap::Args as ClapArgs;
 use persson_check::error::{Error, Result};
-use persson_check::report::{write, ReportOptions, SpeedChoice};
-use persson_check::speed::SpeedOptions;
+use persson_check::report::{write, ReportOptions};
 use persson_check::tasks::check_out_file;
 
 /// Arguments of `report`.
 #[derive(ClapArgs, Debug)]
 pub struct Args {
-    /// Folder of the outcomes (<name>.json), as written by `validate --out`; the speed
-    /// study's files are written here too.
+    /// Folder of the outcomes (<name>.json), as written by `validate --out`, and of the
+    /// speed study if `speed --out` wrote one there; only read.
     #[arg(long, default_value = "out")]
     from: PathBuf,
-    /// The scorecard file (Markdown).
+    /// The scorecard file (Markdown); its figures are drawn beside it.
     #[arg(long)]
     out: PathBuf,
     /// Folder of golden snapshots (<name>.snap) to compare golden values with (default:
     /// `golden` if it exists, else the source tree's golden/ if present).
     #[arg(long)]
     golden: Option<PathBuf>,
-    /// Do not run the speed-against-error study (an earlier speed.json is shown, marked).
-    #[arg(long = "no-speed")]
-    no_speed: bool,
-    /// Points per side of the speed study's grid (its size study uses N/4 ... 2N).
-    #[arg(long = "speed-n", default_value_t = 256, allow_negative_numbers = true)]
-    speed_n: usize,
     /// History of the headlines, one JSON line per night: records these outcomes' headlines
     /// as tonight's line (created when missing) and adds the trend figure of the last
     /// nights to the scorecard.
@@ -61,21 +55,12 @@ pub fn run(args: Args) -> Result<()> {
         .into_iter()
         .find(|d| d.is_dir()),
     };
-    let speed = if args.no_speed {
-        SpeedChoice::Skip
-    } else {
-        let opts = SpeedOptions::with_n(args.speed_n);
-        // Everything the study's options hold derives from --speed-n.
-        opts.validate().map_err(|e| e.with_field("--speed-n"))?;
-        SpeedChoice::Run(opts)
-    };
     let opts = ReportOptions {
         from: args.from,
         out: args.out,
         golden,
-        speed,
     };
-    let summary = write(&opts, &mut |line| eprintln!("speed study: {line}"))?;
+    let summary = write(&opts)?;
     if let Some(history) = &args.history {
         persson_check::report::trend::append(&opts.out, &opts.from, history)?;
         outln!("recorded the headlines in {}", history.display());
@@ -95,12 +80,5 @@ pub fn run(args: Args) -> Result<()> {
     for line in &summary.attention {
         outln!("attention: {line}");
     }
-    match summary.speed_error {
-        None => Ok(()),
-        Some(e) => Err(Error::invalid(
-            "speed study",
-            e,
-            "to finish (the scorecard was written and says so)",
-        )),
-    }
+    Ok(())
 }

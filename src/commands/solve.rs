@@ -1,5 +1,6 @@
 //! `solve`: one hard-wall contact problem, at a given load or a given contact area.
 
+use std::ops::ControlFlow;
 use std::path::PathBuf;
 
 use clap::Args as ClapArgs;
@@ -100,6 +101,7 @@ pub fn run(args: Args) -> Result<()> {
             ));
             bar.tick();
         }
+        ControlFlow::Continue(())
     })?;
     bar.finish_and_clear();
     write_outputs(&args.out, &solved)

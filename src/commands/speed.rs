@@ -1,5 +1,6 @@
-//! `speed`: the speed-against-error study on its own, on chosen grids (the scorecard runs
-//! the same study at N = 256; `report --no-speed` shows a study written here).
+//! `speed`: the speed-against-error study, its own step of the main job: `speed --out DIR`
+//! writes `DIR/speed.json`, one CSV per study and the figures (each file atomically), and
+//! `report --from DIR` shows it.
 
 use std::path::PathBuf;
 
@@ -37,7 +38,8 @@ pub fn run(args: Args) -> Result<()> {
     opts.validate().map_err(|e| match &e {
         Error::InvalidInput { field, .. } => {
             let flag = match field.as_str() {
-                "speed n" => "--n",
+                // The grid's own check names it `n`.
+                "n" | "speed n" => "--n",
                 "speed floor sizes" => "--floor-n",
                 "speed repeats" => "--repeats",
                 other => other,

@@ -80,7 +80,8 @@ pub struct AreaSolution {
 /// # Errors
 ///
 /// If the target area is outside (0, 1) or the first load is not positive
-/// ([`Error::InvalidInput`]), a solve fails (its error), or the search ends without
+/// ([`Error::InvalidInput`]), a solve fails or is stopped (its error, [`Error::Stopped`]
+/// passed on as it is), or the search ends without
 /// bracketing the area or within its budget of solves ([`Error::LoadSearch`]).
 pub fn solve_for_area(
     solver: &mut dyn Solver,

@@ -288,7 +288,8 @@ impl<'a, R: Roughness> Sweep<'a, R> {
     ///
     /// # Errors
     ///
-    /// If `p0` is not positive, or the solve fails (see [`Solver::solve`]).
+    /// If `p0` is not positive, or the solve fails or is stopped (see [`Solver::solve`]);
+    /// the sweep then keeps its previous solution as the next step's start.
     pub fn solve_at(&mut self, zeta: f64, p0: f64) -> Result<&ContactSolution> {
         self.set_zeta(zeta);
         let predicted = self.predicted();

@@ -10,9 +10,10 @@
 //! load that converged: one load never costs the others.
 //!
 //! A time budget stops a solve from its per-iteration monitor: past the deadline the
-//! monitor unwinds out of the solver's loop with a private payload (`OutOfTime`), which
-//! [`solve_bounded`] catches (the Python package stops a solve on Ctrl-C the same way);
-//! the solver is then built afresh for the next load.
+//! monitor answers stop ([`StopReason::OutOfTime`]) and the solve ends in
+//! [`Error::Stopped`], which [`solve_bounded`] reports as over time; the solver is left
+//! ready, and the next load starts warm from the last that converged. A solve cancelled
+//! from outside (Ctrl-C in Python, through `monitor`) ends the check with its error.
 //!
 //! The energy of the roughness is that of the pressure beyond a flat punch's: with
 //! `p_f` the pressure under a flat rigid punch of the window's shape at unit nominal load,
@@ -27,7 +28,7 @@
 //! `p0^2 L / E*`, with the pressure rising towards the window's edges), is left out: an
 //! infinite rough surface under a uniform load has none.
 
-use std::panic::{catch_unwind, resume_unwind, AssertUnwindSafe};
+use std::ops::ControlFlow;
 use std::time::{Duration, Instant};
 
 use rustfft::num_complex::Complex64;
@@ -39,7 +40,7 @@ use crate::engine::contact::{ContactProblem, ContactSolution, Model};
 use crate::engine::grid::Grid;
 use crate::engine::solver::{ConstrainedCg, SCAN_STAGNATION};
 use crate::engine::solver::{Progress, SolveOptions, Solver, SolverKind, Start};
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, StopReason};
 
 /// One scan as a contact problem.
 pub struct Body {
@@ -238,38 +239,37 @@ impl Curve {
     }
 }
 
-/// The payload a solve over its time budget unwinds with (never printed:
-/// `resume_unwind` skips the panic hook).
-struct OutOfTime;
-
 /// `engine.solve_monitored`, stopped once `deadline` has passed: then the error says so,
-/// with the iterations done and the last residual estimate.
+/// with the iterations done and the last residual estimate. `monitor` sees every
+/// iteration first, and may stop the solve itself (a cancel), which ends in its
+/// [`Error::Stopped`].
 pub fn solve_bounded(
     engine: &mut dyn Solver,
     problem: &ContactProblem,
     start: Start,
     opts: &SolveOptions,
     deadline: Option<Instant>,
-    monitor: &mut dyn FnMut(Progress),
+    monitor: &mut dyn FnMut(Progress) -> ControlFlow<StopReason>,
 ) -> std::result::Result<ContactSolution, SolveEnd> {
-    let mut last = Progress {
-        iteration: 0,
-        residual: f64::NAN,
-    };
-    let run = catch_unwind(AssertUnwindSafe(|| {
-        engine.solve_monitored(problem, start, opts, &mut |p| {
-            last = p;
-            monitor(p);
-            if deadline.is_some_and(|d| Instant::now() > d) {
-                resume_unwind(Box::new(OutOfTime));
-            }
-        })
-    }));
+    let run = engine.solve_monitored(problem, start, opts, &mut |p| {
+        monitor(p)?;
+        if deadline.is_some_and(|d| Instant::now() > d) {
+            return ControlFlow::Break(StopReason::OutOfTime);
+        }
+        ControlFlow::Continue(())
+    });
     match run {
-        Ok(Ok(solution)) => Ok(solution),
-        Ok(Err(e)) => Err(SolveEnd::Error(e)),
-        Err(payload) if payload.is::<OutOfTime>() => Err(SolveEnd::OutOfTime(last)),
-        Err(payload) => resume_unwind(payload),
+        Ok(solution) => Ok(solution),
+        Err(Error::Stopped {
+            reason: StopReason::OutOfTime,
+            iteration,
+            residual,
+            ..
+        }) => Err(SolveEnd::OutOfTime(Progress {
+            iteration,
+            residual,
+        })),
+        Err(e) => Err(SolveEnd::Error(e)),
     }
 }
 
@@ -316,7 +316,7 @@ pub fn solve_curve(
     opts: SolveOptions,
     budget: &[Option<Duration>],
     on_load: &mut dyn FnMut(usize, &Outcome),
-    monitor: &mut dyn FnMut(usize, Progress),
+    monitor: &mut dyn FnMut(usize, Progress) -> ControlFlow<StopReason>,
 ) -> Result<Curve> {
     let timer = Instant::now();
     let tol = opts.tol;
@@ -422,8 +422,9 @@ pub fn solve_curve(
         };
         if outcome.is_err() {
             pressures.push(None);
-            // The solver's state is the failed solve's: the next load starts afresh.
-            engine = scan_solver(solver);
+            // The next load starts warm from the last that converged, with nothing carried
+            // from the solves after it (GFMD's step), as a solver built afresh would.
+            engine.carry(None);
         }
         on_load(i, &outcome);
         points.push(outcome);
@@ -547,7 +548,7 @@ mod tests {
                 SolveOptions::with_tol(1e-8),
                 &[],
                 &mut |i, o| seen.push((i, o.is_ok())),
-                &mut |_, _| {},
+                &mut |_, _| ControlFlow::Continue(()),
             )
             .unwrap();
             assert_eq!(seen, vec![(0, true), (1, true), (2, true)]);
@@ -579,7 +580,7 @@ mod tests {
             SolveOptions::with_tol(1e-8),
             &budget,
             &mut |_, _| {},
-            &mut |_, _| {},
+            &mut |_, _| ControlFlow::Continue(()),
         )
         .unwrap();
         let failed = curve.points[0].as_ref().unwrap_err();
@@ -599,6 +600,30 @@ mod tests {
     }
 
     #[test]
+    fn a_cancelled_solve_ends_the_curve_with_its_stop() {
+        let body = Body::new(&scan(32, Boundary::Periodic)).unwrap();
+        let mut loads_ended = 0;
+        let e = solve_curve(
+            &body,
+            &[0.02, 0.05],
+            SolverKind::Cg,
+            SolveOptions::with_tol(1e-8),
+            &[None, None],
+            &mut |_, _| loads_ended += 1,
+            &mut |_, p| {
+                if p.iteration == 1 {
+                    ControlFlow::Break(StopReason::Cancelled)
+                } else {
+                    ControlFlow::Continue(())
+                }
+            },
+        )
+        .unwrap_err();
+        assert_eq!(e.stopped(), Some(StopReason::Cancelled), "{e}");
+        assert_eq!(loads_ended, 0, "a cancel is not a failed load");
+    }
+
+    #[test]
     fn a_load_over_its_iteration_budget_reports_the_solver_state() {
         let body = Body::new(&scan(32, Boundary::Free)).unwrap();
         let opts = SolveOptions {
@@ -612,7 +637,7 @@ mod tests {
             opts,
             &[],
             &mut |_, _| {},
-            &mut |_, _| {},
+            &mut |_, _| ControlFlow::Continue(()),
         )
         .unwrap();
         let failed = curve.points[0].as_ref().unwrap_err();

@@ -421,7 +421,7 @@ mod tests {
                 crate::engine::solver::SolveOptions::with_tol(1e-6),
                 budget,
                 &mut |_, _| {},
-                &mut |_, _| {},
+                &mut |_, _| std::ops::ControlFlow::Continue(()),
             )
             .unwrap()
         };
@@ -507,7 +507,7 @@ mod tests {
             reentry: false,
             ..CheckOptions::default()
         };
-        let c = check(&[scan], &opts, &mut |_| {}).unwrap();
+        let c = check(&[scan], &opts, &mut |_| std::ops::ControlFlow::Continue(())).unwrap();
         for w in &c.warnings {
             assert!(
                 w.message.contains(&super::super::units::eng(w.value)),

@@ -14,6 +14,7 @@
 //! [`CROSS_CHECK_MIN_S`]; only the headline's time where the headline failed), beyond
 //! which it is stopped and recorded as failed.
 
+use std::ops::ControlFlow;
 use std::time::Duration;
 
 use super::body::{solve_curve, Body, Curve, Outcome};
@@ -26,7 +27,7 @@ use super::scan::Scan;
 use super::spikes::{despike, Outliers};
 use super::theory::{loads, Theory};
 use crate::engine::solver::{Progress, SolveOptions, SolverKind};
-use crate::error::Result;
+use crate::error::{Result, StopReason};
 
 /// The cross-check's time budget at a load, in multiples of the headline solve's time
 /// there: a cross-check that would take longer is stopped and recorded as failed.
@@ -80,11 +81,13 @@ pub enum Event<'a> {
 
 /// Checks the surface of `scans` (one surface, several scans of it; every point
 /// measured or filled, see [`super::fill`]). `events` sees every iteration and every
-/// load's end.
+/// load's end; its answer to an iteration may stop that solve
+/// ([`StopReason::OutOfTime`]: the load fails over time; [`StopReason::Cancelled`]: the
+/// check ends in [`crate::Error::Stopped`]), its answers to other events are not read.
 pub fn check(
     scans: &[Scan],
     opts: &CheckOptions,
-    events: &mut dyn FnMut(Event),
+    events: &mut dyn FnMut(Event) -> ControlFlow<StopReason>,
 ) -> Result<SurfaceCheck> {
     let timer = std::time::Instant::now();
     let pixel = validate(scans, opts)?;
@@ -99,7 +102,8 @@ pub fn check(
         let spectrum = ScanSpectrum::new(&heights, shape, pixel, opts.boundary)?;
         let mut found = Outliers::of(&spectrum.heights);
         found.despiked = despiked;
-        events(Event::Outliers {
+        // Only an iteration's answer is read (see above).
+        let _ = events(Event::Outliers {
             scan: k,
             outliers: &found,
         });
@@ -206,7 +210,7 @@ fn run_curve(
     opts: &CheckOptions,
     budget: &[Option<Duration>],
     scan: usize,
-    events: &mut dyn FnMut(Event),
+    events: &mut dyn FnMut(Event) -> ControlFlow<StopReason>,
 ) -> Result<Curve> {
     let headline = budget.is_empty();
     let events = std::cell::RefCell::new(events);
@@ -220,14 +224,14 @@ fn run_curve(
         },
         budget,
         &mut |load, outcome| {
-            (events.borrow_mut())(Event::Load {
+            let _ = (events.borrow_mut())(Event::Load {
                 scan,
                 solver,
                 headline,
                 load: index[load],
                 loads: of,
                 outcome,
-            })
+            });
         },
         &mut |load, progress| {
             (events.borrow_mut())(Event::Iteration {

@@ -5,13 +5,16 @@
 //! not reproduced, the paper's claims one row each ([`claims`]), one table row per
 //! validation, a section per validation (account,
 //! secondary statistics, checks, figures, the scene as run), the statistics measured on
-//! several grids (discretisation error), the speed-against-error study ([`crate::speed`]),
+//! several grids (discretisation error), the speed-against-error study ([`crate::speed`])
+//! when the folder holds one (`speed.json`, written by `persson-check speed --out DIR`),
 //! and the provenance needed to reproduce any row.
 //!
-//! The report formats outcomes and computes no physics: every number in it comes from an
-//! outcome file, a golden snapshot (`golden/<name>.snap`, see [`GoldenMatch`]) or the speed
-//! study. Links to figures and tables are relative to the scorecard's folder. The file is
-//! written atomically.
+//! The report only reads and formats: it runs nothing and computes no physics. Every
+//! number in it comes from an outcome file, a golden snapshot (`golden/<name>.snap`, see
+//! [`GoldenMatch`]) or the speed study's file. It reads the outcomes' folder (`from`) and
+//! writes nothing there: the scorecard, atomically, and its own figures (the resolution
+//! figures, under `resolution/`) go to the scorecard's folder. Links to figures and tables
+//! are relative to the scorecard's folder.
 
 mod attention;
 pub mod claims;
@@ -40,17 +43,8 @@ use self::format::{link, md};
 use self::resolution::{resolution_figure, resolution_studies, Resolution};
 use crate::error::{Error, Result};
 use crate::provenance::{self, Machine};
-use crate::speed::{SpeedOptions, SpeedStudy};
+use crate::speed::SpeedStudy;
 use crate::validation::{Outcome, Verdict};
-
-/// Whether `report` runs the speed study.
-#[derive(Debug, Clone, PartialEq)]
-pub enum SpeedChoice {
-    /// Run it with these options and write its files into the outcomes' folder.
-    Run(SpeedOptions),
-    /// Do not run it; a `speed.json` already in the folder is shown, marked as earlier.
-    Skip,
-}
 
 /// What `report` reads and writes.
 #[derive(Debug, Clone)]
@@ -61,8 +55,6 @@ pub struct ReportOptions {
     pub out: PathBuf,
     /// Folder of golden snapshots (`<name>.snap`), if any.
     pub golden: Option<PathBuf>,
-    /// The speed study.
-    pub speed: SpeedChoice,
 }
 
 /// What `report` did.
@@ -79,23 +71,26 @@ pub struct ReportSummary {
     /// One line per inconclusive verdict, headline verdict not the paper's, failed guard,
     /// disagreeing solver or golden mismatch.
     pub attention: Vec<String>,
-    /// Files written besides the scorecard (speed study, resolution figures).
+    /// Files written besides the scorecard (the resolution figures), in its folder.
     pub files: Vec<PathBuf>,
-    /// The speed study's error, if it was run and failed.
-    pub speed_error: Option<String>,
 }
 
-/// The speed study as the scorecard shows it.
+/// The speed study as the scorecard shows it: the one in the outcomes' folder, none, or
+/// one that could not be read.
 #[derive(Debug, Clone)]
 enum SpeedSection {
-    Fresh(Box<SpeedStudy>),
-    Earlier(Box<SpeedStudy>),
-    Skipped,
-    Failed(String),
+    Found(Box<SpeedStudy>),
+    Absent,
+    Unreadable(String),
 }
 
-/// Writes the scorecard; `progress` receives a line per step of the speed study.
-pub fn write(opts: &ReportOptions, progress: &mut dyn FnMut(&str)) -> Result<ReportSummary> {
+/// Writes the scorecard of the outcomes in `opts.from` to `opts.out`, with its figures
+/// beside it; reads `from` only.
+///
+/// # Errors
+///
+/// If `from` holds no outcome or an unreadable one, or a file cannot be written.
+pub fn write(opts: &ReportOptions) -> Result<ReportSummary> {
     let loaded = read_outcomes(&opts.from)?;
     if loaded.is_empty() {
         return Err(Error::bad_file(
@@ -103,17 +98,17 @@ pub fn write(opts: &ReportOptions, progress: &mut dyn FnMut(&str)) -> Result<Rep
             "no outcomes (<name>.json) here; run `persson-check validate --out DIR` first",
         ));
     }
-    let mut files = Vec::new();
-    let speed = prepare_speed(opts, progress, &mut files)?;
-    let resolution = resolution_figures(&loaded, &opts.from, &mut files)?;
-    let golden: Vec<GoldenMatch> = loaded
-        .iter()
-        .map(|l| GoldenMatch::of(&l.outcome, opts.golden.as_deref()))
-        .collect();
     let base = format::absolute(&opts.out)
         .parent()
         .map(Path::to_path_buf)
         .unwrap_or_default();
+    let mut files = Vec::new();
+    let speed = read_speed(&opts.from);
+    let resolution = resolution_figures(&loaded, &base, &mut files)?;
+    let golden: Vec<GoldenMatch> = loaded
+        .iter()
+        .map(|l| GoldenMatch::of(&l.outcome, opts.golden.as_deref()))
+        .collect();
     let attention = attention::attention(&loaded, &golden);
     let text = Scorecard {
         loaded: &loaded,
@@ -136,51 +131,31 @@ pub fn write(opts: &ReportOptions, progress: &mut dyn FnMut(&str)) -> Result<Rep
         claims: claims::counts(&outcomes),
         attention,
         files,
-        speed_error: match speed {
-            SpeedSection::Failed(e) => Some(e),
-            _ => None,
-        },
     })
 }
 
-/// Runs the speed study, or reads an earlier one; adds the files written to `files`.
-fn prepare_speed(
-    opts: &ReportOptions,
-    progress: &mut dyn FnMut(&str),
-    files: &mut Vec<PathBuf>,
-) -> Result<SpeedSection> {
-    Ok(match &opts.speed {
-        SpeedChoice::Run(speed_opts) => match crate::speed::run(speed_opts, progress) {
-            Ok(study) => {
-                files.extend(study.write(&opts.from)?);
-                SpeedSection::Fresh(Box::new(study))
-            }
-            Err(e) => SpeedSection::Failed(e.to_string()),
-        },
-        SpeedChoice::Skip => {
-            let path = opts.from.join(SpeedStudy::JSON);
-            if !path.exists() {
-                SpeedSection::Skipped
-            } else {
-                match SpeedStudy::read(&path) {
-                    Ok(study) => SpeedSection::Earlier(Box::new(study)),
-                    Err(e) => SpeedSection::Failed(format!("earlier study unreadable: {e}")),
-                }
-            }
-        }
-    })
+/// The speed study in `from` (`speed.json`), if there is one.
+fn read_speed(from: &Path) -> SpeedSection {
+    let path = from.join(SpeedStudy::JSON);
+    if !path.exists() {
+        return SpeedSection::Absent;
+    }
+    match SpeedStudy::read(&path) {
+        Ok(study) => SpeedSection::Found(Box::new(study)),
+        Err(e) => SpeedSection::Unreadable(e.to_string()),
+    }
 }
 
 /// The statistics measured on several grids, each with its figure drawn under
-/// `from/resolution`; adds the files written to `files`.
+/// `dir/resolution` (`dir`: the scorecard's folder); adds the files written to `files`.
 fn resolution_figures(
     loaded: &[Loaded],
-    from: &Path,
+    dir: &Path,
     files: &mut Vec<PathBuf>,
 ) -> Result<Vec<Resolution>> {
     let mut resolution = resolution_studies(loaded);
     for r in &mut resolution {
-        let paths = crate::plot::render(&resolution_figure(r), &from.join("resolution"))?;
+        let paths = crate::plot::render(&resolution_figure(r), &dir.join("resolution"))?;
         r.figure = paths
             .iter()
             .find(|p| p.extension().is_some_and(|e| e == "png"))

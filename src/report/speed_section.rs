@@ -22,27 +22,37 @@ impl Scorecard<'_> {
         self.speed_files(s);
     }
 
-    /// The study to show, after saying whether it is from an earlier run; `None`, said,
-    /// when there is none.
+    /// The study in the outcomes' folder, after saying where it is from; `None`, with how to
+    /// produce one, when there is none.
     fn speed_study(&self, s: &mut String) -> Option<&SpeedStudy> {
+        let from = &self.opts.from;
         match self.speed {
-            SpeedSection::Fresh(study) => Some(study),
-            SpeedSection::Earlier(study) => {
+            SpeedSection::Found(study) => {
                 let _ = writeln!(
                     s,
-                    "**Not run for this scorecard** (`--no-speed`); shown from an earlier run \
-                     started {} (`{}`).\n",
-                    study.started_at,
-                    self.opts.from.join(SpeedStudy::JSON).display()
+                    "From `{}`, run started {}.\n",
+                    from.join(SpeedStudy::JSON).display(),
+                    study.started_at
                 );
                 Some(study)
             }
-            SpeedSection::Skipped => {
-                let _ = writeln!(s, "Not run (`--no-speed`), and no earlier study found.\n");
+            SpeedSection::Absent => {
+                let _ = writeln!(
+                    s,
+                    "No speed study in `{dir}`. `persson-check speed --out {dir}` runs it \
+                     (`--n N` sets its grid) and writes `speed.json` there; then run \
+                     `report` again.\n",
+                    dir = from.display()
+                );
                 None
             }
-            SpeedSection::Failed(e) => {
-                let _ = writeln!(s, "**The speed study failed:** {}\n", md(e));
+            SpeedSection::Unreadable(e) => {
+                let _ = writeln!(
+                    s,
+                    "**The speed study in `{}` could not be read:** {}\n",
+                    from.join(SpeedStudy::JSON).display(),
+                    md(e)
+                );
                 None
             }
         }

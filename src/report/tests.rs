@@ -163,26 +163,35 @@ fn scorecard_states_every_verdict_and_links_existing_files() {
     let (from, golden) = fixture(root.path());
     // The scorecard lives in another folder: links must climb out of it.
     let out = root.path().join("review").join("scorecard.md");
+    // The speed study as `speed --out` leaves it in the outcomes' folder.
+    crate::speed::tiny_study().write(&from).unwrap();
     let opts = ReportOptions {
         from: from.clone(),
         out: out.clone(),
         golden: Some(golden),
-        speed: SpeedChoice::Run(SpeedOptions::tiny()),
     };
-    let summary = write(&opts, &mut |_| {}).unwrap();
+    let summary = write(&opts).unwrap();
     assert_eq!(
         summary.validations,
         ["a_holds", "b_violated", "c_inconclusive", "d_full"]
     );
-    assert_eq!(summary.speed_error, None);
     let text = std::fs::read_to_string(&out).unwrap();
     table_rows_state_verdicts(&text);
     summary_names_what_needs_attention(&text, &summary);
-    sections_show_account_details_and_resolution(&text, &from);
+    sections_show_account_details_and_resolution(&text, out.parent().unwrap());
     links_point_at_existing_files(&text, &out);
     speed_and_provenance_are_shown(&text, &from);
-    // Written atomically: nothing else in the scorecard's folder.
-    assert_eq!(std::fs::read_dir(out.parent().unwrap()).unwrap().count(), 1);
+    // Written atomically: nothing else in the scorecard's folder than it and its figures.
+    let mut beside: Vec<String> = std::fs::read_dir(out.parent().unwrap())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    beside.sort();
+    assert_eq!(beside, ["resolution", "scorecard.md"]);
+    assert!(summary
+        .files
+        .iter()
+        .all(|f| f.starts_with(out.parent().unwrap())));
 }
 
 /// Columns: validation, assumption, statistic, Persson, measured (solver), cross-check,
@@ -247,8 +256,9 @@ fn summary_names_what_needs_attention(text: &str, summary: &ReportSummary) {
     assert!(!summary.attention.iter().any(|a| a.contains("guard")));
 }
 
-/// Sections: account, details, resolution study, missing files.
-fn sections_show_account_details_and_resolution(text: &str, from: &Path) {
+/// Sections: account, details, resolution study (its figure in the scorecard's folder
+/// `dir`), missing files.
+fn sections_show_account_details_and_resolution(text: &str, dir: &Path) {
     assert!(text.contains("## a\\_holds: Title of a\\_holds"));
     assert!(text.contains("Account of a\\_holds: kappa = 2.5 +- 0.05."));
     assert!(text.contains("| largest deviation | 0.08 (no error estimate) | 1 | 2 | — |"));
@@ -259,7 +269,7 @@ fn sections_show_account_details_and_resolution(text: &str, from: &Path) {
         ),
         "resolution row"
     );
-    assert!(from.join("resolution/resolution_a_holds.png").exists());
+    assert!(dir.join("resolution/resolution_a_holds.png").exists());
     assert!(text.contains("**Missing files**") && text.contains("d\\_full.csv"));
 }
 
@@ -283,6 +293,10 @@ fn links_point_at_existing_files(text: &str, out: &Path) {
 /// The speed section and the provenance block.
 fn speed_and_provenance_are_shown(text: &str, from: &Path) {
     assert!(text.contains("## Speed against error"));
+    assert!(text.contains(&format!(
+        "From `{}`, run started",
+        from.join("speed.json").display()
+    )));
     assert!(text.contains("**Times are from one run on a shared machine**"));
     assert!(text.contains("exponent k (iterations ~ N^k)"));
     assert!(text.contains("| cg | 1e-4 |") && text.contains("| gfmd | 1e-8 |"));
@@ -304,7 +318,7 @@ fn speed_and_provenance_are_shown(text: &str, from: &Path) {
 }
 
 #[test]
-fn skipped_speed_study_is_said_or_shown_as_earlier() {
+fn a_missing_speed_study_is_said_with_how_to_produce_it() {
     let root = tempfile::tempdir().unwrap();
     let (from, _) = fixture(root.path());
     let out = from.join("scorecard.md");
@@ -312,23 +326,25 @@ fn skipped_speed_study_is_said_or_shown_as_earlier() {
         from: from.clone(),
         out: out.clone(),
         golden: None,
-        speed: SpeedChoice::Skip,
     };
-    write(&opts, &mut |_| {}).unwrap();
+    write(&opts).unwrap();
     let text = std::fs::read_to_string(&out).unwrap();
-    assert!(text.contains("Not run (`--no-speed`), and no earlier study found."));
+    assert!(text.contains(&format!(
+        "No speed study in `{dir}`. `persson-check speed --out {dir}` runs it",
+        dir = from.display()
+    )));
     assert_eq!(row(&text, "a_holds")[9], "not checked", "no golden folder");
     // Links from a scorecard inside the outcomes' folder are plain relative paths.
     assert!(text.contains("](a_holds/fig.png)"));
 
-    let study = crate::speed::run(&SpeedOptions::tiny(), &mut |_| {}).unwrap();
-    study.write(&from).unwrap();
-    write(&opts, &mut |_| {}).unwrap();
+    // JSON, but not a study (a file that is not JSON at all is refused as a damaged outcome).
+    std::fs::write(from.join("speed.json"), r#"{"tolerance": "no rows"}"#).unwrap();
+    write(&opts).unwrap();
     let text = std::fs::read_to_string(&out).unwrap();
     assert!(
-        text.contains("**Not run for this scorecard** (`--no-speed`); shown from an earlier run")
+        text.contains("**The speed study in `"),
+        "an unreadable study is said"
     );
-    assert!(text.contains(&study.started_at));
 }
 
 #[test]
@@ -338,16 +354,15 @@ fn unreadable_outcomes_and_empty_folders_are_errors() {
         from: root.path().to_path_buf(),
         out: root.path().join("s.md"),
         golden: None,
-        speed: SpeedChoice::Skip,
     };
-    let e = write(&opts, &mut |_| {}).unwrap_err().to_string();
+    let e = write(&opts).unwrap_err().to_string();
     assert!(e.contains("no outcomes"), "{e}");
     std::fs::write(
         root.path().join("broken.json"),
         br#"{"name": "broken", "statistic": "s", "verdict": "maybe"}"#,
     )
     .unwrap();
-    let e = write(&opts, &mut |_| {}).unwrap_err().to_string();
+    let e = write(&opts).unwrap_err().to_string();
     assert!(e.contains("broken.json") && e.contains("maybe"), "{e}");
     assert!(!root.path().join("s.md").exists());
 }
@@ -469,9 +484,8 @@ fn one_realization_shows_no_error_bar_and_no_nan() {
         from: root.path().to_path_buf(),
         out: root.path().join("s.md"),
         golden: None,
-        speed: SpeedChoice::Skip,
     };
-    write(&opts, &mut |_| {}).unwrap();
+    write(&opts).unwrap();
     let text = std::fs::read_to_string(root.path().join("s.md")).unwrap();
     assert!(!text.contains("NaN"), "NaN in the scorecard");
     assert!(text.contains("one realization: no error bar"));
@@ -537,9 +551,8 @@ fn outcomes_with_null_or_absent_error_bars_are_read_and_say_so() {
         from: root.path().to_path_buf(),
         out: out.clone(),
         golden: None,
-        speed: SpeedChoice::Skip,
     };
-    let summary = write(&opts, &mut |_| {}).unwrap();
+    let summary = write(&opts).unwrap();
     assert_eq!(summary.validations, ["one_seed", "one_seed_absent"]);
     let text = std::fs::read_to_string(&out).unwrap();
     let nan = text

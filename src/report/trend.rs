@@ -221,8 +221,9 @@ pub fn section(
 }
 
 /// Records the headlines of the outcomes in `from` as tonight's line of `history` (created
-/// when missing), draws the trend of the last [`WINDOW`] nights into `from/trend/` and
-/// appends its section to the scorecard `scorecard`; the files drawn.
+/// when missing), draws the trend of the last [`WINDOW`] nights into `trend/` beside the
+/// scorecard `scorecard` (`from` is only read) and appends its section to the scorecard;
+/// the files drawn.
 pub fn append(scorecard: &Path, from: &Path, history: &Path) -> Result<Vec<PathBuf>> {
     let now = SystemTime::now()
         .duration_since(UNIX_EPOCH)
@@ -233,15 +234,15 @@ pub fn append(scorecard: &Path, from: &Path, history: &Path) -> Result<Vec<PathB
     record(&mut nights, tonight);
     write_history(history, &nights)?;
     let window = &nights[nights.len().saturating_sub(WINDOW)..];
-    let files = crate::plot::render(&trend_figure(window, &keys), &from.join("trend"))?;
+    let base = super::format::absolute(scorecard)
+        .parent()
+        .map(Path::to_path_buf)
+        .unwrap_or_default();
+    let files = crate::plot::render(&trend_figure(window, &keys), &base.join("trend"))?;
     let png = files
         .iter()
         .find(|p| p.extension().is_some_and(|e| e == "png"))
         .cloned()
-        .unwrap_or_default();
-    let base = super::format::absolute(scorecard)
-        .parent()
-        .map(Path::to_path_buf)
         .unwrap_or_default();
     let mut text = std::fs::read_to_string(scorecard).map_err(|e| Error::io(scorecard, e))?;
     text.push('\n');

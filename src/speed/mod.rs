@@ -242,3 +242,11 @@ fn fit_exponent(kind: SolverKind, sizes: &[SizeRow]) -> SizeFit {
         points: x.len(),
     }
 }
+
+/// The tiny study ([`SpeedOptions::tiny`]), run once per test process: the fixture of the
+/// tests of what reads a study (the scorecard), which run nothing themselves.
+#[cfg(test)]
+pub(crate) fn tiny_study() -> &'static SpeedStudy {
+    static STUDY: std::sync::OnceLock<SpeedStudy> = std::sync::OnceLock::new();
+    STUDY.get_or_init(|| run(&SpeedOptions::tiny(), &mut |_| {}).expect("the tiny study runs"))
+}

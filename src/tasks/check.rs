@@ -6,10 +6,11 @@
 //! (which inputs are line scans: [`crate::measured::line::profiles`]; [`read_input`]).
 
 use std::io::Write as _;
+use std::ops::ControlFlow;
 use std::path::Path;
 
 use super::Spelling;
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, StopReason};
 use crate::measured::check::{check, CheckOptions, Event, SurfaceCheck};
 use crate::measured::fill::{fill, Fill};
 use crate::measured::line::check::{LineCheck, LineOptions};
@@ -86,19 +87,20 @@ pub fn fill_scans(scans: &[Scan], how: Fill, s: &dyn Spelling) -> Result<Vec<Sca
 
 /// Checks the surface of `scans` with `opts`; writes the page and its files into `out`
 /// when given (and `solves.jsonl` there as the solves end). `events` sees every
-/// iteration and every load's end.
+/// iteration and every load's end; its answer to an iteration may stop the solve
+/// ([`crate::measured::check::check`]).
 ///
 /// # Errors
 ///
 /// If `out` is not a folder, the scans or the options are out of range (checked before
-/// any solve), the check itself fails (a failed solve is recorded, not an error), or
-/// the page cannot be written.
+/// any solve), the check itself fails (a failed solve is recorded, not an error), a solve
+/// is cancelled ([`Error::Stopped`]), or the page cannot be written.
 pub fn check_surface(
     scans: &[Scan],
     opts: &CheckOptions,
     out: Option<&Path>,
     s: &dyn Spelling,
-    events: &mut dyn FnMut(Event),
+    events: &mut dyn FnMut(Event) -> ControlFlow<StopReason>,
 ) -> Result<SurfaceCheck> {
     if let Some(dir) = out {
         super::check_out_dir(dir, s)?;
@@ -132,7 +134,7 @@ pub fn check_line(
     line: &LineOptions,
     out: Option<&Path>,
     s: &dyn Spelling,
-    events: &mut dyn FnMut(Event),
+    events: &mut dyn FnMut(Event) -> ControlFlow<StopReason>,
 ) -> Result<LineCheck> {
     if let Some(dir) = out {
         super::check_out_dir(dir, s)?;
@@ -152,14 +154,14 @@ pub fn check_line(
 }
 
 /// A check run with the events it reports.
-type Run<'a, T> = &'a mut dyn FnMut(&mut dyn FnMut(Event)) -> Result<T>;
+type Run<'a, T> = &'a mut dyn FnMut(&mut dyn FnMut(Event) -> ControlFlow<StopReason>) -> Result<T>;
 
 /// `run` with every load's end appended to `solves.jsonl` in `out` (the scans named
 /// `names`) and passed on to `events`.
 fn logged<T>(
     names: &[String],
     out: Option<&Path>,
-    events: &mut dyn FnMut(Event),
+    events: &mut dyn FnMut(Event) -> ControlFlow<StopReason>,
     run: Run<'_, T>,
 ) -> Result<T> {
     let mut log = match out {
@@ -173,7 +175,7 @@ fn logged<T>(
                 appended = log.append(names, &e);
             }
         }
-        events(e);
+        events(e)
     })?;
     appended?;
     Ok(result)

@@ -15,6 +15,7 @@
 //! the previous solution.
 
 use std::fmt;
+use std::ops::ControlFlow;
 use std::path::Path;
 
 use serde::Serialize;
@@ -31,6 +32,8 @@ use super::{Flags, Spelling};
 
 /// A solver's progress, as a front end's `watch` sees it.
 pub use crate::engine::solver::Progress;
+/// Why a front end's `watch` stops a solve (its answer `ControlFlow::Break(reason)`).
+pub use crate::error::StopReason;
 
 /// A solve as a front end asks for it: the values the user gave, `None` where not given.
 /// [`SolveArgs::check`] checks them once, before any work; [`Checked::settle`] fills the
@@ -131,13 +134,14 @@ impl Settled {
     }
 
     /// Solves `surface` cold; `watch` sees the load `p0` and the progress of every
-    /// iteration of every solve.
+    /// iteration of every solve, and answers whether the solve goes on (a stop ends it in
+    /// [`Error::Stopped`]).
     pub fn run(
         &self,
         surface: &Surface,
         origin: Origin,
         s: &dyn Spelling,
-        watch: impl FnMut(f64, Progress),
+        watch: impl FnMut(f64, Progress) -> ControlFlow<StopReason>,
     ) -> Result<Solved> {
         // A magnification from the scene is named as its key.
         let scene_key = Flags {
@@ -531,7 +535,9 @@ mod tests {
             .unwrap()
             .settle(Some(&table), &flags)
             .unwrap();
-        let Err(e) = settled.run(&rough(), Origin::Array, &flags, |_, _| {}) else {
+        let Err(e) = settled.run(&rough(), Origin::Array, &flags, |_, _| {
+            ControlFlow::Continue(())
+        }) else {
             panic!("solved beyond zeta_max");
         };
         assert_eq!(

@@ -4,6 +4,8 @@
 //! protocol) or the load that gives a target contact area at the first step, kept for the
 //! steps after it.
 
+use std::ops::ControlFlow;
+
 use crate::engine::contact::{ContactProblem, Model};
 use crate::engine::scene::check_zeta;
 use crate::engine::solver::{SolveOptions, Solver, Watched};
@@ -12,18 +14,19 @@ use crate::engine::sweep::{shell_steps, Sweep};
 use crate::error::{Error, Result};
 
 use super::parse::Load;
-use super::solve::{Progress, Settled};
+use super::solve::{Progress, Settled, StopReason};
 use super::Spelling;
 
 /// Runs a sweep of `surface` as `settled` asks (its load, solver, options and `E*`; the
 /// magnifications are the steps [`SweepRun::step`] is called with): `body` gets the run.
-/// `watch` sees the load `p0` and the progress of every iteration of every solve; `fields`
+/// `watch` sees the load `p0` and the progress of every iteration of every solve, and
+/// answers whether the solve goes on (a stop ends the step in [`Error::Stopped`]); `fields`
 /// keeps each step's pressure and gap.
 pub fn with_run<R>(
     surface: &Surface,
     settled: &Settled,
     fields: bool,
-    mut watch: impl FnMut(f64, Progress) + Send + 'static,
+    mut watch: impl FnMut(f64, Progress) -> ControlFlow<StopReason> + Send + 'static,
     body: impl FnOnce(&mut SweepRun) -> R,
 ) -> Result<R> {
     let model = Model::new(surface.grid().clone(), settled.e_star)?;

@@ -20,7 +20,7 @@
 //! * [`measures`]: where a claim finds its numbers, and the check at load that each measure
 //!   a claim names is one its experiment declares;
 //! * [`phrase`]: the paper's wordings, each with the one rule it maps to;
-//! * [`unit`]: what a claim's measure is, and the tolerance each phrase takes on it;
+//! * [`unit`](mod@unit): what a claim's measure is, and the tolerance each phrase takes on it;
 //! * [`register`]: every rule a claim has been decided under, and its amendments;
 //! * [`source`]: the built-in definitions and definition folders;
 //! * [`outcome`]: the record of a run;

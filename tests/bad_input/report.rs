@@ -1,4 +1,5 @@
-//! The `report` command's inputs: outcome folders, golden snapshots, its flags.
+//! The `report` command's inputs: outcome folders, golden snapshots, its flags; and the
+//! `speed` command's grid.
 
 use super::*;
 
@@ -15,14 +16,7 @@ fn report_from_missing() {
     let dir = tempdir();
     rejected(
         dir.path(),
-        &[
-            "report",
-            "--from",
-            "nowhere",
-            "--out",
-            "card.md",
-            "--no-speed",
-        ],
+        &["report", "--from", "nowhere", "--out", "card.md"],
         &["--from", "nowhere", "existing folder"],
     );
 }
@@ -33,7 +27,7 @@ fn report_from_empty() {
     outcomes(dir.path(), &[]);
     rejected(
         dir.path(),
-        &["report", "--from", "from", "--out", "card.md", "--no-speed"],
+        &["report", "--from", "from", "--out", "card.md"],
         &["from", "no outcomes"],
     );
     assert!(listing(&dir.path().join("from")).is_empty());
@@ -46,7 +40,7 @@ fn report_outcome_missing_fields() {
     outcomes(dir.path(), &[("x.json", text)]);
     rejected(
         dir.path(),
-        &["report", "--from", "from", "--out", "card.md", "--no-speed"],
+        &["report", "--from", "from", "--out", "card.md"],
         &["x.json", "missing field"],
     );
     assert_eq!(listing(&dir.path().join("from")), ["x.json"]);
@@ -59,7 +53,7 @@ fn report_outcome_wrong_verdict() {
     outcomes(dir.path(), &[("x.json", text)]);
     rejected(
         dir.path(),
-        &["report", "--from", "from", "--out", "card.md", "--no-speed"],
+        &["report", "--from", "from", "--out", "card.md"],
         &["x.json", "maybe", "holds"],
     );
 }
@@ -73,14 +67,14 @@ fn report_outcome_truncated() {
     );
     rejected(
         dir.path(),
-        &["report", "--from", "from", "--out", "card.md", "--no-speed"],
+        &["report", "--from", "from", "--out", "card.md"],
         &["x.json", "not valid JSON"],
     );
     assert_eq!(listing(&dir.path().join("from")), ["x.json"]);
 }
 
 #[test]
-fn report_speed_n_out_of_range() {
+fn speed_n_out_of_range() {
     // Below the smallest grid, or too small for the study's scene (lambda_s = 8 <
     // lambda_l = N/2).
     for (n, range) in [
@@ -89,21 +83,12 @@ fn report_speed_n_out_of_range() {
         ("16", "fits the scene"),
     ] {
         let dir = tempdir();
-        outcomes(dir.path(), &[]);
         rejected(
             dir.path(),
-            &[
-                "report",
-                "--from",
-                "from",
-                "--out",
-                "card.md",
-                "--speed-n",
-                n,
-            ],
-            &[&format!("--speed-n = {n}"), range],
+            &["speed", "--n", n, "--out", "out"],
+            &[&format!("--n = {n}"), range],
         );
-        assert!(listing(&dir.path().join("from")).is_empty());
+        assert!(!dir.path().join("out").exists());
     }
 }
 
@@ -114,14 +99,7 @@ fn report_golden_missing() {
     rejected(
         dir.path(),
         &[
-            "report",
-            "--from",
-            "from",
-            "--out",
-            "card.md",
-            "--golden",
-            "nowhere",
-            "--no-speed",
+            "report", "--from", "from", "--out", "card.md", "--golden", "nowhere",
         ],
         &["--golden", "nowhere", "existing folder"],
     );
@@ -134,7 +112,7 @@ fn report_out_is_a_folder() {
     std::fs::create_dir(dir.path().join("card.md")).unwrap();
     rejected(
         dir.path(),
-        &["report", "--from", "from", "--out", "card.md", "--no-speed"],
+        &["report", "--from", "from", "--out", "card.md"],
         &["--out", "card.md", "folder"],
     );
 }
@@ -142,9 +120,5 @@ fn report_out_is_a_folder() {
 #[test]
 fn report_missing_out() {
     let dir = tempdir();
-    rejected(
-        dir.path(),
-        &["report", "--no-speed"],
-        &["--out", "required"],
-    );
+    rejected(dir.path(), &["report"], &["--out", "required"]);
 }

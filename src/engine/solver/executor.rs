@@ -16,10 +16,20 @@
 //! A stop, or the end of the budget, hands the state to [`Iteration::terminate`] with the
 //! number of iterations completed and the reason: it returns the final state if its full
 //! residual meets the tolerance after all, and the error otherwise.
+//!
+//! The monitor answers every estimate: [`ControlFlow::Continue`] goes on,
+//! [`ControlFlow::Break`] stops the solve from outside (a time budget, a cancel) before
+//! the judgement, and the solve ends in [`Error::Stopped`] with the reason and the
+//! progress the monitor saw. A stopped solve is dropped where it stands: a method's state
+//! between solves is its settings, work space (which every [`Method::init`] overwrites)
+//! and what it carries ([`Method::carried`], changed only by a solve that converges), so
+//! the next solve, warm or cold, runs as it would have without the stopped one.
+
+use std::ops::ControlFlow;
 
 use crate::engine::contact::{ContactProblem, ContactSolution};
 use crate::engine::solver::{Progress, SolveOptions, Start};
-use crate::error::{Result, Termination};
+use crate::error::{Error, Result, StopReason, Termination};
 
 /// What [`Iteration::judge`] decided at one iteration: the solve ends (converged or
 /// stopped), measures again, or goes on with its step.
@@ -90,23 +100,34 @@ pub trait Iteration: Sized {
     fn terminate(self, iterations: usize, reason: Termination) -> Result<ContactSolution>;
 }
 
-/// Runs `solve` for at most `max_iter` iterations; `monitor` sees every estimate.
+/// Runs `solve` by the method `solver` for at most `max_iter` iterations; `monitor` sees
+/// every estimate and answers whether the solve goes on.
 ///
 /// # Errors
 ///
-/// The errors of the iteration's steps, and of [`Iteration::terminate`] when the solve
-/// stops or the budget ends short of the tolerance.
+/// [`Error::Stopped`] when the monitor stops the solve; the errors of the iteration's
+/// steps, and of [`Iteration::terminate`] when the solve stops or the budget ends short
+/// of the tolerance.
 pub fn run<S: Iteration>(
     mut solve: S,
+    solver: &'static str,
     max_iter: usize,
-    monitor: &mut dyn FnMut(Progress),
+    monitor: &mut dyn FnMut(Progress) -> ControlFlow<StopReason>,
 ) -> Result<ContactSolution> {
     for it in 0..max_iter {
         let measured = solve.measure(it)?;
-        monitor(Progress {
+        let progress = Progress {
             iteration: it,
             residual: S::estimate(&measured),
-        });
+        };
+        if let ControlFlow::Break(reason) = monitor(progress) {
+            return Err(Error::Stopped {
+                solver,
+                reason,
+                iteration: progress.iteration,
+                residual: progress.residual,
+            });
+        }
         match solve.judge(it, &measured) {
             Judgement::Converged(solution) => return Ok(solution),
             Judgement::Stopped(reason) => return solve.terminate(it, reason),

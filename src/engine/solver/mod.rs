@@ -14,7 +14,9 @@
 //! entry. All are [`Solver`]s, start cold or from a previous solution, stop at the
 //! solver-independent [`crate::engine::contact::Residual`], and fail with
 //! [`crate::Error::NotConverged`] (carrying the residual), [`crate::Error::NonFinite`] or
-//! [`crate::Error::LostContact`] rather than return an unconverged field.
+//! [`crate::Error::LostContact`] rather than return an unconverged field. A monitor may
+//! stop a running solve (a time budget, a cancel): the solve then ends in
+//! [`crate::Error::Stopped`], and the solver is ready for its next solve.
 //!
 //! # One scaffold under all
 //!
@@ -25,7 +27,8 @@
 //!   measures the residual estimate the monitor sees (`measure`), judges whether the solve
 //!   has converged or must stop (`judge`), and takes the rest of its step (`step`); at the
 //!   end, `terminate` returns the final state or the error, with an explicit
-//!   [`Termination`](crate::error::Termination);
+//!   [`Termination`](crate::error::Termination); the monitor's answer
+//!   ([`ControlFlow`]) stops a solve from outside;
 //! * [`workspace`]: the work buffers kept between solves, the check that a warm start is
 //!   on the problem's grid, and the packaging of fields into a
 //!   [`ContactSolution`] with its residual and [`SolveStats`](crate::engine::contact::SolveStats);
@@ -45,10 +48,14 @@ pub use cg::{ConstrainedCg, SCAN_STAGNATION};
 pub use fire::{Fire, FireParams};
 pub use gfmd::{Gfmd, GfmdParams};
 
+use std::ops::ControlFlow;
+
 use serde::{Deserialize, Serialize};
 
 use crate::engine::contact::{ContactProblem, ContactSolution};
 use crate::error::{Error, Result};
+
+pub use crate::error::StopReason;
 
 /// Writes [`SolverKind`] from the list of methods: one entry per solver, its kind and its
 /// [`executor::Method`] (whose [`executor::Method::NAME`] is the solver's name), from which
@@ -210,8 +217,8 @@ pub enum Start<'a> {
     Warm(&'a ContactSolution),
 }
 
-/// Progress of a solve, for monitors (progress bars, logs).
-#[derive(Debug, Clone, Copy)]
+/// Progress of a solve, for monitors (progress bars, logs, time budgets).
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Progress {
     /// Iteration number.
     pub iteration: usize,
@@ -226,20 +233,22 @@ pub trait Solver {
     fn name(&self) -> &'static str;
 
     /// Solves `problem` from `start` to `opts.tol`, or fails with the residual reached;
-    /// `monitor` sees every iteration.
+    /// `monitor` sees every iteration and answers whether the solve goes on
+    /// ([`ControlFlow::Break`] stops it).
     ///
     /// # Errors
     ///
-    /// If the start does not fit the problem ([`Error::InvalidInput`]), or the solve ends
-    /// short of the tolerance ([`Error::NotConverged`], with the residual reached), meets a
-    /// non-finite value ([`Error::NonFinite`]) or loses every contact point
-    /// ([`Error::LostContact`]).
+    /// If the start does not fit the problem ([`Error::InvalidInput`]), the monitor stops
+    /// the solve ([`Error::Stopped`], with the last progress; the solver stays ready for
+    /// its next solve), or the solve ends short of the tolerance ([`Error::NotConverged`],
+    /// with the residual reached), meets a non-finite value ([`Error::NonFinite`]) or
+    /// loses every contact point ([`Error::LostContact`]).
     fn solve_monitored(
         &mut self,
         problem: &ContactProblem,
         start: Start,
         opts: &SolveOptions,
-        monitor: &mut dyn FnMut(Progress),
+        monitor: &mut dyn FnMut(Progress) -> ControlFlow<StopReason>,
     ) -> Result<ContactSolution>;
 
     /// Solves `problem` from `start` to `opts.tol`, or fails with the residual reached.
@@ -253,7 +262,7 @@ pub trait Solver {
         start: Start,
         opts: &SolveOptions,
     ) -> Result<ContactSolution> {
-        self.solve_monitored(problem, start, opts, &mut |_| {})
+        self.solve_monitored(problem, start, opts, &mut |_| ControlFlow::Continue(()))
     }
 
     /// What the solver carries from one solve to the next besides the solution (GFMD: the
@@ -277,11 +286,11 @@ impl<M: executor::Method> Solver for M {
         problem: &ContactProblem,
         start: Start,
         opts: &SolveOptions,
-        monitor: &mut dyn FnMut(Progress),
+        monitor: &mut dyn FnMut(Progress) -> ControlFlow<StopReason>,
     ) -> Result<ContactSolution> {
         opts.validate()?;
         let solve = self.init(problem, start, opts)?;
-        executor::run(solve, opts.max_iter, monitor)
+        executor::run(solve, M::NAME, opts.max_iter, monitor)
     }
 
     fn carried(&self) -> Option<f64> {
@@ -294,8 +303,9 @@ impl<M: executor::Method> Solver for M {
 }
 
 /// A solver whose every iteration is also shown to `watch`, with the problem being
-/// solved: a progress display, or a check that stops the solve. The caller's own monitor
-/// still sees every iteration.
+/// solved: a progress display, or a check that stops the solve (its answer, as a
+/// monitor's). The caller's own monitor still sees every iteration; either one stops the
+/// solve.
 pub struct Watched<F> {
     /// The solver that does the work.
     pub inner: Box<dyn Solver + Send>,
@@ -303,7 +313,7 @@ pub struct Watched<F> {
     pub watch: F,
 }
 
-impl<F: FnMut(&ContactProblem, Progress)> Solver for Watched<F> {
+impl<F: FnMut(&ContactProblem, Progress) -> ControlFlow<StopReason>> Solver for Watched<F> {
     fn name(&self) -> &'static str {
         self.inner.name()
     }
@@ -313,12 +323,13 @@ impl<F: FnMut(&ContactProblem, Progress)> Solver for Watched<F> {
         problem: &ContactProblem,
         start: Start,
         opts: &SolveOptions,
-        monitor: &mut dyn FnMut(Progress),
+        monitor: &mut dyn FnMut(Progress) -> ControlFlow<StopReason>,
     ) -> Result<ContactSolution> {
         let watch = &mut self.watch;
         self.inner.solve_monitored(problem, start, opts, &mut |p| {
-            watch(problem, p);
-            monitor(p);
+            let watched = watch(problem, p);
+            monitor(p)?;
+            watched
         })
     }
 
@@ -379,10 +390,12 @@ mod tests {
             watch: |problem: &ContactProblem, p: Progress| {
                 watched_p0.push(problem.p0);
                 watched.push(p.iteration);
+                ControlFlow::Continue(())
             },
         }
         .solve_monitored(&problem, Start::Cold, &opts, &mut |p| {
-            seen.push(p.iteration)
+            seen.push(p.iteration);
+            ControlFlow::Continue(())
         })
         .unwrap();
 

@@ -21,6 +21,8 @@
 //!   cannot show) would change it, and a window of the profile's size holds few contact
 //!   patches.
 
+use std::ops::ControlFlow;
+
 use serde::{Deserialize, Serialize};
 
 use super::abel::{convert, ConvertedBin};
@@ -28,7 +30,7 @@ use super::profiles::Profiles;
 use super::spectrum::{LineBin, ProfileSpectrum};
 use super::synthesis::{shells, synthesize, Isotropic};
 use crate::engine::grid::MIN_N;
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, StopReason};
 use crate::measured::check::{check, CheckOptions, Event, SurfaceCheck};
 use crate::measured::fill::Fill;
 use crate::measured::psd::Boundary;
@@ -211,7 +213,7 @@ pub fn check_line(
     profiles: &Profiles,
     opts: &CheckOptions,
     line: &LineOptions,
-    events: &mut dyn FnMut(Event),
+    events: &mut dyn FnMut(Event) -> ControlFlow<StopReason>,
 ) -> Result<LineCheck> {
     let pixel = validate(opts, line)?;
     let spectrum = ProfileSpectrum::of(profiles, pixel, opts.boundary);
@@ -444,7 +446,7 @@ mod tests {
             ..CheckOptions::default()
         };
         let line = LineOptions { side: 64, seeds: 2 };
-        let c = check_line(&profiles, &opts, &line, &mut |_| {}).unwrap();
+        let c = check_line(&profiles, &opts, &line, &mut |_| ControlFlow::Continue(())).unwrap();
         let names: Vec<&str> = c.surface.warnings.iter().map(|w| w.name.as_str()).collect();
         assert!(names.contains(&ISOTROPY.name), "{names:?}");
         assert_eq!(c.surface.scans.len(), 2);
@@ -460,7 +462,7 @@ mod tests {
             LineOptions { side: 8, seeds: 2 },
             LineOptions { side: 64, seeds: 1 },
         ] {
-            let e = check_line(&profiles, &opts, &bad, &mut |_| {})
+            let e = check_line(&profiles, &opts, &bad, &mut |_| ControlFlow::Continue(()))
                 .unwrap_err()
                 .to_string();
             assert!(e.contains("line_side") || e.contains("line_seeds"), "{e}");
