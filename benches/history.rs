@@ -21,8 +21,9 @@
 //!     RAYON_NUM_THREADS=1 cargo bench --bench history
 //! ```
 //!
-//! (`shells=0`: the whole history; `tol=` and `seed=` as well; predictions are `shell`,
-//! `response` and `extrapolate:W`.)
+//! (`shells=0`: the whole history; `seed=` as well; predictions are `shell`, `response`
+//! and `extrapolate:W`; `tols=1e-4,1e-3` runs each prediction at each tolerance, the load
+//! found at the first, and compares every run with the default prediction at the first.)
 
 use std::hint::black_box;
 use std::time::{Duration, Instant};
@@ -45,7 +46,7 @@ const A_R: f64 = 0.14;
 /// The residual tolerance of the histories.
 const TOL: f64 = 1e-4;
 /// Shells of the criterion benchmark's climb.
-const SHELLS: usize = 100;
+const SHELLS: usize = 60;
 
 /// One realization, its model, the load and the climb's magnifications.
 struct Scene {
@@ -53,7 +54,6 @@ struct Scene {
     model: Model,
     p0: f64,
     steps: Vec<f64>,
-    tol: f64,
 }
 
 impl Scene {
@@ -73,7 +73,6 @@ impl Scene {
             model,
             p0,
             steps,
-            tol,
         }
     }
 }
@@ -142,12 +141,17 @@ fn cpu_seconds() -> f64 {
 }
 
 /// Climbs the first `shells` shells of `scene` (all: 0) with `kind` and `prediction`.
-fn climb(scene: &Scene, kind: SolverKind, prediction: Prediction, shells: usize) -> Run {
+fn climb(
+    scene: &Scene,
+    kind: SolverKind,
+    (prediction, tol): (Prediction, f64),
+    shells: usize,
+) -> Run {
     let steps = match shells {
         0 => &scene.steps[..],
         k => &scene.steps[..k.min(scene.steps.len())],
     };
-    let opts = SolveOptions::with_tol(scene.tol);
+    let opts = SolveOptions::with_tol(tol);
     let mut sweep =
         Sweep::new(&scene.surface, &scene.model, kind, opts).with_prediction(prediction);
     let mut history = Counted {
@@ -205,7 +209,7 @@ fn name(p: Prediction) -> String {
 fn interleaved(spec: &str) {
     let mut n = 1024;
     let (mut shells, mut rounds, mut seed) = (400, 2, 1);
-    let (mut a_r, mut tol) = (A_R, TOL);
+    let (mut a_r, mut tols) = (A_R, vec![TOL]);
     let mut solvers = vec![SolverKind::Gfmd];
     let mut predictions = vec![Prediction::Shell, Prediction::Response];
     for item in spec.split_whitespace() {
@@ -216,7 +220,7 @@ fn interleaved(spec: &str) {
             "rounds" => rounds = value.parse().expect("rounds"),
             "seed" => seed = value.parse().expect("seed"),
             "a_r" => a_r = value.parse().expect("a_r"),
-            "tol" => tol = value.parse().expect("tol"),
+            "tols" => tols = value.split(',').map(|t| t.parse().expect("tol")).collect(),
             "solvers" => {
                 solvers = value
                     .split(',')
@@ -227,6 +231,7 @@ fn interleaved(spec: &str) {
             _ => panic!("unknown key {key:?}"),
         }
     }
+    let tol = tols[0];
     let scene = Scene::new(n, seed, a_r, tol);
     eprintln!(
         "history {n}^2, seed {seed}, a_r {a_r} (p0 = {:.6e}), tol {tol}, {} of {} shells",
@@ -238,19 +243,25 @@ fn interleaved(spec: &str) {
         },
         scene.steps.len()
     );
-    println!("round\tsolver\tprediction\tit/shell\tfft/shell\tcpu s/shell\twall s/shell\tshare\tit ratio\tfft ratio\tcpu ratio\tshare diff\tdiffering points\titerations d1/q1/median/d9/max");
+    println!("round\tsolver\tprediction\ttol\tit/shell\tfft/shell\tcpu s/shell\twall s/shell\tshare\tit ratio\tfft ratio\tcpu ratio\tshare diff\tdiffering points\titerations d1/q1/median/d9/max");
     for round in 0..rounds {
         for &kind in &solvers {
-            let mut order: Vec<Prediction> = predictions.clone();
+            let mut order: Vec<(Prediction, f64)> = tols
+                .iter()
+                .flat_map(|&t| predictions.iter().map(move |&p| (p, t)))
+                .collect();
             if round % 2 == 1 {
                 order.reverse();
             }
-            let runs: Vec<(Prediction, Run)> = order
+            let runs: Vec<((Prediction, f64), Run)> = order
                 .into_iter()
                 .map(|p| (p, climb(&scene, kind, p, shells)))
                 .collect();
-            let base = runs.iter().find(|(p, _)| p.is_shell()).map(|(_, r)| r);
-            for (p, r) in &runs {
+            let base = runs
+                .iter()
+                .find(|((p, t), _)| p.is_shell() && *t == tol)
+                .map(|(_, r)| r);
+            for ((p, t), r) in &runs {
                 let per = |x: f64| x / r.shells as f64;
                 let vs = base.map_or(String::from("\t\t\t\t"), |b| {
                     let differ = r
@@ -269,7 +280,7 @@ fn interleaved(spec: &str) {
                     )
                 });
                 println!(
-                    "{round}\t{}\t{}\t{:.2}\t{:.2}\t{:.4}\t{:.4}\t{:.6}\t{vs}\t{}",
+                    "{round}\t{}\t{}\t{t:e}\t{:.2}\t{:.2}\t{:.4}\t{:.4}\t{:.6}\t{vs}\t{}",
                     kind.name(),
                     name(*p),
                     per(r.iterations as f64),
@@ -304,7 +315,7 @@ fn history(c: &mut Criterion) {
             group.bench_function(id, |b| {
                 let scene = scene.get_or_init(|| Scene::new(n, 1, A_R, TOL));
                 if !logged.replace(true) {
-                    let r = climb(scene, kind, prediction, SHELLS);
+                    let r = climb(scene, kind, (prediction, TOL), SHELLS);
                     eprintln!(
                         "history/{}/{}/{n}: {} shells, {:.2} iterations and {:.2} FFTs a shell",
                         name(prediction),
@@ -314,7 +325,7 @@ fn history(c: &mut Criterion) {
                         r.transforms as f64 / r.shells as f64
                     );
                 }
-                b.iter(|| black_box(climb(scene, kind, prediction, SHELLS)));
+                b.iter(|| black_box(climb(scene, kind, (prediction, TOL), SHELLS)));
             });
         }
     }

@@ -25,8 +25,9 @@
 //! # Better predictions (opt-in)
 //!
 //! [`Prediction`] chooses the warm start; [`Prediction::Shell`], the default, is the one
-//! above, and every committed result was computed with it. Two alternatives, kept for
-//! measurement (`benches/history.rs`, `docs/measured.md`, "A re-entry history's cost"):
+//! above, and every committed result was computed with it. Two alternatives, kept so that
+//! the measurement can be repeated (`benches/history.rs`; `docs/measured.md`, "A re-entry
+//! history's cost": neither saves time, and the response costs iterations on 512^2):
 //!
 //! * [`Prediction::Response`]: as above on the contact set, and off it the displacement
 //!   moves by the elastic response to the predicted change of the pressure,
@@ -562,6 +563,24 @@ mod tests {
         assert_eq!(it_predicted, 0, "iterations from the prediction");
         assert!(plain.stats.iterations >= 1, "{}", plain.stats.iterations);
         assert!((energy - plain.elastic_energy()).abs() < 1e-9 * energy);
+    }
+
+    #[test]
+    fn every_prediction_is_exact_in_full_contact() {
+        // In full contact the alternatives start where the shell's own prediction does
+        // (no point off contact; the correction carried on is zero): nothing to do.
+        let (surface, model) = rough_contact(64, 0.8, 3);
+        let opts = SolveOptions::with_tol(1e-10);
+        for prediction in [Prediction::Response, Prediction::Extrapolate(0.5)] {
+            let mut sweep =
+                Sweep::new(&surface, &model, SolverKind::Cg, opts).with_prediction(prediction);
+            sweep.solve_at(4.0, 20.0).unwrap();
+            for zeta in [5.0, 6.0] {
+                let s = sweep.solve_at(zeta, 20.0).unwrap();
+                assert_eq!(s.contact_area(), 1.0);
+                assert_eq!(s.stats.iterations, 0, "{prediction:?} at zeta = {zeta}");
+            }
+        }
     }
 
     #[test]
