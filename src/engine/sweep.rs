@@ -49,7 +49,6 @@
 
 use rayon::prelude::*;
 use rustfft::num_complex::Complex64;
-use serde::{Deserialize, Serialize};
 
 use crate::engine::contact::{ContactProblem, ContactSolution, Model};
 use crate::engine::fft::Fft2;
@@ -92,8 +91,7 @@ impl Roughness for Surface {
 }
 
 /// How a sweep predicts the warm start at a new magnification (see the module docs).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case", deny_unknown_fields)]
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub enum Prediction {
     /// `p + K dh` and `u + dh` on the previous contact set, the previous solution
     /// elsewhere: the prediction of every committed result.
@@ -108,8 +106,7 @@ pub enum Prediction {
 }
 
 impl Prediction {
-    /// Whether this is the default, [`Prediction::Shell`] (for `skip_serializing_if`: a
-    /// job that does not choose another prediction keeps its key).
+    /// Whether this is the default, [`Prediction::Shell`].
     pub fn is_shell(&self) -> bool {
         *self == Prediction::Shell
     }
