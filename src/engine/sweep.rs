@@ -22,6 +22,22 @@
 //! prediction costs one inverse transform (of `K dh`; `dh` is the difference of the
 //! heights).
 //!
+//! # Better predictions (opt-in)
+//!
+//! [`Prediction`] chooses the warm start; [`Prediction::Shell`], the default, is the one
+//! above, and every committed result was computed with it. Two alternatives, kept so that
+//! the measurement can be repeated (`benches/history.rs`; `docs/measured.md`, "A re-entry
+//! history's cost": neither saves time, and the response costs iterations on 512^2):
+//!
+//! * [`Prediction::Response`]: as above on the contact set, and off it the displacement
+//!   moves by the elastic response to the predicted change of the pressure,
+//!   `u_start = u + K^-1 (p_start - p)`, the displacement a constrained-CG start derives
+//!   from `p_start` (a dynamics solver starts from `u` alone). One convolution more.
+//! * [`Prediction::Extrapolate`]: as above, plus `w` times the correction the solver made
+//!   to the previous step's start (pressure on the predicted contact set, displacement
+//!   off it): the part of a step that the shell's own response does not explain, carried
+//!   on to the next step.
+//!
 //! # What roughness a sweep climbs
 //!
 //! A sweep adds the modes of a [`Roughness`]: a generated [`Surface`], or a measured
@@ -74,6 +90,28 @@ impl Roughness for Surface {
     }
 }
 
+/// How a sweep predicts the warm start at a new magnification (see the module docs).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub enum Prediction {
+    /// `p + K dh` and `u + dh` on the previous contact set, the previous solution
+    /// elsewhere: the prediction of every committed result.
+    #[default]
+    Shell,
+    /// [`Prediction::Shell`], and off the predicted contact set the displacement moved by
+    /// the elastic response to the predicted change of the pressure.
+    Response,
+    /// [`Prediction::Shell`] plus this weight times the correction the solver made to the
+    /// previous step's start.
+    Extrapolate(f64),
+}
+
+impl Prediction {
+    /// Whether this is the default, [`Prediction::Shell`].
+    pub fn is_shell(&self) -> bool {
+        *self == Prediction::Shell
+    }
+}
+
 /// A free-boundary model's window: the transform of the window's grid, and the window's
 /// heights before padding.
 struct Window {
@@ -102,6 +140,13 @@ pub struct Sweep<'a, R: Roughness = Surface> {
     /// Spectrum of the change of the heights since the previous solution, when the
     /// magnification changed since then.
     change: Option<Vec<Complex64>>,
+    /// How the warm start is predicted.
+    prediction: Prediction,
+    /// Work space of [`Prediction::Response`]: the change of the pressure, then the
+    /// displacement it causes.
+    dp: Vec<f64>,
+    /// The start of the last predicted solve, for [`Prediction::Extrapolate`].
+    last_start: Option<(Vec<f64>, Vec<f64>)>,
 }
 
 impl<'a, R: Roughness> Sweep<'a, R> {
@@ -159,7 +204,17 @@ impl<'a, R: Roughness> Sweep<'a, R> {
             zeta: f64::NAN,
             previous: None,
             change: None,
+            prediction: Prediction::Shell,
+            dp: Vec::new(),
+            last_start: None,
         }
+    }
+
+    /// The sweep with another prediction of its warm starts ([`Prediction`]).
+    #[must_use]
+    pub fn with_prediction(mut self, prediction: Prediction) -> Self {
+        self.prediction = prediction;
+        self
     }
 
     /// Sets the substrate to magnification `zeta` (heights with `|q| <= zeta q_l`), and
@@ -219,6 +274,20 @@ impl<'a, R: Roughness> Sweep<'a, R> {
     fn predicted(&mut self) -> Option<ContactSolution> {
         let change = self.change.take()?;
         let mut start = self.previous.take()?;
+        let correction = match self.prediction {
+            Prediction::Extrapolate(w) => self.last_start.take().map(|(sp, su)| (w, sp, su)),
+            _ => None,
+        };
+        let correction = correction.map(|(w, mut sp, mut su)| {
+            // The correction of the last solve: its solution less its start.
+            subtract_from(&start.pressure, &mut sp);
+            subtract_from(&start.displacement, &mut su);
+            (w, sp, su)
+        });
+        if self.prediction == Prediction::Response {
+            self.dp.clear();
+            self.dp.extend_from_slice(&start.pressure);
+        }
         let dh = &self.dh;
         // The mean height never changes (the q = 0 mode is not a shell): the response has
         // zero mean.
@@ -240,7 +309,59 @@ impl<'a, R: Roughness> Sweep<'a, R> {
                     *u += du;
                 }
             });
+        match self.prediction {
+            Prediction::Shell => {}
+            Prediction::Response => self.respond(&mut start),
+            Prediction::Extrapolate(_) => {
+                if let Some((w, cp, cu)) = correction {
+                    start
+                        .pressure
+                        .par_iter_mut()
+                        .zip(start.displacement.par_iter_mut())
+                        .zip(cp.par_iter().zip(&cu))
+                        .for_each(|((p, u), (&cp, &cu))| {
+                            if *p > 0.0 {
+                                *p = (*p + w * cp).max(0.0);
+                            } else {
+                                *u += w * cu;
+                            }
+                        });
+                }
+                self.last_start = Some((start.pressure.clone(), start.displacement.clone()));
+            }
+        }
         Some(start)
+    }
+
+    /// [`Prediction::Response`]: off the predicted contact set, `u += K^-1 (p_start - p)`
+    /// (where a point left the contact set, in place of `+ dh`); `self.dp` holds `p`.
+    fn respond(&mut self, start: &mut ContactSolution) {
+        let model = self.model;
+        self.dp
+            .par_iter_mut()
+            .zip(start.pressure.par_iter())
+            .for_each(|(d, &p)| *d = p - *d);
+        model.fft.forward(&self.dp, &mut self.work);
+        for (w, c) in self.work.iter_mut().zip(model.halfspace.compliance()) {
+            *w *= c;
+        }
+        // The response, in `response` (the pressure response is used up).
+        model
+            .fft
+            .inverse_in_place(&mut self.work, &mut self.response);
+        start
+            .pressure
+            .par_iter()
+            .zip(start.displacement.par_iter_mut())
+            .zip(self.response.par_iter().zip(&self.dp))
+            .zip(&self.dh)
+            .for_each(|(((&p, u), (&du, &dp)), &dh)| {
+                if p <= 0.0 {
+                    // A point that was in contact (its pressure changed) moved by dh.
+                    let moved = if dp != 0.0 { dh } else { 0.0 };
+                    *u += du - moved;
+                }
+            });
     }
 
     /// Heights at the current magnification.
@@ -261,6 +382,7 @@ impl<'a, R: Roughness> Sweep<'a, R> {
     /// Takes the last solution out (the next solve starts cold).
     pub fn take_solution(&mut self) -> Option<ContactSolution> {
         self.change = None;
+        self.last_start = None;
         self.previous.take()
     }
 
@@ -269,6 +391,7 @@ impl<'a, R: Roughness> Sweep<'a, R> {
     /// as the uninterrupted one did.
     pub fn restore(&mut self, zeta: f64, solution: ContactSolution, carried: Option<f64>) {
         self.change = None;
+        self.last_start = None;
         self.previous = None;
         self.set_zeta(zeta);
         self.previous = Some(solution);
@@ -359,6 +482,13 @@ impl Sweep<'_, Surface> {
     }
 }
 
+/// `into = of - into`, element by element.
+fn subtract_from(of: &[f64], into: &mut [f64]) {
+    into.par_iter_mut()
+        .zip(of.par_iter())
+        .for_each(|(d, &a)| *d = a - *d);
+}
+
 /// Magnifications at which each shell of `surface` with `zeta_from < zeta <= zeta_to` is
 /// resolved, in increasing order: the steps of a sweep that adds every shell one at a time.
 pub fn shell_steps(surface: &impl Roughness, zeta_from: f64, zeta_to: f64) -> Vec<f64> {
@@ -431,6 +561,24 @@ mod tests {
         assert_eq!(it_predicted, 0, "iterations from the prediction");
         assert!(plain.stats.iterations >= 1, "{}", plain.stats.iterations);
         assert!((energy - plain.elastic_energy()).abs() < 1e-9 * energy);
+    }
+
+    #[test]
+    fn every_prediction_is_exact_in_full_contact() {
+        // In full contact the alternatives start where the shell's own prediction does
+        // (no point off contact; the correction carried on is zero): nothing to do.
+        let (surface, model) = rough_contact(64, 0.8, 3);
+        let opts = SolveOptions::with_tol(1e-10);
+        for prediction in [Prediction::Response, Prediction::Extrapolate(0.5)] {
+            let mut sweep =
+                Sweep::new(&surface, &model, SolverKind::Cg, opts).with_prediction(prediction);
+            sweep.solve_at(4.0, 20.0).unwrap();
+            for zeta in [5.0, 6.0] {
+                let s = sweep.solve_at(zeta, 20.0).unwrap();
+                assert_eq!(s.contact_area(), 1.0);
+                assert_eq!(s.stats.iterations, 0, "{prediction:?} at zeta = {zeta}");
+            }
+        }
     }
 
     #[test]
