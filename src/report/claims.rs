@@ -613,9 +613,9 @@ fn block(
         };
         let _ = writeln!(
             s,
-            "- **Amended:** {} *The earlier rule* (registered {} at `{}`, no longer in force): \
+            "- **Amended:** {}. *The earlier rule* (registered {} at `{}`, no longer in force): \
              region `{}`, under which the full scale was {} and the reduced scale {}.",
-            prose(&a.reason),
+            prose(a.reason.trim_end_matches('.')),
             r.registered,
             &r.commit[..r.commit.len().min(10)],
             r.rule.get("region").and_then(|g| g.as_str()).unwrap_or("?"),
