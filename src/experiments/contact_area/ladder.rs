@@ -208,7 +208,7 @@ mod tests {
             .into_iter()
             .filter(|j| j.refine == f.refine)
             .collect();
-        assert_eq!(finer.len(), f.hursts.len() * full.seeds.len());
+        assert_eq!(finer.len(), f.hursts.len() * full.all_seeds().len());
         assert_eq!(full.pressures(&finer[0]), &f.reduced_pressures[..]);
         let coarse = AreaJob {
             refine: 1,

@@ -214,7 +214,7 @@ mod tests {
         };
         plan.validate(&scene).unwrap();
         let jobs = plan.jobs(&scene);
-        assert_eq!(jobs.len(), scene.seeds.len());
+        assert_eq!(jobs.len(), scene.all_seeds().len());
         assert_eq!(
             (jobs[0].n, jobs[0].lambda_l, jobs[0].lambda_s),
             (2 * scene.n, scene.lambda_l, scene.lambda_s)

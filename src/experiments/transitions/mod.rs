@@ -532,7 +532,7 @@ mod tests {
         assert!(full.contact_line_distances);
         assert_eq!(
             full.jobs().len(),
-            2 * full.seeds.len() + other.seeds.len(),
+            2 * full.all_seeds().len() + other.all_seeds().len(),
             "the realizations, the other scene's, then the distances"
         );
         for job in full.jobs() {
