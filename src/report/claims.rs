@@ -337,110 +337,119 @@ fn count_table(s: &mut String, outcomes: &[&Outcome]) {
 /// The lists: contradicted, not established, reproduced by assumption, counted apart.
 fn lists(s: &mut String, outcomes: &[&Outcome]) {
     let all = listed(outcomes);
-    let evidence = |r: ClaimResult| -> Vec<(&str, &ClaimOutcome)> {
-        all.iter()
-            .filter(|(_, c)| c.kind == ClaimKind::Evidence && c.result == r)
-            .copied()
-            .collect()
+    let pick = |keep: &dyn Fn(&ClaimOutcome) -> bool| -> Vec<(&str, &ClaimOutcome)> {
+        all.iter().filter(|(_, c)| keep(c)).copied().collect()
     };
+    let evidence = |r: ClaimResult| pick(&|c| c.kind == ClaimKind::Evidence && c.result == r);
     let contradicted = evidence(ClaimResult::Contradicted);
     let _ = writeln!(s, "### Contradicted ({})\n", contradicted.len());
-    if !contradicted.is_empty() {
-        let rows: Vec<Vec<String>> = contradicted
-            .iter()
-            .map(|(v, c)| {
-                vec![
-                    key_cell(v, c),
-                    tex(&c.place),
-                    md(&c.paper),
-                    measured_cell(c),
-                    Class::of(c).text().into(),
-                ]
-            })
-            .collect();
-        push_table(
-            s,
-            &["claim", "where", "paper", "measured (n)", "class"],
-            &rows,
-        );
-        s.push('\n');
-    }
+    table(
+        s,
+        &contradicted,
+        &["claim", "where", "paper", "measured (n)", "class"],
+        |v, c| with(v, c, [Class::of(c).text().into()]),
+    );
     let open = evidence(ClaimResult::NotEstablished);
     let _ = writeln!(s, "### Not established ({})\n", open.len());
-    if !open.is_empty() {
-        let rows: Vec<Vec<String>> = open
-            .iter()
-            .map(|(v, c)| {
-                vec![
-                    key_cell(v, c),
-                    tex(&c.place),
-                    md(&c.paper),
-                    measured_cell(c),
+    table(
+        s,
+        &open,
+        &[
+            "claim",
+            "where",
+            "paper",
+            "measured (n)",
+            "leans",
+            "would decide",
+        ],
+        |v, c| {
+            with(
+                v,
+                c,
+                [
                     format!("{} the rule's region", c.leans().unwrap_or("—")),
                     md(&c.would_decide().unwrap_or_default()),
-                ]
-            })
-            .collect();
-        push_table(
-            s,
-            &[
-                "claim",
-                "where",
-                "paper",
-                "measured (n)",
-                "leans",
-                "would decide",
-            ],
-            &rows,
-        );
-        s.push('\n');
+                ],
+            )
+        },
+    );
+    reproduced_by_assumption(s, &evidence(ClaimResult::Reproduced));
+    let unmeasured = pick(&|c| {
+        c.kind == ClaimKind::Evidence
+            && matches!(
+                c.result,
+                ClaimResult::NotMeasured | ClaimResult::NotJudgedAtThisScale
+            )
+    });
+    counted_apart(
+        s,
+        &pick(&|c| c.kind == ClaimKind::Inconsistent),
+        &pick(&|c| c.kind == ClaimKind::Consistency),
+        &unmeasured,
+    );
+}
+
+/// A claim's first cells (key, tex lines, the paper's value, the measurement) and `more`.
+fn with<const N: usize>(v: &str, c: &ClaimOutcome, more: [String; N]) -> Vec<String> {
+    let mut row = vec![
+        key_cell(v, c),
+        tex(&c.place),
+        md(&c.paper),
+        measured_cell(c),
+    ];
+    row.extend(more);
+    row
+}
+
+/// A table of `claims` under `header`, a row each from `cells`, followed by a blank line;
+/// nothing when there are none.
+fn table(
+    s: &mut String,
+    claims: &[(&str, &ClaimOutcome)],
+    header: &[&str],
+    cells: impl Fn(&str, &ClaimOutcome) -> Vec<String>,
+) {
+    if claims.is_empty() {
+        return;
     }
-    let reproduced = evidence(ClaimResult::Reproduced);
+    let rows: Vec<Vec<String>> = claims.iter().map(|(v, c)| cells(v, c)).collect();
+    push_table(s, header, &rows);
+    s.push('\n');
+}
+
+/// The reproduced claims, a table for each assumption in the order they first appear.
+fn reproduced_by_assumption(s: &mut String, reproduced: &[(&str, &ClaimOutcome)]) {
     let _ = writeln!(s, "### Reproduced ({})\n", reproduced.len());
     let mut groups: Vec<&str> = Vec::new();
-    for (v, _) in &reproduced {
+    for (v, _) in reproduced {
         if !groups.contains(&assumption(v)) {
             groups.push(assumption(v));
         }
     }
     for g in groups {
-        let rows: Vec<Vec<String>> = reproduced
+        let members: Vec<(&str, &ClaimOutcome)> = reproduced
             .iter()
             .filter(|(v, _)| assumption(v) == g)
-            .map(|(v, c)| {
-                vec![
-                    key_cell(v, c),
-                    tex(&c.place),
-                    md(&c.paper),
-                    measured_cell(c),
-                ]
-            })
+            .copied()
             .collect();
         let _ = writeln!(s, "{g}:\n");
-        push_table(s, &["claim", "where", "paper", "measured (n)"], &rows);
-        s.push('\n');
+        table(
+            s,
+            &members,
+            &["claim", "where", "paper", "measured (n)"],
+            |v, c| with(v, c, []),
+        );
     }
-    let apart = |kind: ClaimKind| -> Vec<(&str, &ClaimOutcome)> {
-        all.iter()
-            .filter(|(_, c)| c.kind == kind)
-            .copied()
-            .collect()
-    };
-    let (checks, two_ways) = (
-        apart(ClaimKind::Consistency),
-        apart(ClaimKind::Inconsistent),
-    );
-    let unmeasured: Vec<(&str, &ClaimOutcome)> = all
-        .iter()
-        .filter(|(_, c)| {
-            c.kind == ClaimKind::Evidence
-                && matches!(
-                    c.result,
-                    ClaimResult::NotMeasured | ClaimResult::NotJudgedAtThisScale
-                )
-        })
-        .copied()
-        .collect();
+}
+
+/// The claims counted apart: the paper two ways (each reading's result), the consistency
+/// checks and the evidence not measured.
+fn counted_apart(
+    s: &mut String,
+    two_ways: &[(&str, &ClaimOutcome)],
+    checks: &[(&str, &ClaimOutcome)],
+    unmeasured: &[(&str, &ClaimOutcome)],
+) {
     let _ = writeln!(s, "### Counted apart\n");
     let _ = writeln!(
         s,
@@ -448,65 +457,46 @@ fn lists(s: &mut String, outcomes: &[&Outcome]) {
          each reading is judged and shown, none is counted as evidence.\n",
         two_ways.len()
     );
-    if !two_ways.is_empty() {
-        let rows: Vec<Vec<String>> = two_ways
-            .iter()
-            .map(|(v, c)| {
-                let readings: Vec<String> = std::iter::once(c.result)
-                    .chain(c.readings.iter().map(|r| r.result))
-                    .map(|r| r.text().to_string())
-                    .collect();
-                vec![
-                    key_cell(v, c),
-                    tex(&c.place),
-                    md(&c.paper),
-                    measured_cell(c),
-                    readings.join(" / "),
-                ]
-            })
-            .collect();
-        push_table(
-            s,
-            &["claim", "where", "paper", "measured (n)", "readings"],
-            &rows,
-        );
-        s.push('\n');
-    }
+    table(
+        s,
+        two_ways,
+        &["claim", "where", "paper", "measured (n)", "readings"],
+        |v, c| {
+            let readings: Vec<String> = std::iter::once(c.result)
+                .chain(c.readings.iter().map(|r| r.result))
+                .map(|r| r.text().to_string())
+                .collect();
+            with(v, c, [readings.join(" / ")])
+        },
+    );
     let _ = writeln!(
         s,
         "**Consistency checks ({}):** true by construction (an identity, arithmetic on the \
          paper's formula or on a chosen scene): they check the code, not the paper.\n",
         checks.len()
     );
-    if !checks.is_empty() {
-        let rows: Vec<Vec<String>> = checks
-            .iter()
-            .map(|(v, c)| {
-                vec![
-                    key_cell(v, c),
-                    tex(&c.place),
-                    measured_cell(c),
-                    c.result.text().into(),
-                ]
-            })
-            .collect();
-        push_table(s, &["claim", "where", "measured (n)", "result"], &rows);
-        s.push('\n');
-    }
+    table(
+        s,
+        checks,
+        &["claim", "where", "measured (n)", "result"],
+        |v, c| {
+            vec![
+                key_cell(v, c),
+                tex(&c.place),
+                measured_cell(c),
+                c.result.text().into(),
+            ]
+        },
+    );
     let _ = writeln!(
         s,
         "**Not measured ({}):** evidence with no measure at this scale; each block says what \
          it would take.\n",
         unmeasured.len()
     );
-    if !unmeasured.is_empty() {
-        let rows: Vec<Vec<String>> = unmeasured
-            .iter()
-            .map(|(v, c)| vec![key_cell(v, c), tex(&c.place), md(&c.paper)])
-            .collect();
-        push_table(s, &["claim", "where", "paper"], &rows);
-        s.push('\n');
-    }
+    table(s, unmeasured, &["claim", "where", "paper"], |v, c| {
+        vec![key_cell(v, c), tex(&c.place), md(&c.paper)]
+    });
 }
 
 /// The rule in words: phrase, unit, the rule as written and, for a unit the page prints
