@@ -119,8 +119,8 @@ def main():
             start = time.perf_counter()
             (o,) = persson_check.validate(args.validation, out=out)
             print(f"validation {o['name']} (reduced): {o['statistic'].split(' (')[0]} = "
-                  f"{o['value']:.4f} +- {o['std_error']:.4f}, verdict {o['verdict']}, "
-                  f"paper {'reproduced' if o['reproduced'] else ('contradicted' if o['reproduced'] is False else 'not established')} "
+                  f"{o['value']:.4f} +- {o['std_error']:.4f}, verdict {o['verdict']} "
+                  f"(the paper's: {o['paper_verdict']}) "
                   f"[{time.perf_counter() - start:.1f} s]")
     return 0
 
