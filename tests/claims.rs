@@ -9,7 +9,7 @@
 use std::path::Path;
 
 use persson_check::stats::Estimate;
-use persson_check::validation::claims::{validate_claims, Measures, Rule};
+use persson_check::validation::claims::{validate_claims, Measure, Measures, Rule};
 use persson_check::validation::registry::Registry;
 use persson_check::validation::source::builtin_sources;
 use persson_check::validation::Scale;
@@ -64,8 +64,8 @@ fn committed_outcome(root: &Path, scale: &str, name: &str) -> Outcome {
 }
 
 /// The measures a claim names.
-fn measures_of(c: &ClaimSpec) -> Vec<String> {
-    let mut m: Vec<String> = c.measure.iter().cloned().collect();
+fn measures_of(c: &ClaimSpec) -> Vec<Measure> {
+    let mut m: Vec<Measure> = c.measure.iter().cloned().collect();
     if let (Some(_), Rule::Exceeds(other)) = (&c.measure, &c.rule) {
         m.push(other.clone());
     }

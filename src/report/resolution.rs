@@ -27,9 +27,14 @@ pub(super) fn resolution_studies(loaded: &[Loaded]) -> Vec<Resolution> {
         let mut groups: Vec<(String, Vec<(usize, Detail)>)> = Vec::new();
         for d in &l.outcome.details {
             let Some(n) = d.grid else { continue };
+            // The paper's value beside it: its claim's, read from the outcome.
+            let d = Detail {
+                paper: l.outcome.paper_value_of(d),
+                ..d.clone()
+            };
             match groups.iter_mut().find(|(k, _)| *k == d.key) {
-                Some((_, rows)) => rows.push((n, d.clone())),
-                None => groups.push((d.key.clone(), vec![(n, d.clone())])),
+                Some((_, rows)) => rows.push((n, d)),
+                None => groups.push((d.key.clone(), vec![(n, d)])),
             }
         }
         for (_, rows) in &mut groups {

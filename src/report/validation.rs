@@ -192,7 +192,7 @@ fn details(s: &mut String, o: &Outcome) {
             prose(&d.name),
             pm(d.value.value, d.value.std_error),
             or_dash(d.persson, num),
-            or_dash(d.paper, num),
+            or_dash(o.paper_value_of(d), num),
             or_dash(d.grid, |n| n.to_string()),
         ]
     });

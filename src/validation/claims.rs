@@ -46,8 +46,8 @@ pub use super::unit::{Unit, UNITS};
 use crate::error::{Error, Result};
 use crate::stats::{establish, Decision, Estimate, Region};
 
-pub use super::measures::Measures;
-use super::measures::{check_measure, declared};
+use super::measures::declared;
+pub use super::measures::{Measure, Measures};
 use crate::experiments::Keys;
 
 /// A value the claim's test must be able to exclude.
@@ -69,7 +69,7 @@ pub struct OtherReading {
     /// The reading, in words.
     pub reading: String,
     /// Its measure.
-    pub measure: String,
+    pub measure: Measure,
     /// Its rule, where not the claim's.
     #[serde(default)]
     pub rule: Option<Rule>,
@@ -96,7 +96,7 @@ pub struct ClaimSpec {
     pub value: Option<f64>,
     /// The measure it is compared with (absent: not measured, see `not_measured`).
     #[serde(default)]
-    pub measure: Option<String>,
+    pub measure: Option<Measure>,
     /// What the measure is: the page prints it in this unit, and the phrase's tolerance is
     /// this unit's ([`Unit`]).
     pub unit: Unit,
@@ -373,7 +373,7 @@ pub fn check_declared(
         }
         for (field, m) in named {
             declared(m, keys, fixed_solver).map_err(|allowed| {
-                Error::invalid(&format!("claims.{}.{field}", c.key), m, allowed)
+                Error::invalid(&format!("claims.{}.{field}", c.key), m.to_string(), allowed)
             })?;
         }
     }
@@ -389,8 +389,7 @@ impl ClaimSpec {
             return Err(Error::invalid("claims.key", "\"\"", "a non-empty key"));
         }
         match (&self.measure, &self.not_measured) {
-            (Some(m), None) => check_measure(&field("measure"), m)?,
-            (None, Some(_)) => {}
+            (Some(_), None) | (None, Some(_)) => {}
             (Some(_), Some(_)) => {
                 return Err(Error::invalid(
                     &field("not_measured"),
@@ -405,9 +404,6 @@ impl ClaimSpec {
                     "a measure, or not_measured with the reason",
                 ))
             }
-        }
-        for (k, r) in self.other_readings.iter().enumerate() {
-            check_measure(&field(&format!("other_readings[{k}].measure")), &r.measure)?;
         }
         self.validate_rule(&field)?;
         let ordering = matches!(self.rule, Rule::Exceeds(_));
@@ -496,7 +492,6 @@ impl ClaimSpec {
                 "outside = [x - r, x + r]: a law is violated beyond a band, so that the claim \
                  can be contradicted where the law holds",
             )),
-            Rule::Exceeds(m) => check_measure(&field("rule.exceeds"), m),
             _ => Ok(()),
         }
     }
@@ -544,8 +539,11 @@ impl ClaimSpec {
             .collect()
     }
 
-    fn measure_name(&self) -> &str {
-        self.measure.as_deref().unwrap_or("")
+    fn measure_name(&self) -> String {
+        self.measure
+            .as_ref()
+            .map(Measure::to_string)
+            .unwrap_or_default()
     }
 
     /// Judges the claim on a run (of the reduced scene when `reduced_scene`), at the
@@ -560,7 +558,7 @@ impl ClaimSpec {
             n,
         };
         let z = iv.z;
-        let measured = self.measure.as_deref().and_then(|m| measures.get(m));
+        let measured = self.measure.as_ref().and_then(|m| measures.get(m));
         let (result, why) = match (&self.measure, measured) {
             (None, _) => (ClaimResult::NotMeasured, self.not_measured.clone()),
             // Not judged here whether or not the reduced scene has the measure: a load or
@@ -607,7 +605,7 @@ impl ClaimSpec {
             paper: self.paper.clone(),
             phrase: Some(self.phrase),
             paper_value: self.value,
-            measure: self.measure.clone().unwrap_or_default(),
+            measure: self.measure_name(),
             unit: Some(self.unit),
             realizations: n,
             interval_z: Some(z),
@@ -659,7 +657,7 @@ impl ClaimSpec {
         };
         ReadingOutcome {
             reading: r.reading.clone(),
-            measure: r.measure.clone(),
+            measure: r.measure.to_string(),
             measured,
             result,
         }
@@ -987,7 +985,7 @@ mod tests {
             paper: "~62%".into(),
             phrase,
             value,
-            measure: Some("headline".into()),
+            measure: Some("headline".parse().unwrap()),
             unit: Unit::Ratio,
             realizations: scene_seeds(),
             error: ErrorKind::Realizations,
@@ -1079,7 +1077,7 @@ mod tests {
             r(Phrase::Sign, Rule::Differs(1.2)),
             ClaimResult::NotEstablished
         );
-        let exceeds = |m: &str| Rule::Exceeds(m.into());
+        let exceeds = |m: &str| Rule::Exceeds(m.parse().unwrap());
         assert_eq!(
             r(Phrase::Sign, exceeds("cross_check:cg")),
             ClaimResult::Reproduced
@@ -1128,7 +1126,7 @@ mod tests {
         s.inconsistent = Some("caption and text".into());
         s.other_readings = vec![OtherReading {
             reading: "the text".into(),
-            measure: "cross_check:cg".into(),
+            measure: "cross_check:cg".parse().unwrap(),
             rule: None,
         }];
         let o = s.judge(&measures(Estimate::new(0.9, 0.01)), false, 3.0);
@@ -1146,7 +1144,7 @@ mod tests {
         assert_eq!(reduced.result, ClaimResult::NotJudgedAtThisScale);
         assert_eq!(reduced.measured, Some(Estimate::new(0.2, 0.01)));
         assert_eq!(s.judge(&m, false, 3.0).result, ClaimResult::Contradicted);
-        s.measure = Some("detail:absent".into());
+        s.measure = Some("detail:absent".parse().unwrap());
         let absent = s.judge(&m, false, 3.0);
         assert_eq!(absent.result, ClaimResult::NotMeasured);
         assert!(absent.why.as_ref().unwrap().contains("detail:absent"));
@@ -1163,10 +1161,10 @@ mod tests {
     fn a_claim_of_the_full_scene_is_not_judged_on_the_reduced_one_measured_or_not() {
         let mut s = spec(Phrase::About, Rule::Near(0.1), Some(0.62));
         s.reduced = false;
-        s.measure = Some("detail:a_load_of_the_full_scene".into());
+        s.measure = Some("detail:a_load_of_the_full_scene".parse().unwrap());
         s.other_readings = vec![OtherReading {
             reading: "at another load".into(),
-            measure: "detail:another_load_of_the_full_scene".into(),
+            measure: "detail:another_load_of_the_full_scene".parse().unwrap(),
             rule: None,
         }];
         let m = measures(Estimate::new(0.2, 0.01));
@@ -1195,7 +1193,7 @@ mod tests {
             ..measures(Estimate::new(0.2, 0.01))
         };
         let mut s = spec(Phrase::About, Rule::Near(0.1), Some(0.62));
-        s.measure = Some("detail:eps16_share_ar0.14".into());
+        s.measure = Some("detail:eps16_share_ar0.14".parse().unwrap());
         let o = s.judge(&m, false, 3.0);
         assert_eq!(o.result, ClaimResult::NotMeasured);
         let why = o.why.unwrap();
@@ -1203,12 +1201,12 @@ mod tests {
             assert!(why.contains(word), "{word}: {why}");
         }
         // A study cell of the part, a detail on a grid: the part gives them too.
-        assert!(pending[0].gives("study:variants/eps16_ar0.14/share"));
-        assert!(pending[0].gives("detail:eps16_share_ar0.14@2048"));
-        assert!(!pending[0].gives("detail:eps16_share_ar0.88"));
-        assert!(!pending[0].gives("headline"));
+        assert!(pending[0].gives(&"study:variants/eps16_ar0.14/share".parse().unwrap()));
+        assert!(pending[0].gives(&"detail:eps16_share_ar0.14@2048".parse().unwrap()));
+        assert!(!pending[0].gives(&"detail:eps16_share_ar0.88".parse().unwrap()));
+        assert!(!pending[0].gives(&"headline".parse().unwrap()));
         // Any other absent measure reads as before.
-        s.measure = Some("detail:absent".into());
+        s.measure = Some("detail:absent".parse().unwrap());
         assert!(s
             .judge(&m, false, 3.0)
             .why
@@ -1424,14 +1422,25 @@ mod tests {
             spec(Phrase::Order, Rule::Within((2.0, 1.0)), None),
             "claims.k.rule",
         );
+        // A measure of no form is refused as the definition is read, at its line.
+        let text = "key = \"k\"\nstatement = \"s\"\nplace = \"p\"\npaper = \"> 0\"\n\
+                    phrase = \"sign\"\nvalue = 0.0\nunit = \"ratio\"\n\
+                    measure = \"study:a/b\"\nrule = { above = 0.0 }\n";
+        let e = toml::from_str::<ClaimSpec>(text).unwrap_err().to_string();
+        for word in [
+            "measure = \"study:a/b\"",
+            "line 8",
+            "study:STUDY/ROW/COLUMN",
+        ] {
+            assert!(e.contains(word), "{word}: {e}");
+        }
+        assert!(toml::from_str::<ClaimSpec>(&text.replace("a/b", "a/b/c")).is_ok());
         let mut s = spec(Phrase::Sign, Rule::Above(0.0), Some(0.0));
-        s.measure = Some("study:a/b".into());
-        refused(s.clone(), "claims.k.measure");
         s.measure = None;
         refused(s.clone(), "claims.k.measure");
         s.not_measured = Some("why".into());
         assert!(validate_claims(&[s.clone()], 0.02).is_ok());
-        s.measure = Some("headline".into());
+        s.measure = Some("headline".parse().unwrap());
         refused(s, "claims.k.not_measured");
         let a = spec(Phrase::Sign, Rule::Above(0.0), Some(0.0));
         let e = validate_claims(&[a.clone(), a], 0.02)

@@ -12,7 +12,7 @@ use super::outcome::{CrossCheck, MergeRecord, Outcome, PendingPart};
 use super::source::Source;
 use crate::engine::solver::SolverKind;
 use crate::error::{Error, Result};
-use crate::experiments::{Conclusion, Detail, Experiment, JobOf, ResultOf};
+use crate::experiments::{Conclusion, Experiment, JobOf, ResultOf};
 use crate::stats::Estimate;
 
 /// The jobs of one solver with their results, in job order.
@@ -47,7 +47,6 @@ pub(crate) fn conclude<E: Experiment>(
         })
         .collect();
     let verdict = def.verdict.judge(measured, conclusion.persson);
-    let mut conclusion = conclusion;
     let pending = merge.as_ref().map_or(&[][..], |m| &m.pending[..]);
     let claims = judge_claims(
         def,
@@ -57,7 +56,6 @@ pub(crate) fn conclude<E: Experiment>(
         pending,
         (scene_json, scale),
     );
-    papers_values(&mut conclusion.details, &claims);
     let reproduced = reproduced(def, verdict);
     let files = write_files(out, &def.name, &conclusion)?;
     let outcome = Outcome {
@@ -146,28 +144,6 @@ fn judge_claims<S>(
         .iter()
         .map(|c| c.judge(&measures, scale == Scale::Reduced, def.verdict.significance))
         .collect()
-}
-
-/// Each detail a claim measures carries that claim's value as the paper's (the details
-/// show it beside the measurement; the experiments know no paper values).
-fn papers_values(details: &mut [Detail], claims: &[ClaimOutcome]) {
-    for c in claims {
-        let Some(key) = c.measure.strip_prefix("detail:") else {
-            continue;
-        };
-        let (key, grid) = match key.split_once('@') {
-            Some((k, g)) => (k, g.parse::<usize>().ok()),
-            None => (key, None),
-        };
-        for d in details
-            .iter_mut()
-            .filter(|d| d.key == key && (grid.is_none() || d.grid == grid))
-        {
-            if c.paper_value.is_some() {
-                d.paper = c.paper_value;
-            }
-        }
-    }
 }
 
 /// Whether the run's headline verdict is the paper's: Persson's assumption holds or is

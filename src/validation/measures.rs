@@ -1,6 +1,5 @@
 //! Where a claim finds its numbers ([`Measures`]: a run's headline, details, studies and
-//! cross-checks), the form of a measure (`headline`, `detail:KEY[@N]`,
-//! `study:STUDY/ROW/COLUMN`, `cross_check:SOLVER`), and the check at load that every
+//! cross-checks, read by a [`Measure`]), and the check at load that every
 //! measure a claim names is one its experiment declares for the scene
 //! ([`super::claims::check_declared`]), so that a mistyped key is an error, not "not measured";
 //! and the measures a merge could not have yet ([`PendingPart`]: an optional part of the
@@ -8,8 +7,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::engine::solver::SolverKind;
-use crate::error::{Error, Result};
+pub use super::measure::Measure;
 use crate::experiments::keys::closest;
 use crate::experiments::study::{self, Study};
 use crate::experiments::{Detail, Keys};
@@ -46,31 +44,22 @@ impl Measures<'_> {
     }
 
     /// The estimate a measure names, if the run has it.
-    pub fn get(&self, measure: &str) -> Option<Estimate> {
-        let (kind, rest) = measure.split_once(':').unwrap_or((measure, ""));
-        match kind {
-            "headline" => Some(self.headline),
-            "detail" => {
-                let (key, grid) = match rest.split_once('@') {
-                    Some((k, g)) => (k, g.parse::<usize>().ok()),
-                    None => (rest, None),
-                };
-                self.details
-                    .iter()
-                    .find(|d| d.key == key && (grid.is_none() || d.grid == grid))
-                    .map(|d| d.value)
-            }
-            "study" => {
-                let mut parts = rest.splitn(3, '/');
-                let (s, r, c) = (parts.next()?, parts.next()?, parts.next()?);
-                study::find(self.studies, s)?.cell(r, c)?.estimate()
-            }
-            "cross_check" => self
+    pub fn get(&self, measure: &Measure) -> Option<Estimate> {
+        match measure {
+            Measure::Headline => Some(self.headline),
+            Measure::Detail { key, grid } => self
+                .details
+                .iter()
+                .find(|d| &d.key == key && (grid.is_none() || d.grid == *grid))
+                .map(|d| d.value),
+            Measure::Study { study, row, column } => study::find(self.studies, study)?
+                .cell(row, column)?
+                .estimate(),
+            Measure::CrossCheck(solver) => self
                 .cross_checks
                 .iter()
-                .find(|(s, _)| s == rest)
+                .find(|(s, _)| s == solver.name())
                 .map(|(_, e)| *e),
-            _ => None,
         }
     }
 }
@@ -106,83 +95,43 @@ pub fn realizations_at(scene: &serde_json::Value, path: &str) -> Option<usize> {
     }
 }
 
-/// Checks a measure's form: one of the kinds above.
-pub(super) fn check_measure(field: &str, measure: &str) -> Result<()> {
-    let (kind, rest) = measure.split_once(':').unwrap_or((measure, ""));
-    let ok = match kind {
-        "headline" => rest.is_empty(),
-        "detail" | "cross_check" => !rest.is_empty(),
-        "study" => rest.splitn(3, '/').filter(|p| !p.is_empty()).count() == 3,
-        _ => false,
-    };
-    if ok {
-        Ok(())
-    } else {
-        Err(Error::invalid(
-            field,
-            measure,
-            "headline, detail:KEY[@N], study:STUDY/ROW/COLUMN or cross_check:SOLVER",
-        ))
-    }
-}
-
 /// Whether a run of a scene whose experiment declares `keys` has the measure `measure`
 /// (of a checked form): a declared detail (on the grid it names), a declared study and
 /// column (the rows of a study are known from its results only), or the cross-check of a
 /// known solver where the scene does not fix its solver (`fixed_solver`). `Err` says what
 /// is allowed instead.
 pub(super) fn declared(
-    measure: &str,
+    measure: &Measure,
     keys: &Keys,
     fixed_solver: bool,
 ) -> std::result::Result<(), String> {
-    let (kind, rest) = measure.split_once(':').unwrap_or((measure, ""));
     let listed = |what: &str, name: &str, names: &[String]| {
         format!(
             "{what} the experiment declares for this scene; the closest: {}",
             closest(name, names).join(", ")
         )
     };
-    match kind {
-        "detail" => {
-            let (key, grid) = match rest.split_once('@') {
-                Some((k, g)) => (
-                    k,
-                    Some(g.parse::<usize>().map_err(|_| {
-                        format!("a grid size after '@' in detail:{key}@N", key = k)
-                    })?),
-                ),
-                None => (rest, None),
-            };
-            if keys.has_detail(key, grid) {
+    match measure {
+        Measure::Detail { key, grid } => {
+            if keys.has_detail(key, *grid) {
                 Ok(())
             } else {
-                Err(listed("a detail", rest, &keys.detail_names()))
+                let named = measure.to_string();
+                let named = named.strip_prefix("detail:").unwrap_or(&named);
+                Err(listed("a detail", named, &keys.detail_names()))
             }
         }
-        "study" => {
-            let mut parts = rest.splitn(3, '/');
-            let (s, _row, c) = (
-                parts.next().unwrap_or(""),
-                parts.next().unwrap_or(""),
-                parts.next().unwrap_or(""),
-            );
-            match keys.study_columns(s) {
-                None => Err(listed("a study", s, &keys.study_names())),
-                Some(columns) if !columns.iter().any(|k| k == c) => {
-                    Err(format!("a column of study {s}: {}", columns.join(", ")))
-                }
-                Some(_) => Ok(()),
+        Measure::Study { study, column, .. } => match keys.study_columns(study) {
+            None => Err(listed("a study", study, &keys.study_names())),
+            Some(columns) if !columns.iter().any(|k| k == column) => {
+                Err(format!("a column of study {study}: {}", columns.join(", ")))
             }
-        }
-        "cross_check" if fixed_solver => {
+            Some(_) => Ok(()),
+        },
+        Measure::CrossCheck(_) if fixed_solver => {
             Err("no cross-check: the scene fixes its solver, so a run has none".into())
         }
-        "cross_check" if SolverKind::from_name(rest).is_none() => Err(format!(
-            "the cross-check of a solver, {}",
-            SolverKind::listed()
-        )),
-        _ => Ok(()),
+        Measure::CrossCheck(_) | Measure::Headline => Ok(()),
     }
 }
 
@@ -204,15 +153,9 @@ pub struct PendingPart {
 }
 
 impl PendingPart {
-    /// Whether the claim measure `measure` (`detail:KEY[@N]`, `study:KEY/ROW/COLUMN`) is one
-    /// of the part's.
-    pub fn gives(&self, measure: &str) -> bool {
-        let base = match measure.split_once(':') {
-            Some(("detail", rest)) => format!("detail:{}", rest.split('@').next().unwrap_or(rest)),
-            Some(("study", rest)) => format!("study:{}", rest.split('/').next().unwrap_or(rest)),
-            _ => return false,
-        };
-        self.measures.contains(&base)
+    /// Whether the claim measure `measure` (a detail or a study cell) is one of the part's.
+    pub fn gives(&self, measure: &Measure) -> bool {
+        measure.family().is_some_and(|f| self.measures.contains(&f))
     }
 
     /// Why a claim that reads the part's measure is not measured yet.

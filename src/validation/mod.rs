@@ -35,6 +35,7 @@ pub mod audit;
 pub mod claims;
 mod conclusion;
 pub mod definition;
+pub mod measure;
 pub mod measures;
 pub mod outcome;
 mod pending;

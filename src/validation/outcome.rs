@@ -16,6 +16,7 @@ use serde::{Deserialize, Deserializer, Serialize};
 
 use super::claims::ClaimOutcome;
 use super::definition::{Scale, Verdict, VerdictRule};
+use super::measure::Measure;
 pub use super::measures::PendingPart;
 use super::store::JobRun;
 use crate::experiments::study::Study;
@@ -106,6 +107,25 @@ pub struct Outcome {
     /// For an outcome merged from a sharded run: the shares that computed its jobs.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub merge: Option<MergeRecord>,
+}
+
+impl Outcome {
+    /// The paper's value beside the detail `d`: that of the claim measuring it, where a
+    /// claim gives one (the last, in the definition's order), else the experiment's own.
+    /// A read of the outcome: the run never writes a claim's value into its details.
+    pub fn paper_value_of(&self, d: &Detail) -> Option<f64> {
+        let measures_d = |c: &&ClaimOutcome| match c.measure.parse::<Measure>() {
+            Ok(Measure::Detail { key, grid }) => key == d.key && (grid.is_none() || grid == d.grid),
+            _ => false,
+        };
+        self.claims
+            .iter()
+            .rev()
+            .filter(|c| c.paper_value.is_some())
+            .find(measures_d)
+            .and_then(|c| c.paper_value)
+            .or(d.paper)
+    }
 }
 
 /// The provenance of an outcome merged from the stored results of a sharded run.

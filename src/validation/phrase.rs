@@ -6,6 +6,7 @@
 //! and 5% on every ratio, whichever validation states it. The phrase table of
 //! `docs/reviewing.md` is written from here.
 
+use super::measure::Measure;
 use serde::{Deserialize, Serialize};
 
 use super::unit::{Tolerance, Unit, EXPONENT_BAND};
@@ -31,7 +32,7 @@ pub enum Rule {
     /// where the interval lies inside the band `[lo, hi]` around the law's value.
     Outside((f64, f64)),
     /// Larger than another measure.
-    Exceeds(String),
+    Exceeds(Measure),
     /// Away from a value, with no band: never contradicted, refused when a definition
     /// loads (the outcomes of earlier versions hold it; `outside` replaces it).
     Differs(f64),
