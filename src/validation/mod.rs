@@ -32,9 +32,11 @@
 //! * [`audit`]: stored job results recomputed with this build and compared byte for byte.
 
 pub mod audit;
+mod claim_outcome;
 pub mod claims;
 mod conclusion;
 pub mod definition;
+mod judge;
 pub mod measure;
 pub mod measures;
 pub mod outcome;
