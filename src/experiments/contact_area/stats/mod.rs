@@ -288,6 +288,7 @@ fn curve_stats(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::persson::ContactAreaLaw;
 
     #[test]
     fn richardson_removes_an_error_proportional_to_the_spacing() {

@@ -242,6 +242,7 @@ pub fn step_scaling(rows: &[SensitivityRow], p: &PaperFlux) -> Option<StepScalin
 mod tests {
     use super::notes::identity_note;
     use super::*;
+    use crate::experiments::flux::study::sensitivity::PlannedRow;
     use crate::experiments::flux::FluxScene;
 
     /// The paper's numbers as the shipped definition's claims state them, at the stated
