@@ -327,21 +327,8 @@ fn the_front_ends_import_no_engine_item() {
 /// read.
 #[test]
 fn the_report_runs_no_speed_study() {
-    fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
-        for entry in std::fs::read_dir(dir).unwrap() {
-            let path = entry.unwrap().path();
-            if path.is_dir() {
-                walk(&path, out);
-            } else if path.extension().is_some_and(|e| e == "rs") {
-                out.push(path);
-            }
-        }
-    }
-    let mut files = Vec::new();
-    walk(
-        &Path::new(env!("CARGO_MANIFEST_DIR")).join("src/report"),
-        &mut files,
-    );
+    let files =
+        crate::common::rust_files(&Path::new(env!("CARGO_MANIFEST_DIR")).join("src/report"));
     assert!(files.len() >= 10, "{files:?}");
     let wrong: Vec<String> = files
         .iter()

@@ -7,6 +7,7 @@ mod bad_input;
 mod cg_bits;
 mod check_surface;
 mod claims;
+mod code_shape;
 mod common;
 mod compare;
 mod conformance;

@@ -87,13 +87,6 @@ impl HalfSpace {
         p[0] = Complex64::new(p0, 0.0);
     }
 
-    /// Displacement from stress, `u~ = 2 p~ / (q E*)`, with the free rigid shift `u~(0) = 0`.
-    pub fn displacement_from_pressure(&self, p: &[Complex64], u: &mut [Complex64]) {
-        for ((ui, pi), c) in u.iter_mut().zip(p).zip(self.compliance()) {
-            *ui = pi * c;
-        }
-    }
-
     /// Elastic energy per unit area from the displacement spectrum,
     /// `(E*/4) sum_q q |u~(q)|^2`.
     pub fn energy_fourier(&self, grid: &Grid, u: &[Complex64]) -> f64 {
@@ -102,13 +95,6 @@ impl HalfSpace {
             .enumerate()
             .map(|(s, (ui, k))| grid.weight_of(s) * 0.5 * k * ui.norm_sqr())
             .sum()
-    }
-
-    /// Elastic energy per unit area in real space, `(1/2) mean[(p - p0) u]`, where `p0` is
-    /// the mean of `p`.
-    pub fn energy_real(p: &[f64], u: &[f64]) -> f64 {
-        let p0 = crate::engine::field::mean(p);
-        0.5 * crate::engine::field::sum_zip(p, u, |pi, ui| (pi - p0) * ui) / p.len() as f64
     }
 
     /// Per-mode energies `E_exa(q) = (E*/4) q |u~(q)|^2` over the half spectrum, each
@@ -128,6 +114,13 @@ mod tests {
     use crate::engine::fft::Fft2;
     use crate::engine::surface::{Surface, SurfaceModel};
 
+    /// Elastic energy per unit area in real space, `(1/2) mean[(p - p0) u]`, where `p0` is
+    /// the mean of `p`.
+    fn energy_real(p: &[f64], u: &[f64]) -> f64 {
+        let p0 = crate::engine::field::mean(p);
+        0.5 * crate::engine::field::sum_zip(p, u, |pi, ui| (pi - p0) * ui) / p.len() as f64
+    }
+
     #[test]
     fn energy_in_real_space_equals_energy_in_fourier_space() {
         let s = Surface::generate(&SurfaceModel::new(64, 0.7, 32.0, 4.0, 11)).unwrap();
@@ -144,7 +137,7 @@ mod tests {
         fft.inverse(&u_spec, &mut u, &mut work);
         fft.inverse(&p_spec, &mut p, &mut work);
         let ef = hs.energy_fourier(grid, &u_spec);
-        let er = HalfSpace::energy_real(&p, &u);
+        let er = energy_real(&p, &u);
         assert!((ef - er).abs() < 1e-13 * ef, "{ef} vs {er}");
         let modes: f64 = hs.mode_energies(grid, &u_spec).iter().sum();
         assert!((modes - ef).abs() < 1e-13 * ef);
@@ -156,21 +149,5 @@ mod tests {
             .map(|sh| sh.full_contact_energy(2.5))
             .sum();
         assert!((direct - ef).abs() < 1e-12 * ef);
-    }
-
-    #[test]
-    fn green_function_round_trip() {
-        let grid = Grid::new(16, 1.0).unwrap();
-        let hs = HalfSpace::new(&grid, 1.0).unwrap();
-        let u: Vec<Complex64> = (0..grid.modes())
-            .map(|s| Complex64::new((s as f64).sin(), (s as f64).cos()))
-            .collect();
-        let mut p = vec![Complex64::new(0.0, 0.0); grid.modes()];
-        let mut back = p.clone();
-        hs.pressure_from_displacement(&u, 0.0, &mut p);
-        hs.displacement_from_pressure(&p, &mut back);
-        for s in 1..grid.modes() {
-            assert!((back[s] - u[s]).norm() < 1e-14);
-        }
     }
 }

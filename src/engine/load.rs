@@ -106,31 +106,74 @@ pub fn solve_for_area(
         let problem = ContactProblem::new(model, heights, p0)?;
         solver.solve(&problem, start, opts)
     };
+    let (lo, hi) = match bracket(&mut solve_at, p0_guess.ln(), target, accept, start)? {
+        Bracket::Matched(solution) => {
+            return Ok(AreaSolution {
+                solution,
+                solves: solves.get(),
+            })
+        }
+        Bracket::Between(lo, hi) => (lo, hi),
+    };
+    let solution = illinois(&mut solve_at, lo, hi, target, accept, search.max_solves)?;
+    Ok(AreaSolution {
+        solution,
+        solves: solves.get(),
+    })
+}
 
-    // Bracket in x = ln p0, f = a_r - target.
-    let mut x0 = p0_guess.ln();
+/// A solve at one load, as the search calls it: the load `p0` and where to start.
+type SolveAt<'s> = dyn FnMut(f64, Start) -> Result<ContactSolution> + 's;
+
+/// One point of the search: `x = ln p0`, its solution, and `f = a_r - target`.
+struct Probe {
+    x: f64,
+    solution: ContactSolution,
+    f: f64,
+}
+
+/// What the bracketing found: a load whose contact area is accepted, or two loads whose
+/// contact areas lie on either side of the target.
+enum Bracket {
+    Matched(ContactSolution),
+    Between(Probe, Probe),
+}
+
+/// Brackets the target in `x = ln p0`, `f = a_r - target`: from `x0`, steps of doubling
+/// length (from 0.5) towards the target until `f` changes sign, each solve warm-started
+/// from the last.
+fn bracket(
+    solve_at: &mut SolveAt,
+    mut x0: f64,
+    target: f64,
+    accept: f64,
+    start: Start,
+) -> Result<Bracket> {
     let mut s0 = solve_at(x0.exp(), start)?;
     let mut f0 = s0.contact_area() - target;
     if f0.abs() <= accept {
-        return Ok(AreaSolution {
-            solution: s0,
-            solves: solves.get(),
-        });
+        return Ok(Bracket::Matched(s0));
     }
     let mut step = if f0 < 0.0 { 0.5 } else { -0.5 };
-    let (mut x1, mut s1, mut f1);
     loop {
-        x1 = x0 + step;
-        s1 = solve_at(x1.exp(), Start::Warm(&s0))?;
-        f1 = s1.contact_area() - target;
+        let x1 = x0 + step;
+        let s1 = solve_at(x1.exp(), Start::Warm(&s0))?;
+        let f1 = s1.contact_area() - target;
         if f1.abs() <= accept {
-            return Ok(AreaSolution {
-                solution: s1,
-                solves: solves.get(),
-            });
+            return Ok(Bracket::Matched(s1));
         }
         if f1.signum() != f0.signum() {
-            break;
+            let lo = Probe {
+                x: x0,
+                solution: s0,
+                f: f0,
+            };
+            let hi = Probe {
+                x: x1,
+                solution: s1,
+                f: f1,
+            };
+            return Ok(Bracket::Between(lo, hi));
         }
         x0 = x1;
         s0 = s1;
@@ -144,15 +187,36 @@ pub fn solve_for_area(
             )));
         }
     }
-    // Illinois regula falsi inside [x0, x1].
+}
+
+/// Illinois regula falsi inside the bracket `[lo, hi]`, each solve warm-started from the
+/// nearer end, within `max_solves` solves.
+fn illinois(
+    solve_at: &mut SolveAt,
+    lo: Probe,
+    hi: Probe,
+    target: f64,
+    accept: f64,
+    max_solves: usize,
+) -> Result<ContactSolution> {
+    let Probe {
+        x: mut x0,
+        solution: mut s0,
+        f: mut f0,
+    } = lo;
+    let Probe {
+        x: mut x1,
+        solution: mut s1,
+        f: mut f1,
+    } = hi;
     let mut side = 0i32;
     let mut count = 0usize;
     loop {
         count += 1;
-        if count > search.max_solves {
+        if count > max_solves {
             return Err(Error::LoadSearch(format!(
-                "contact area {target} not matched within {} solves (bracket a_r in [{:.5}, {:.5}])",
-                search.max_solves,
+                "contact area {target} not matched within {max_solves} solves (bracket a_r in \
+                 [{:.5}, {:.5}])",
                 f0.min(f1) + target,
                 f0.max(f1) + target
             )));
@@ -169,10 +233,7 @@ pub fn solve_for_area(
         let s = solve_at(x.exp(), Start::Warm(warm))?;
         let f = s.contact_area() - target;
         if f.abs() <= accept || (x1 - x0).abs() < 1e-12 {
-            return Ok(AreaSolution {
-                solution: s,
-                solves: solves.get(),
-            });
+            return Ok(s);
         }
         if f.signum() == f1.signum() {
             x1 = x;

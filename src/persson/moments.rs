@@ -60,14 +60,6 @@ pub fn second_moment(p_mean: f64, dp: f64) -> f64 {
     (2.0 / PI).sqrt() * p_mean * dp * (-x * x).exp() + (p_mean * p_mean + dp * dp) * erf(x)
 }
 
-/// `d<p^2>/dDp_n = 2 Dp_n erf(p' / (sqrt2 Dp_n))`, the derivative of [`second_moment`].
-pub fn second_moment_derivative(p_mean: f64, dp: f64) -> f64 {
-    if dp == 0.0 {
-        return 0.0;
-    }
-    2.0 * dp * erf(p_mean / (std::f64::consts::SQRT_2 * dp))
-}
-
 /// Checks `p' > 0` and finite, `<p^2>` finite with `sigma^2 = <p^2>/p'^2 - 1 >= 0`;
 /// returns `sigma^2`.
 fn relative_variance(p_mean: f64, second: f64) -> Result<f64> {
@@ -263,20 +255,6 @@ mod tests {
             assert!(
                 (g - direct).abs() <= 1e-14 * (1.0 + direct.abs()),
                 "t = {t}: {g} vs {direct}"
-            );
-        }
-    }
-
-    #[test]
-    fn derivative_matches_a_central_difference() {
-        for (p, dp) in [(1.0, 0.3), (1.0, 1.0), (2.0, 7.0), (0.5, 0.05)] {
-            let h = 1e-5 * dp;
-            let fd = (second_moment(p, dp + h) - second_moment(p, dp - h)) / (2.0 * h);
-            let exact = second_moment_derivative(p, dp);
-            // Central difference: truncation ~ h^2, rounding ~ eps <p^2> / h.
-            assert!(
-                (fd - exact).abs() <= 1e-8 * exact.abs(),
-                "p' = {p}, Dp = {dp}: {fd} vs {exact}"
             );
         }
     }

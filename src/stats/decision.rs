@@ -105,18 +105,6 @@ impl std::ops::Not for Decision {
     }
 }
 
-impl Claim {
-    /// The value is closer to `a` than to `b`: above or below their midpoint.
-    pub fn closer_to(a: f64, b: f64) -> Self {
-        let midpoint = 0.5 * (a + b);
-        if a > b {
-            Claim::Above(midpoint)
-        } else {
-            Claim::Below(midpoint)
-        }
-    }
-}
-
 /// Decides `claim` about `estimate` at `significance` standard errors: undecided when the
 /// estimate has no error bar or no finite value, else whether the interval
 /// `value +- significance std_error` satisfies the claim.
@@ -375,9 +363,6 @@ mod tests {
         assert_eq!(decide(e, Claim::Overlaps(1.2, 2.0), Z), Decision::Passed);
         assert_eq!(decide(e, Claim::Overlaps(1.4, 2.0), Z), Decision::Failed);
         assert_eq!(decide(e, Claim::Overlaps(0.0, 0.6), Z), Decision::Failed);
-        // 1 is closer to 1.2 than to 0.6, and not closer to 0.6 than to 1.2.
-        assert_eq!(decide(e, Claim::closer_to(1.2, 0.6), 0.0), Decision::Passed);
-        assert_eq!(decide(e, Claim::closer_to(0.6, 1.2), 0.0), Decision::Failed);
     }
 
     #[test]

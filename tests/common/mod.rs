@@ -1,9 +1,10 @@
-//! Helpers shared by the test modules: definition folders with a spliced scene, and
-//! outcomes and tables without what depends on the clock or the machine.
+//! Helpers shared by the test modules: definition folders with a spliced scene, outcomes
+//! and tables without what depends on the clock or the machine, and the source files of a
+//! folder.
 
 pub mod contact;
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
@@ -110,4 +111,22 @@ pub fn assert_no_nan(what: &str, text: &str) {
         .split(|c: char| !c.is_ascii_alphanumeric())
         .any(|word| word.eq_ignore_ascii_case("nan"));
     assert!(!nan, "{what} prints NaN:\n{text}");
+}
+
+/// Every `.rs` file under `dir` (its subfolders too), sorted.
+pub fn rust_files(dir: &Path) -> Vec<PathBuf> {
+    fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                walk(&path, out);
+            } else if path.extension().is_some_and(|e| e == "rs") {
+                out.push(path);
+            }
+        }
+    }
+    let mut out = Vec::new();
+    walk(dir, &mut out);
+    out.sort();
+    out
 }

@@ -354,6 +354,29 @@ impl Experiment for ModeFrozen {
 /// c and d, the peak of the shortest target, the curvature of the fall-off and the onset
 /// of every load.
 fn new_details(scene: &ModeScene, s: &FrozenStats) -> Vec<Detail> {
+    let mut details = sweep_details(scene, s);
+    details.extend(asymptote_details(scene, s));
+    for &(load, onset) in &s.onsets {
+        details.push(
+            Detail::new(
+                onset_key(load),
+                format!(
+                    "E_norm at zeta = {} zeta_t, mean over targets, then over realizations, \
+                     a_r = {load} at full resolution",
+                    scene.onset_ratio
+                ),
+                onset,
+            )
+            .persson(0.0),
+        );
+    }
+    details
+}
+
+/// The sweeps' shape: the largest change near full contact, the end-of-sweep
+/// long-minus-short difference of panels c and d, the peak of the shortest target and the
+/// curvature of the fall-off.
+fn sweep_details(scene: &ModeScene, s: &FrozenStats) -> Vec<Detail> {
     let last = scene.targets.len() - 1;
     let mut details = Vec::new();
     if let Some(c) = s.change_full_contact_max {
@@ -413,6 +436,13 @@ fn new_details(scene: &ModeScene, s: &FrozenStats) -> Vec<Detail> {
             .persson(0.0),
         );
     }
+    details
+}
+
+/// The asymptote law: which variable explains `ln E_inf` better, and its coefficients
+/// against the reference surface's.
+fn asymptote_details(scene: &ModeScene, s: &FrozenStats) -> Vec<Detail> {
+    let mut details = Vec::new();
     if let Some(r) = s.r2_x_minus_r2_ar {
         details.push(Detail::new(
             R2_X_MINUS_R2_AR,
@@ -443,20 +473,6 @@ fn new_details(scene: &ModeScene, s: &FrozenStats) -> Vec<Detail> {
                 d,
             ));
         }
-    }
-    for &(load, onset) in &s.onsets {
-        details.push(
-            Detail::new(
-                onset_key(load),
-                format!(
-                    "E_norm at zeta = {} zeta_t, mean over targets, then over realizations, \
-                     a_r = {load} at full resolution",
-                    scene.onset_ratio
-                ),
-                onset,
-            )
-            .persson(0.0),
-        );
     }
     details
 }

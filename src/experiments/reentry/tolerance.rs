@@ -314,43 +314,7 @@ pub fn study(
         let tightest = tightest_of(tols, rows, row.grid, row.contact_area);
         let present: Vec<&Sample> = row.samples.iter().flatten().copied().collect();
         let share = Estimate::mean_of(&present.iter().map(|s| s.share).collect::<Vec<_>>());
-        let (shift, differs) = match tightest {
-            Some(t) if !present.is_empty() && present.len() == row.samples.len() => {
-                let pairs: Vec<(&Sample, &Sample)> = row
-                    .samples
-                    .iter()
-                    .zip(&t.samples)
-                    .filter_map(|(a, b)| Some(((*a)?, (*b)?)))
-                    .collect();
-                let t_shares: Vec<f64> = t.samples.iter().flatten().map(|s| s.share).collect();
-                let se = Estimate::mean_of(&t_shares).std_error;
-                let se = if se.is_finite() && se > 0.0 {
-                    Some(se)
-                } else {
-                    headline_se(row.grid, row.contact_area)
-                };
-                if pairs.len() == row.samples.len() {
-                    let n = pairs.len() as f64;
-                    let d = pairs.iter().map(|(a, b)| a.share - b.share).sum::<f64>() / n;
-                    let differs = pairs
-                        .iter()
-                        .map(|(a, b)| {
-                            a.contact
-                                .iter()
-                                .zip(&b.contact)
-                                .filter(|(x, y)| x != y)
-                                .count() as f64
-                                / a.contact.len().max(1) as f64
-                        })
-                        .sum::<f64>()
-                        / n;
-                    (se.map(|se| d / se), Some(differs))
-                } else {
-                    (None, None)
-                }
-            }
-            _ => (None, None),
-        };
+        let (shift, differs) = against_tightest(row, tightest, present.len(), &headline_se);
         let accepted = match (shift, differs) {
             (Some(s), Some(d)) => Some(s.abs() <= SHIFT_SE && d < DIFFERS),
             _ => None,
@@ -397,6 +361,55 @@ pub fn study(
     }
     study.notes = notes(&choice(tols, &accepted_at), &accepted_at);
     study
+}
+
+/// A row against the tightest row of its grid and load: the mean shift of the share in
+/// standard errors (the tightest row's over realizations, or `headline_se` where that has
+/// none) and the mean share of the points whose contact differs; none unless every
+/// realization of the row has a sample (`present` of them) and a tightest one.
+fn against_tightest(
+    row: &RowSamples,
+    tightest: Option<&RowSamples>,
+    present: usize,
+    headline_se: &dyn Fn(&ToleranceGrid, f64) -> Option<f64>,
+) -> (Option<f64>, Option<f64>) {
+    match tightest {
+        Some(t) if present > 0 && present == row.samples.len() => {
+            let pairs: Vec<(&Sample, &Sample)> = row
+                .samples
+                .iter()
+                .zip(&t.samples)
+                .filter_map(|(a, b)| Some(((*a)?, (*b)?)))
+                .collect();
+            let t_shares: Vec<f64> = t.samples.iter().flatten().map(|s| s.share).collect();
+            let se = Estimate::mean_of(&t_shares).std_error;
+            let se = if se.is_finite() && se > 0.0 {
+                Some(se)
+            } else {
+                headline_se(row.grid, row.contact_area)
+            };
+            if pairs.len() == row.samples.len() {
+                let n = pairs.len() as f64;
+                let d = pairs.iter().map(|(a, b)| a.share - b.share).sum::<f64>() / n;
+                let differs = pairs
+                    .iter()
+                    .map(|(a, b)| {
+                        a.contact
+                            .iter()
+                            .zip(&b.contact)
+                            .filter(|(x, y)| x != y)
+                            .count() as f64
+                            / a.contact.len().max(1) as f64
+                    })
+                    .sum::<f64>()
+                    / n;
+                (se.map(|se| d / se), Some(differs))
+            } else {
+                (None, None)
+            }
+        }
+        _ => (None, None),
+    }
 }
 
 /// The row of the tightest tolerance of `grid` at `contact_area`.

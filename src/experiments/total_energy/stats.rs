@@ -324,11 +324,22 @@ pub fn details(
     windows: &[Vec<usize>],
     h: &Headline,
 ) -> Vec<Detail> {
-    let end = zetas.len() - 1;
     let mut details: Vec<Detail> = loads
         .iter()
         .flat_map(|load| load_details(scene, load, zetas, windows))
         .collect();
+    details.extend(low_magnification_details(loads, zetas));
+    details.extend(headline_details(scene, loads, zetas, h));
+    let headline = group(loads, scene.headline_contact_area);
+    details.extend(across_loads_details(loads, zetas.len() - 1, headline, h));
+    details
+}
+
+/// `E_exa / E_c` at the lowest magnifications: at each load, at the steps nearest the
+/// first octaves; and at the load whose `p~0` is nearest 0.1 (the caption of fig.
+/// E_vs_zeta), at the first step and those octaves.
+fn low_magnification_details(loads: &[Load], zetas: &[f64]) -> Vec<Detail> {
+    let mut details = Vec::new();
     for load in loads {
         for z in NEAR_P01_ZETAS {
             let Some(k) = nearest_step(zetas, z) else {
@@ -389,7 +400,20 @@ pub fn details(
             );
         }
     }
-    details.push(
+    details
+}
+
+/// The corrected theory at the headline load: the drift of `E_exa / E_c` over the
+/// magnifications, how much closer it is than Persson's original, how its deviation
+/// grows at the lowest load, its overestimate and the measurement's shortfall.
+fn headline_details(
+    scene: &EnergyScene,
+    loads: &[Load],
+    zetas: &[f64],
+    h: &Headline,
+) -> Vec<Detail> {
+    let end = zetas.len() - 1;
+    let mut details = vec![
         Detail::new(
             CORRECTED_HEADLINE_DRIFT,
             format!(
@@ -399,24 +423,25 @@ pub fn details(
             h.drift,
         )
         .persson(0.0),
-    );
-    details.push(Detail::new(
-        IMPROVEMENT_HEADLINE,
-        format!(
-            "|E_exa / E_P - 1| - |E_exa / E_c - 1| at the headline load (a_r = {:.3}): how much \
-             closer the corrected theory is",
-            h.head.area.value
+        Detail::new(
+            IMPROVEMENT_HEADLINE,
+            format!(
+                "|E_exa / E_P - 1| - |E_exa / E_c - 1| at the headline load (a_r = {:.3}): how \
+                 much closer the corrected theory is",
+                h.head.area.value
+            ),
+            h.improvement(),
         ),
-        h.improvement(),
-    ));
-    details.push(Detail::new(
-        DEVIATION_GROWTH_LOW_LOAD,
-        format!(
-            "|E_exa / E_c - 1| at the lowest load (a_r = {:.4}) less that at the headline load",
-            h.low.area.value
+        Detail::new(
+            DEVIATION_GROWTH_LOW_LOAD,
+            format!(
+                "|E_exa / E_c - 1| at the lowest load (a_r = {:.4}) less that at the headline \
+                 load",
+                h.low.area.value
+            ),
+            h.growth(),
         ),
-        h.growth(),
-    ));
+    ];
     let headline = group(loads, scene.headline_contact_area);
     details.push(
         Detail::new(
@@ -442,6 +467,14 @@ pub fn details(
         )
         .persson(0.0),
     );
+    details
+}
+
+/// Over the loads: the corrected theory's worst deviation at the high loads (at the last
+/// step, `end`), the noise of the measured energy's increments against the theory's at the
+/// `headline` load, and the measured contact area against the corrected theory's.
+fn across_loads_details(loads: &[Load], end: usize, headline: &Load, h: &Headline) -> Vec<Detail> {
+    let mut details = Vec::new();
     if let Some(worst) = corrected_worst(loads, end) {
         details.push(
             Detail::new(

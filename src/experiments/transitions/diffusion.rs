@@ -181,134 +181,10 @@ impl Experiment for Diffusion {
 
     /// The high-pressure ratio and the corrected theory's `S(a_r)` beside it.
     fn details(run: &Run, s: &DiffusionStats) -> Vec<Detail> {
-        let mut details = vec![
-            Detail::new(
-                D_RATIO_HIGH,
-                format!("D_n / D_P at p >= {} p0/a_r", run.scene.high_pressure),
-                s.high,
-            )
-            .persson(1.0),
-            Detail::new(
-                S_CORRECTED,
-                "corrected theory's S(a_r) (eq. gamma)",
-                Estimate::new(s.s_corrected, f64::NAN),
-            )
-            .persson(s.s_corrected),
-            Detail::new(
-                HIGH_CLOSER_TO_ORIGINAL,
-                format!(
-                    "D_n / D_P at p >= {} p0/a_r minus the midpoint of the original theory's 1 \
-                     and the corrected theory's S(a_r) = {:.3}: above 0 where the broadening \
-                     is closer to the original theory",
-                    run.scene.high_pressure, s.s_corrected
-                ),
-                Estimate::new(s.high.value - 0.5 * (1.0 + s.s_corrected), s.high.std_error),
-            ),
-            Detail::new(
-                LOST_UNSUITED,
-                "share of the walkers in the analysed bins whose mean lies below the \
-                 broadening that left contact over the step",
-                s.lost_unsuited,
-            ),
-            Detail::new(
-                APPROX_DELTA_P_LIMITS,
-                "relative error of eq. (approxDeltaPress) against the exact inversion of eq. \
-                 (2ndMoment) in its limits, the larger at Dp_n / p' = 1e-6 and 1e8 (exact: no \
-                 error bar)",
-                Estimate::new(moments::estimate_error_in_the_limits(), 0.0),
-            ),
-            Detail::new(
-                APPROX_DELTA_P_ERROR,
-                "largest relative error of eq. (approxDeltaPress) against the exact inversion \
-                 of eq. (2ndMoment), Dp_n / p' from 1e-3 to 1e3 (exact: no error bar)",
-                Estimate::new(moments::estimate_largest_error(ERROR_POINTS), 0.0),
-            ),
-            Detail::new(
-                SMALL_P_EXPONENT,
-                format!(
-                    "exponent alpha of Pr(p) ~ p^alpha at zeta, fitted over the bins below \
-                     {SMALL_PRESSURE} p0/a_r (Persson's eq. pressureDistOri: 1)"
-                ),
-                s.small_p_exponent,
-            )
-            .persson(1.0),
-            Detail::new(
-                FIT_TV_UNSUITED_MINUS_SUITED,
-                "mean total-variation distance between a bin's transitions and the mirror \
-                 Gaussian with its moments (eq. transitionFinal), bins with mean below the \
-                 broadening minus bins above",
-                s.fit_unsuited_minus_suited,
-            ),
-            Detail::new(
-                FIT_TV_LOWEST_MINUS_TOP_UNSUITED,
-                "that total-variation distance in the lowest bin with mean below the \
-                 broadening minus that in the highest",
-                s.fit_lowest_minus_top_unsuited,
-            ),
-            Detail::new(
-                BIN_SPREAD_OVER_HALF_WIDTH,
-                "spread dp_n of the old pressures in a bin over the bin's half width, mean \
-                 over analysed bins (a flat density: 1/sqrt3)",
-                s.bin_spread_over_half_width,
-            ),
-            Detail::new(
-                BIN_BROADENING_SHARE,
-                "dp_n^2 / Dp_n^2, the share of the broadening the bin's own width makes up \
-                 (the relative change of D_n its correction makes), mean over suited bins",
-                s.bin_broadening_share,
-            ),
-            Detail::new(
-                MIRROR_MOMENT_ERROR,
-                "largest relative error of the quadrature of the first two moments of eq. \
-                 (transitionFinal) against p' and eq. (2ndMoment), Dp_n / p' from 1e-3 to \
-                 1e3 (exact: no error bar)",
-                Estimate::new(moments::mirror_moment_largest_error(ERROR_POINTS), 0.0),
-            ),
-        ];
-        if let (Some((low, a_r)), Some(other)) = (s.other, &run.scene.other_scene) {
-            details.push(
-                Detail::new(
-                    OTHER_D_RATIO_LOW,
-                    format!(
-                        "D_n / D_P at p < {} p0/a_r in the other scene: H = {}, a_r = {} at zeta {} \
-                         -> {} (measured a_r {})",
-                        run.scene.low_pressure,
-                        other.hurst,
-                        other.contact_area,
-                        other.zeta,
-                        other.zeta + other.dzeta,
-                        a_r.text(1.0, 4, "")
-                    ),
-                    low,
-                )
-                .persson(1.0),
-            );
-        }
-        if let Some([low, high, difference]) = s.distances {
-            let (lo, hi) = (run.scene.low_pressure, run.scene.high_pressure);
-            let walkers = |which: &str| {
-                format!(
-                    "mean distance to the nearest point out of contact at zeta = {}, grid \
-                     spacings, of the walkers {which} (per realization, then over realizations)",
-                    run.scene.zeta
-                )
-            };
-            details.extend([
-                Detail::new(DISTANCE_LOW, walkers(&format!("at p < {lo} p0/a_r")), low),
-                Detail::new(
-                    DISTANCE_HIGH,
-                    walkers(&format!("at p >= {hi} p0/a_r")),
-                    high,
-                ),
-                Detail::new(
-                    DISTANCE_HIGH_MINUS_LOW,
-                    walkers(&format!(
-                        "at p >= {hi} p0/a_r minus that of those at p < {lo} p0/a_r"
-                    )),
-                    difference,
-                ),
-            ]);
-        }
+        let mut details = broadening_details(run, s);
+        details.extend(transition_shape_details(s));
+        details.extend(other_scene_detail(run, s));
+        details.extend(distance_details(run, s));
         details
     }
 
@@ -346,6 +222,158 @@ impl Experiment for Diffusion {
     fn figures(run: &Run, s: &DiffusionStats) -> Vec<Figure> {
         vec![diffusion_figure(run.scene, s)]
     }
+}
+
+/// The broadening against the two theories at high pressure, the walkers it leaves
+/// unsuited, and eq. (approxDeltaPress) against the exact inversion of eq. (2ndMoment).
+fn broadening_details(run: &Run, s: &DiffusionStats) -> Vec<Detail> {
+    vec![
+        Detail::new(
+            D_RATIO_HIGH,
+            format!("D_n / D_P at p >= {} p0/a_r", run.scene.high_pressure),
+            s.high,
+        )
+        .persson(1.0),
+        Detail::new(
+            S_CORRECTED,
+            "corrected theory's S(a_r) (eq. gamma)",
+            Estimate::new(s.s_corrected, f64::NAN),
+        )
+        .persson(s.s_corrected),
+        Detail::new(
+            HIGH_CLOSER_TO_ORIGINAL,
+            format!(
+                "D_n / D_P at p >= {} p0/a_r minus the midpoint of the original theory's 1 \
+                 and the corrected theory's S(a_r) = {:.3}: above 0 where the broadening \
+                 is closer to the original theory",
+                run.scene.high_pressure, s.s_corrected
+            ),
+            Estimate::new(s.high.value - 0.5 * (1.0 + s.s_corrected), s.high.std_error),
+        ),
+        Detail::new(
+            LOST_UNSUITED,
+            "share of the walkers in the analysed bins whose mean lies below the \
+             broadening that left contact over the step",
+            s.lost_unsuited,
+        ),
+        Detail::new(
+            APPROX_DELTA_P_LIMITS,
+            "relative error of eq. (approxDeltaPress) against the exact inversion of eq. \
+             (2ndMoment) in its limits, the larger at Dp_n / p' = 1e-6 and 1e8 (exact: no \
+             error bar)",
+            Estimate::new(moments::estimate_error_in_the_limits(), 0.0),
+        ),
+        Detail::new(
+            APPROX_DELTA_P_ERROR,
+            "largest relative error of eq. (approxDeltaPress) against the exact inversion \
+             of eq. (2ndMoment), Dp_n / p' from 1e-3 to 1e3 (exact: no error bar)",
+            Estimate::new(moments::estimate_largest_error(ERROR_POINTS), 0.0),
+        ),
+    ]
+}
+
+/// The shape of the transitions: the small-pressure exponent of `Pr(p)`, the distance of
+/// each bin's transitions from eq. (transitionFinal), the bins' own width against the
+/// broadening, and the quadrature of eq. (transitionFinal)'s moments.
+fn transition_shape_details(s: &DiffusionStats) -> Vec<Detail> {
+    vec![
+        Detail::new(
+            SMALL_P_EXPONENT,
+            format!(
+                "exponent alpha of Pr(p) ~ p^alpha at zeta, fitted over the bins below \
+                 {SMALL_PRESSURE} p0/a_r (Persson's eq. pressureDistOri: 1)"
+            ),
+            s.small_p_exponent,
+        )
+        .persson(1.0),
+        Detail::new(
+            FIT_TV_UNSUITED_MINUS_SUITED,
+            "mean total-variation distance between a bin's transitions and the mirror \
+             Gaussian with its moments (eq. transitionFinal), bins with mean below the \
+             broadening minus bins above",
+            s.fit_unsuited_minus_suited,
+        ),
+        Detail::new(
+            FIT_TV_LOWEST_MINUS_TOP_UNSUITED,
+            "that total-variation distance in the lowest bin with mean below the \
+             broadening minus that in the highest",
+            s.fit_lowest_minus_top_unsuited,
+        ),
+        Detail::new(
+            BIN_SPREAD_OVER_HALF_WIDTH,
+            "spread dp_n of the old pressures in a bin over the bin's half width, mean \
+             over analysed bins (a flat density: 1/sqrt3)",
+            s.bin_spread_over_half_width,
+        ),
+        Detail::new(
+            BIN_BROADENING_SHARE,
+            "dp_n^2 / Dp_n^2, the share of the broadening the bin's own width makes up \
+             (the relative change of D_n its correction makes), mean over suited bins",
+            s.bin_broadening_share,
+        ),
+        Detail::new(
+            MIRROR_MOMENT_ERROR,
+            "largest relative error of the quadrature of the first two moments of eq. \
+             (transitionFinal) against p' and eq. (2ndMoment), Dp_n / p' from 1e-3 to \
+             1e3 (exact: no error bar)",
+            Estimate::new(moments::mirror_moment_largest_error(ERROR_POINTS), 0.0),
+        ),
+    ]
+}
+
+/// The ratio at low pressure in the other scene, where the scene has one.
+fn other_scene_detail(run: &Run, s: &DiffusionStats) -> Option<Detail> {
+    let (Some((low, a_r)), Some(other)) = (s.other, &run.scene.other_scene) else {
+        return None;
+    };
+    Some(
+        Detail::new(
+            OTHER_D_RATIO_LOW,
+            format!(
+                "D_n / D_P at p < {} p0/a_r in the other scene: H = {}, a_r = {} at zeta {} \
+                 -> {} (measured a_r {})",
+                run.scene.low_pressure,
+                other.hurst,
+                other.contact_area,
+                other.zeta,
+                other.zeta + other.dzeta,
+                a_r.text(1.0, 4, "")
+            ),
+            low,
+        )
+        .persson(1.0),
+    )
+}
+
+/// How far the walkers at low and at high pressure lie from the nearest point out of
+/// contact, where measured.
+fn distance_details(run: &Run, s: &DiffusionStats) -> Vec<Detail> {
+    let Some([low, high, difference]) = s.distances else {
+        return Vec::new();
+    };
+    let (lo, hi) = (run.scene.low_pressure, run.scene.high_pressure);
+    let walkers = |which: &str| {
+        format!(
+            "mean distance to the nearest point out of contact at zeta = {}, grid \
+             spacings, of the walkers {which} (per realization, then over realizations)",
+            run.scene.zeta
+        )
+    };
+    vec![
+        Detail::new(DISTANCE_LOW, walkers(&format!("at p < {lo} p0/a_r")), low),
+        Detail::new(
+            DISTANCE_HIGH,
+            walkers(&format!("at p >= {hi} p0/a_r")),
+            high,
+        ),
+        Detail::new(
+            DISTANCE_HIGH_MINUS_LOW,
+            walkers(&format!(
+                "at p >= {hi} p0/a_r minus that of those at p < {lo} p0/a_r"
+            )),
+            difference,
+        ),
+    ]
 }
 
 /// `D_n / D_P` by pressure bin, suited and unsuited, against both theories.

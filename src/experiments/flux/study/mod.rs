@@ -1,8 +1,10 @@
 //! The two studies of the one-step flux, each run once with the headline solver's jobs:
 //!
-//! * `sensitivity.rs`: the flux again while one setting at a time moves away from a base
-//!   configuration, one row each (a table of [`crate::experiments::study`]);
-//! * `reading.rs`: those rows read against the paper's one-step flux, as notes;
+//! * `sensitivity/`: the flux again while one setting at a time moves away from a base
+//!   configuration, one row each: the plan and its rows (`mod.rs`), one job's solve
+//!   (`step.rs`) and the table of [`crate::experiments::study`] (`table.rs`);
+//! * `reading/`: those rows read against the paper's one-step flux (`mod.rs`), and the
+//!   scorecard's notes on them (`notes.rs`);
 //! * `waterfall.rs`: the cross-section waterfall of the paper's figure
 //!   "reentry_waterfall", its plan, its run and its figure.
 

@@ -37,17 +37,21 @@
 //! far below what the step changes at fixed load), so the net flow is near zero and the
 //! row shows the fluxes of a step that changes the contact's shape but not its size.
 
+mod step;
+mod table;
+
 use serde::{Deserialize, Serialize};
 
-use crate::engine::load::{AreaSearch, HELD_AREA_REL_TOL};
+use crate::engine::load::HELD_AREA_REL_TOL;
 use crate::engine::solver::SolverKind;
-use crate::engine::spectrum::ShellSpectrum;
 use crate::error::{check_once, check_open, check_positive, Error, Result};
-use crate::experiments::contact_change::{categories, net_over_gross};
+use crate::experiments::contact_change::net_over_gross;
 use crate::experiments::flux::net_flow_residual;
 use crate::experiments::scene::Base;
-use crate::experiments::study::{Cell, Study};
 use crate::stats::Estimate;
+
+pub use self::step::{run, step_taken};
+pub use self::table::{study, COLUMNS, KEY};
 
 /// The study, as a scene states it (`[reduced.sensitivity]`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -517,154 +521,6 @@ impl SensitivityPlan {
             })
             .collect()
     }
-}
-
-/// The study's key.
-pub const KEY: &str = "sensitivity";
-
-/// The study's columns, `(key, label)`.
-pub const COLUMNS: &[(&str, &str)] = &[
-    ("n", "grid (points per side)"),
-    ("zeta", "zeta"),
-    ("dzeta", "dzeta"),
-    ("realizations", "realizations"),
-    ("flux_in", "into contact, % of A0"),
-    ("flux_out", "out of contact, % of A0"),
-    ("flux_in_of_contact", "into contact, % of the contact area"),
-    (
-        "flux_out_of_contact",
-        "out of contact, % of the contact area",
-    ),
-    ("net_over_gross", "net / mean one-way flux"),
-    ("net_flow", "net flow to non-contact, out - in, % of A0"),
-    (
-        "net_flow_residual",
-        "net flow + change of a_r in the step, % of A0 (fixed load; empty: n/a)",
-    ),
-    // The column of `flux_in_of_noncontact`: the stored name is kept for the
-    // committed results.
-    ("zero_bin", "non-contact entering contact, %"),
-    ("contact_area", "a_r at zeta"),
-    ("variance_added", "height variance added, % of that at zeta"),
-    ("modes_added", "modes added"),
-];
-
-/// The rows as a generic table (one row per setting and value, keyed
-/// `PARAMETER=VALUE`, the transition scene's row `transition`), in % where the column
-/// says so.
-pub fn study(rows: &[SensitivityRow]) -> Study {
-    let mut study = Study::new(
-        KEY,
-        "What sets the one-step flux: one setting at a time",
-        COLUMNS,
-    )
-    .percent(&[
-        "flux_in",
-        "flux_out",
-        "net_flow",
-        "net_flow_residual",
-        "flux_in_of_contact",
-        "flux_out_of_contact",
-        "zero_bin",
-        "variance_added",
-    ])
-    .about(
-        "Each row moves one setting away from the base configuration (the first row of each \
-         setting shares it) and repeats the step over the realizations: mean and standard \
-         error over realizations. At fixed load the net flow to non-contact is the fall of \
-         a_r over the step (the points in contact after it are those before, plus those \
-         that entered, less those that left, a counting identity of any two sets): the \
-         residual of that identity is its own column. At fixed area the control holds a_r \
-         to 1e-5 of it (or 1.5 points), so the net flow there is near zero.",
-    );
-    for r in rows {
-        let key = if r.parameter == "transition" {
-            "transition".to_string()
-        } else {
-            format!("{}={}", r.parameter, r.value)
-        };
-        let label = format!("{} = {} ({})", r.parameter, r.label, r.config.solver.name());
-        study.push(
-            key,
-            label,
-            vec![
-                Cell::from(r.config.n as f64),
-                Cell::from(r.config.zeta),
-                Cell::from(r.config.dzeta),
-                Cell::from(r.realizations as f64),
-                r.flux_in.into(),
-                r.flux_out.into(),
-                r.flux_in_of_contact.into(),
-                r.flux_out_of_contact.into(),
-                r.net_over_gross.into(),
-                r.net_flow.into(),
-                r.net_flow_residual.into(),
-                r.flux_in_of_noncontact.into(),
-                r.contact_area.into(),
-                r.variance_added.into(),
-                r.modes_added.map_or(Cell::Empty, Cell::from),
-            ],
-        );
-    }
-    study
-}
-
-/// Runs one study job: the load that gives the contact area at `zeta`, then the step at
-/// that load (or at that contact area).
-pub fn run(hurst: f64, job: &StudyJob) -> Result<StudyResult> {
-    let c = &job.config;
-    let seeds = [job.seed];
-    let base = Base::new(
-        c.n,
-        c.hurst.unwrap_or(hurst),
-        c.lambda_l,
-        c.lambda_s,
-        &seeds,
-        c.tol,
-    );
-    let r = base.realization(job.seed)?;
-    let mut sweep = base.sweep(&r, c.solver);
-    let p0 = sweep.find_load(c.zeta, c.contact_area)?;
-    let old = sweep
-        .solution()
-        .expect("find_load keeps its solution")
-        .clone();
-    let new = if c.fixed_area {
-        // The contact area before the step, held: matched far more tightly than the
-        // change a step makes at fixed load.
-        let search = AreaSearch {
-            rel_tol: c.area_tol.unwrap_or(HELD_AREA_REL_TOL),
-            ..AreaSearch::held()
-        };
-        sweep.find_load_within(c.zeta + c.dzeta, old.contact_area(), &search)?;
-        sweep.solution().expect("find_load keeps its solution")
-    } else {
-        sweep.solve_at(c.zeta + c.dzeta, p0)?
-    };
-    let categories = categories(&old.pressure, &new.pressure);
-    let (flux_in, flux_out) = crate::experiments::flux::fluxes(&categories);
-    let (variance_added, modes_added) = step_taken(&r.surface.shells(), c.zeta, c.dzeta);
-    Ok(StudyResult {
-        a_r_old: old.contact_area(),
-        a_r_new: new.contact_area(),
-        flux_in,
-        flux_out,
-        max_residual: old.stats.residual.value().max(new.stats.residual.value()),
-        variance_added: Some(variance_added),
-        modes_added: Some(modes_added),
-    })
-}
-
-/// The step actually taken from `zeta` to `zeta + dzeta`: the height variance of the modes
-/// it adds over the height variance at `zeta`, and how many modes it adds.
-pub fn step_taken(shells: &ShellSpectrum, zeta: f64, dzeta: f64) -> (f64, u64) {
-    let before = shells.up_to(zeta);
-    let after = shells.up_to(zeta + dzeta);
-    let added = &after[before.len()..];
-    let variance: f64 = before.iter().map(|s| s.h2).sum();
-    let variance_added: f64 = added.iter().map(|s| s.h2).sum();
-    let modes = added.iter().map(|s| u64::from(s.modes)).sum();
-    (variance_added / variance.max(f64::MIN_POSITIVE), modes)
 }
 
 #[cfg(test)]
