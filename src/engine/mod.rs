@@ -23,6 +23,8 @@
 //!   recorded; [`history`]: every point's contact history over a climb (left, came back,
 //!   the flux into and out of contact over an interval); [`contact_change`]: which points
 //!   entered or left contact between two solutions, and the maps' packing and colours;
+//! * [`load_curve`]: one surface solved at increasing loads, each solve warm-started from
+//!   the last that converged, with a time budget per load;
 //! * [`scene`]: scene files (a surface and a solve);
 //! * [`tolerance`]: the slacks of comparisons between magnifications and shells;
 //! * [`mod@reference`]: closed-form solutions the solvers are tested against;
@@ -40,6 +42,7 @@ pub mod field;
 pub mod grid;
 pub mod history;
 pub mod load;
+pub mod load_curve;
 pub mod reference;
 pub mod scene;
 pub mod solver;
