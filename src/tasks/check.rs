@@ -1,21 +1,32 @@
 //! Persson checked on the user's own surface: read the scans, refuse or fill their
 //! missing points, solve their load curves, compare with Persson's predictions and write
 //! `surface.json`, `surface.md` and the figures ([`crate::measured`]), with every solve's
-//! outcome appended to `solves.jsonl` as it ends. The command line's `check-surface` and
-//! Python's `check_surface` both call [`check_surface`], or [`check_line`] for line scans
-//! (which inputs are line scans: [`crate::measured::line::profiles`]; [`read_input`]).
+//! outcome appended to `solves.jsonl` as it ends.
+//!
+//! One request: the command line's `check-surface` builds a [`CheckRequest`] from its
+//! flags and Python's `check_surface` from its keywords; [`CheckRequest::task`] checks
+//! every value once (an error names the flag or keyword and the allowed range) and gives
+//! the [`SurfaceTask`] both run ([`SurfaceTask::run`]: [`check_surface`] on height maps,
+//! [`check_line`] on line scans). Which inputs are line scans:
+//! [`crate::measured::line::profiles`], [`read_input`]; a line scan at non-uniform
+//! positions (an x-y file) is resampled onto even spacing first
+//! ([`crate::measured::line::resample`], [`read_line_scan`], [`resample_profile`]).
 
 use std::io::Write as _;
 use std::ops::ControlFlow;
 use std::path::Path;
 
-use super::Spelling;
+use serde::Serialize;
+
+use super::{SolverKind, Spelling};
 use crate::error::{Error, Result, StopReason};
 use crate::measured::check::{check, CheckOptions, Event, SurfaceCheck};
 use crate::measured::fill::{fill, Fill};
-use crate::measured::line::check::{LineCheck, LineOptions};
+use crate::measured::line::check::{LineCheck, LineOptions, DEFAULT_SEEDS, DEFAULT_SIDE};
 use crate::measured::line::profiles::{is_one_dimensional, Profiles};
+use crate::measured::line::resample::{read_xy, resample, Origin, Resampled};
 use crate::measured::page;
+use crate::measured::psd::Boundary;
 use crate::measured::scan::{read_matrix, Scan};
 use crate::measured::units::eng;
 
@@ -29,6 +40,254 @@ pub enum Input {
     Surface(Vec<Scan>),
     /// Line scans of one surface.
     Line(Profiles),
+}
+
+/// What `check-surface` is asked, as a front end was given it (flags or keywords), before
+/// any check: the command line and Python both build one and call
+/// [`CheckRequest::task`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct CheckRequest {
+    /// Pixel sides: one value, or two (between rows, between columns) within 0.1% of each
+    /// other; `None` where the input brings its own (a resampled line scan).
+    pub pixel_size: Option<Vec<f64>>,
+    /// The heights' length unit.
+    pub unit: Option<String>,
+    /// Periodic scans (else measured windows with a free boundary).
+    pub periodic: bool,
+    /// Loads `p0 / E*` (`None`: the defaults).
+    pub loads: Option<Vec<f64>>,
+    /// The headline solver.
+    pub solver: SolverKind,
+    /// Cross-check with the other solver.
+    pub cross_check: bool,
+    /// Cross-check every load.
+    pub cross_check_all: bool,
+    /// Residual tolerance of every solve.
+    pub tol: f64,
+    /// Whether missing points are filled.
+    pub fill: Fill,
+    /// The contact modulus `E*` in pascals.
+    pub modulus: Option<f64>,
+    /// Measure the re-entry share over magnification.
+    pub reentry: bool,
+    /// Iteration budget of every solve.
+    pub max_iterations: usize,
+    /// Despiking threshold, robust deviations.
+    pub despike: Option<f64>,
+    /// Read 2D inputs as rows of profiles.
+    pub line: bool,
+    /// Line scans: side of the synthesized surfaces.
+    pub line_side: usize,
+    /// Line scans: synthesized surfaces.
+    pub line_seeds: u64,
+}
+
+impl Default for CheckRequest {
+    /// The library's defaults ([`CheckOptions::default`], [`DEFAULT_SIDE`],
+    /// [`DEFAULT_SEEDS`]), with no pixel size.
+    fn default() -> Self {
+        let o = CheckOptions::default();
+        Self {
+            pixel_size: None,
+            unit: o.unit,
+            periodic: o.boundary == Boundary::Periodic,
+            loads: o.loads,
+            solver: o.solver,
+            cross_check: o.cross_check,
+            cross_check_all: o.cross_check_all,
+            tol: o.tol,
+            fill: o.fill,
+            modulus: o.modulus,
+            reentry: o.reentry,
+            max_iterations: o.max_iterations,
+            despike: o.despike,
+            line: false,
+            line_side: DEFAULT_SIDE,
+            line_seeds: DEFAULT_SEEDS,
+        }
+    }
+}
+
+/// A checked request: what to check and how; both front ends run it.
+#[derive(Debug, Clone)]
+pub struct SurfaceTask {
+    /// The scans or the line scans.
+    pub input: Input,
+    /// How the surface is checked.
+    pub opts: CheckOptions,
+    /// How line scans are checked (read for line scans only).
+    pub line: LineOptions,
+}
+
+impl CheckRequest {
+    /// The task of `input` (`input_pixel`: the spacing a resampled line scan brings),
+    /// every value checked before any work, named as `s` spells it.
+    ///
+    /// # Errors
+    ///
+    /// If the pixel size is missing, not one or two values, or differs from the input's
+    /// own; for line scans, if the synthesized surfaces or the options are out of range
+    /// ([`crate::measured::line::check::validate`]). The scans themselves are checked by
+    /// [`SurfaceTask::run`].
+    pub fn task(
+        self,
+        input: Input,
+        input_pixel: Option<f64>,
+        s: &dyn Spelling,
+    ) -> Result<SurfaceTask> {
+        let pixel_size = pixel_sides(self.pixel_size.as_deref(), input_pixel, s)?;
+        let opts = CheckOptions {
+            pixel_size,
+            unit: self.unit,
+            boundary: if self.periodic {
+                Boundary::Periodic
+            } else {
+                Boundary::Free
+            },
+            loads: self.loads,
+            solver: self.solver,
+            cross_check: self.cross_check,
+            cross_check_all: self.cross_check_all,
+            tol: self.tol,
+            fill: self.fill,
+            modulus: self.modulus,
+            reentry: self.reentry,
+            max_iterations: self.max_iterations,
+            despike: self.despike,
+        };
+        let line = LineOptions {
+            side: self.line_side,
+            seeds: self.line_seeds,
+        };
+        if let Input::Line(_) = input {
+            crate::measured::line::check::validate(&opts, &line).map_err(|e| s.rename(e))?;
+        }
+        Ok(SurfaceTask { input, opts, line })
+    }
+}
+
+/// The pixel sides of a request: `given` (one value or two), or the input's own spacing;
+/// both must agree to 1e-9 when both are there.
+fn pixel_sides(given: Option<&[f64]>, own: Option<f64>, s: &dyn Spelling) -> Result<[f64; 2]> {
+    let sides = match (given, own) {
+        (Some(&[p]), _) => [p, p],
+        (Some(&[a, b]), _) => [a, b],
+        (Some(other), _) => {
+            return Err(Error::invalid(
+                &s.name("pixel_size"),
+                format!("{other:?}"),
+                "one value, or two (between rows, between columns)",
+            ))
+        }
+        (None, Some(p)) => return Ok([p, p]),
+        (None, None) => {
+            return Err(Error::invalid(
+                &s.name("pixel_size"),
+                "none",
+                "a positive length in the heights' unit, or two (between rows, between \
+                 columns)",
+            ))
+        }
+    };
+    if let Some(p) = own {
+        if sides.iter().any(|&g| !((g - p).abs() <= 1e-9 * p.abs())) {
+            return Err(Error::invalid(
+                &s.name("pixel_size"),
+                format!("{} x {}", sides[0], sides[1]),
+                format!(
+                    "the line scan's own spacing, {p} (its positions' span over its points \
+                     less one), or left out"
+                ),
+            ));
+        }
+    }
+    Ok(sides)
+}
+
+/// What a check found: on height maps, or on line scans (`surface.json`'s fields).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum Checked {
+    /// The check of height maps.
+    Surface(SurfaceCheck),
+    /// The check of line scans.
+    Line(LineCheck),
+}
+
+impl Checked {
+    /// The surface's check (for line scans, that of the synthesized surfaces).
+    pub fn surface(&self) -> &SurfaceCheck {
+        match self {
+            Checked::Surface(c) => c,
+            Checked::Line(c) => &c.surface,
+        }
+    }
+}
+
+impl SurfaceTask {
+    /// The load curves the check solves per solver: one per scan, or one per synthesized
+    /// surface.
+    pub fn curves(&self) -> usize {
+        match &self.input {
+            Input::Surface(scans) => scans.len(),
+            Input::Line(_) => usize::try_from(self.line.seeds).unwrap_or(usize::MAX),
+        }
+    }
+
+    /// Runs the check ([`check_surface`] or [`check_line`]), writing into `out` when
+    /// given.
+    ///
+    /// # Errors
+    ///
+    /// As [`check_surface`] and [`check_line`].
+    pub fn run(
+        &self,
+        out: Option<&Path>,
+        s: &dyn Spelling,
+        events: &mut dyn FnMut(Event) -> ControlFlow<StopReason>,
+    ) -> Result<Checked> {
+        match &self.input {
+            Input::Surface(scans) => {
+                check_surface(scans, &self.opts, out, s, events).map(Checked::Surface)
+            }
+            Input::Line(profiles) => {
+                check_line(profiles, &self.opts, &self.line, out, s, events).map(Checked::Line)
+            }
+        }
+    }
+}
+
+/// Reads the line scan of the two-column (position, height) text file `path` and
+/// resamples it onto even spacing ([`crate::measured::line::resample`]); returns it with
+/// its spacing and the warning that says what was done.
+///
+/// # Errors
+///
+/// If the file cannot be read or is not two columns of numbers, its positions do not
+/// increase strictly (the error names the line and the values), or the profile is
+/// refused as a line scan (too few points, undefined heights).
+pub fn read_line_scan(path: &Path) -> Result<(Input, f64, String)> {
+    let (x, h, lines) = read_xy(path)?;
+    let Resampled {
+        heights,
+        pixel,
+        warning,
+    } = resample(path, &x, &h, Origin::Lines(&lines))?;
+    let n = heights.len();
+    let profiles = Profiles::from_values(path, &[1, n], heights, true)?;
+    Ok((Input::Line(Profiles::pool(vec![profiles])?), pixel, warning))
+}
+
+/// The profile of heights `h` at positions `x` (an array named `name` in messages)
+/// resampled onto even spacing ([`crate::measured::line::resample`]), as Python hands it
+/// over.
+///
+/// # Errors
+///
+/// As [`resample`]: lengths, or positions that do not increase strictly (the point named
+/// by its index).
+pub fn resample_profile(name: &str, x: &[f64], h: &[f64]) -> Result<Resampled> {
+    resample(Path::new(name), x, h, Origin::Indices)
 }
 
 /// Reads `paths`: line scans when `line` (2D inputs read as rows of profiles) or when any
