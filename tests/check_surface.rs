@@ -397,6 +397,20 @@ fn profile(n: usize, row: usize, scale: f64) -> Vec<f64> {
         .collect()
 }
 
+/// A quick line-scan check, in um: two loads, three synthesized 64^2 surfaces, no
+/// re-entry.
+const QUICK_LINE: [&str; 9] = [
+    "--unit",
+    "um",
+    "--loads",
+    "0.01,0.05",
+    "--line-side",
+    "64",
+    "--line-seeds",
+    "3",
+    "--no-reentry",
+];
+
 #[test]
 fn a_line_scan_is_checked_on_synthesized_surfaces_end_to_end() {
     // One stylus profile of 1024 points, one height per line of a text file, in um with a
@@ -408,24 +422,19 @@ fn a_line_scan_is_checked_on_synthesized_surfaces_end_to_end() {
         .map(|v| format!("{v}"))
         .collect();
     std::fs::write(d.join("trace.txt"), text.join("\n")).unwrap();
-    let out = run_ok(bin().current_dir(d).args([
-        "check-surface",
-        "--heights",
-        "trace.txt",
-        "--pixel-size",
-        "0.5",
-        "--unit",
-        "um",
-        "--loads",
-        "0.01,0.05",
-        "--line-side",
-        "64",
-        "--line-seeds",
-        "3",
-        "--no-reentry",
-        "--out",
-        "o",
-    ]));
+    let out = run_ok(
+        bin()
+            .current_dir(d)
+            .args([
+                "check-surface",
+                "--heights",
+                "trace.txt",
+                "--pixel-size",
+                "0.5",
+            ])
+            .args(QUICK_LINE)
+            .args(["--out", "o"]),
+    );
     assert!(
         out.contains("line scans: 1 profile(s) of 1024 points") && out.contains("3 synthesized"),
         "{out}"
@@ -671,22 +680,11 @@ fn a_line_scan_at_non_uniform_positions_is_resampled_with_a_warning_and_checked(
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     let (x, h) = xy_profile(d, "xy.txt");
-    let quick = [
-        "--unit",
-        "um",
-        "--loads",
-        "0.01,0.05",
-        "--line-side",
-        "64",
-        "--line-seeds",
-        "2",
-        "--no-reentry",
-        "--no-cross-check",
-    ];
+    let quick = [&QUICK_LINE[..], &["--no-cross-check"]].concat();
     let out = bin()
         .current_dir(d)
         .args(["check-surface", "--line-scan", "xy.txt"])
-        .args(quick)
+        .args(&quick)
         .args(["--out", "o"])
         .output()
         .unwrap();
@@ -714,7 +712,7 @@ fn a_line_scan_at_non_uniform_positions_is_resampled_with_a_warning_and_checked(
             .current_dir(d)
             .args(["check-surface", "--heights", "even.txt", "--pixel-size"])
             .arg(format!("{pixel:?}"))
-            .args(quick)
+            .args(&quick)
             .args(["--out", "e"]),
     );
     let e = json(&d.join("e/surface.json"));

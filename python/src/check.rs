@@ -11,6 +11,7 @@ use pyo3::prelude::*;
 
 use persson_check::measured::check::{CheckOptions, Event};
 use persson_check::measured::fill::Fill;
+use persson_check::measured::line::check::LineOptions;
 use persson_check::measured::line::profiles::Profiles;
 use persson_check::measured::scan::Scan;
 use persson_check::tasks::check::{self as task, CheckRequest, Input};
@@ -141,21 +142,25 @@ pub fn check_surface<'py>(
 ) -> PyResult<Bound<'py, PyAny>> {
     let request = CheckRequest {
         pixel_size: Some(vec![pixel_size.0, pixel_size.1]),
-        unit,
         periodic,
-        loads,
-        solver: parse::solver(solver).or_raise()?,
-        cross_check,
-        cross_check_all,
-        tol,
-        fill: self::fill(fill)?,
-        modulus,
-        reentry,
-        max_iterations,
-        despike,
-        line,
-        line_side,
-        line_seeds,
+        options: CheckOptions {
+            unit,
+            loads,
+            solver: parse::solver(solver).or_raise()?,
+            cross_check,
+            cross_check_all,
+            tol,
+            fill: self::fill(fill)?,
+            modulus,
+            reentry,
+            max_iterations,
+            despike,
+            ..CheckOptions::default()
+        },
+        line: LineOptions {
+            side: line_side,
+            seeds: line_seeds,
+        },
     };
     let input = if line || heights.iter().any(|h| h.ndim() == 1) {
         Input::Line(profiles(&heights)?)

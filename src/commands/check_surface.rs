@@ -12,9 +12,9 @@ use std::path::{Path, PathBuf};
 use clap::Args as ClapArgs;
 use indicatif::{ProgressBar, ProgressStyle};
 use persson_check::error::Result;
-use persson_check::measured::check::Event;
+use persson_check::measured::check::{CheckOptions, Event};
 use persson_check::measured::fill::Fill;
-use persson_check::measured::line::check::{DEFAULT_SEEDS, DEFAULT_SIDE};
+use persson_check::measured::line::check::{LineOptions, DEFAULT_SEEDS, DEFAULT_SIDE};
 use persson_check::measured::options::{CHECK_SOLVER, CHECK_TOL, MAX_ITERATIONS};
 use persson_check::tasks::check::{
     load_line, read_input, read_line_scan, CheckRequest, Checked, Input, SurfaceTask,
@@ -114,21 +114,25 @@ impl Args {
     fn request(&self) -> CheckRequest {
         CheckRequest {
             pixel_size: self.pixel_size.clone(),
-            unit: self.unit.clone(),
             periodic: self.periodic,
-            loads: self.loads.clone(),
-            solver: self.solver,
-            cross_check: !self.no_cross_check,
-            cross_check_all: self.cross_check_all,
-            tol: self.tol,
-            fill: self.fill,
-            modulus: self.modulus,
-            reentry: !self.no_reentry,
-            max_iterations: self.max_iterations,
-            despike: self.despike,
-            line: self.line,
-            line_side: self.line_side,
-            line_seeds: self.line_seeds,
+            options: CheckOptions {
+                unit: self.unit.clone(),
+                loads: self.loads.clone(),
+                solver: self.solver,
+                cross_check: !self.no_cross_check,
+                cross_check_all: self.cross_check_all,
+                tol: self.tol,
+                fill: self.fill,
+                modulus: self.modulus,
+                reentry: !self.no_reentry,
+                max_iterations: self.max_iterations,
+                despike: self.despike,
+                ..CheckOptions::default()
+            },
+            line: LineOptions {
+                side: self.line_side,
+                seeds: self.line_seeds,
+            },
         }
     }
 }

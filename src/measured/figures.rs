@@ -5,8 +5,7 @@
 //! then Persson's original and corrected theory, then the cross-check.
 
 use super::check::{CurvePoint, SurfaceCheck};
-use super::page::{area_of, energy_of, energy_unit, unit};
-use super::units::eng;
+use super::units::{eng, metres};
 use crate::plot::{Axis, Figure, Series, Style};
 
 /// A load curve's series, in the order that keeps every series' colour across figures:
@@ -105,4 +104,42 @@ pub fn figures(c: &SurfaceCheck) -> Vec<Figure> {
         });
     }
     figures
+}
+
+/// The unit of lengths, for text: `nm`, or `length unit`.
+pub(super) fn unit(c: &SurfaceCheck) -> &str {
+    c.unit.as_deref().unwrap_or("length unit")
+}
+
+/// The contact area's [value, error, cross-check, Persson, corrected].
+pub(super) fn area_of(p: &CurvePoint) -> [Option<f64>; 5] {
+    [
+        Some(p.a_r),
+        p.a_r_std_error,
+        p.a_r_cross_check,
+        Some(p.a_r_persson),
+        Some(p.a_r_persson_corrected),
+    ]
+}
+
+/// The elastic energy's [value, error, cross-check, Persson, corrected].
+pub(super) fn energy_of(p: &CurvePoint) -> [Option<f64>; 5] {
+    [
+        Some(p.energy),
+        p.energy_std_error,
+        p.energy_cross_check,
+        Some(p.energy_persson),
+        Some(p.energy_persson_corrected),
+    ]
+}
+
+/// The energy's unit and the factor to it: J/m^2 with a modulus and a known unit, else
+/// `E*` (or `Pa`) times the length unit.
+pub(super) fn energy_unit(c: &SurfaceCheck) -> (String, f64) {
+    let u = unit(c);
+    match (c.modulus, c.unit.as_deref().and_then(metres)) {
+        (Some(e), Some(m)) => ("J/m^2".to_string(), e * m),
+        (Some(e), None) => (format!("Pa {u}"), e),
+        (None, _) => (format!("E* {u}"), 1.0),
+    }
 }

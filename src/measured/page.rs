@@ -18,11 +18,12 @@ use super::check::{
 use super::fill::{Fill, MAX_FILLED_SHARE};
 use super::psd::Boundary;
 use super::spikes::SPIKE_RMS;
-use super::units::{eng, length, metres, percent, SQUARE_PIXEL_TOLERANCE};
+use super::units::{eng, length, percent, SQUARE_PIXEL_TOLERANCE};
 use super::warnings::{CONTACT_PRESSURE, LIMITS};
 use crate::error::Result;
 
 pub use super::figures::figures;
+use super::figures::{area_of, energy_of, energy_unit, unit};
 use crate::stats::Estimate;
 use crate::validation::Verdict;
 
@@ -49,11 +50,6 @@ fn mean_text(m: &Estimate) -> String {
     } else {
         format!("{} (one scan: no error bar)", eng(m.value))
     }
-}
-
-/// The unit of lengths, for text: `nm`, or `length unit`.
-pub(super) fn unit(c: &SurfaceCheck) -> &str {
-    c.unit.as_deref().unwrap_or("length unit")
 }
 
 /// The page.
@@ -380,29 +376,6 @@ fn curve_table(s: &mut String, c: &SurfaceCheck, t: &CurveTable) {
     }
     let _ = writeln!(s, "\n![{}](figures/{}.png)\n", t.figure.1, t.figure.0);
 }
-
-/// The contact area's [value, error, cross-check, Persson, corrected].
-pub(super) fn area_of(p: &CurvePoint) -> [Option<f64>; 5] {
-    [
-        Some(p.a_r),
-        p.a_r_std_error,
-        p.a_r_cross_check,
-        Some(p.a_r_persson),
-        Some(p.a_r_persson_corrected),
-    ]
-}
-
-/// The elastic energy's [value, error, cross-check, Persson, corrected].
-pub(super) fn energy_of(p: &CurvePoint) -> [Option<f64>; 5] {
-    [
-        Some(p.energy),
-        p.energy_std_error,
-        p.energy_cross_check,
-        Some(p.energy_persson),
-        Some(p.energy_persson_corrected),
-    ]
-}
-
 fn curve(s: &mut String, c: &SurfaceCheck) {
     curve_table(
         s,
@@ -439,17 +412,6 @@ fn distribution(s: &mut String, c: &SurfaceCheck) {
         mean_text(&d.rms_ratio),
         d.verdict
     );
-}
-
-/// The energy's unit and the factor to it: J/m^2 with a modulus and a known unit, else
-/// `E*` (or `Pa`) times the length unit.
-pub(super) fn energy_unit(c: &SurfaceCheck) -> (String, f64) {
-    let u = unit(c);
-    match (c.modulus, c.unit.as_deref().and_then(metres)) {
-        (Some(e), Some(m)) => ("J/m^2".to_string(), e * m),
-        (Some(e), None) => (format!("Pa {u}"), e),
-        (None, _) => (format!("E* {u}"), 1.0),
-    }
 }
 
 fn energy(s: &mut String, c: &SurfaceCheck) {

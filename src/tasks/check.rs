@@ -18,11 +18,11 @@ use std::path::Path;
 
 use serde::Serialize;
 
-use super::{SolverKind, Spelling};
+use super::Spelling;
 use crate::error::{Error, Result, StopReason};
 use crate::measured::check::{check, CheckOptions, Event, SurfaceCheck};
 use crate::measured::fill::{fill, Fill};
-use crate::measured::line::check::{LineCheck, LineOptions, DEFAULT_SEEDS, DEFAULT_SIDE};
+use crate::measured::line::check::{LineCheck, LineOptions};
 use crate::measured::line::profiles::{is_one_dimensional, Profiles};
 use crate::measured::line::resample::{read_xy, resample, Origin, Resampled};
 use crate::measured::page;
@@ -47,65 +47,16 @@ pub enum Input {
 /// [`CheckRequest::task`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct CheckRequest {
-    /// Pixel sides: one value, or two (between rows, between columns) within 0.1% of each
-    /// other; `None` where the input brings its own (a resampled line scan).
+    /// Pixel sides as given: one value, or two (between rows, between columns) within
+    /// 0.1% of each other; `None` where the input brings its own (a resampled line scan).
     pub pixel_size: Option<Vec<f64>>,
-    /// The heights' length unit.
-    pub unit: Option<String>,
-    /// Periodic scans (else measured windows with a free boundary).
+    /// Periodic scans (else measured windows, solved with a free boundary).
     pub periodic: bool,
-    /// Loads `p0 / E*` (`None`: the defaults).
-    pub loads: Option<Vec<f64>>,
-    /// The headline solver.
-    pub solver: SolverKind,
-    /// Cross-check with the other solver.
-    pub cross_check: bool,
-    /// Cross-check every load.
-    pub cross_check_all: bool,
-    /// Residual tolerance of every solve.
-    pub tol: f64,
-    /// Whether missing points are filled.
-    pub fill: Fill,
-    /// The contact modulus `E*` in pascals.
-    pub modulus: Option<f64>,
-    /// Measure the re-entry share over magnification.
-    pub reentry: bool,
-    /// Iteration budget of every solve.
-    pub max_iterations: usize,
-    /// Despiking threshold, robust deviations.
-    pub despike: Option<f64>,
-    /// Read 2D inputs as rows of profiles.
-    pub line: bool,
-    /// Line scans: side of the synthesized surfaces.
-    pub line_side: usize,
-    /// Line scans: synthesized surfaces.
-    pub line_seeds: u64,
-}
-
-impl Default for CheckRequest {
-    /// The library's defaults ([`CheckOptions::default`], [`DEFAULT_SIDE`],
-    /// [`DEFAULT_SEEDS`]), with no pixel size.
-    fn default() -> Self {
-        let o = CheckOptions::default();
-        Self {
-            pixel_size: None,
-            unit: o.unit,
-            periodic: o.boundary == Boundary::Periodic,
-            loads: o.loads,
-            solver: o.solver,
-            cross_check: o.cross_check,
-            cross_check_all: o.cross_check_all,
-            tol: o.tol,
-            fill: o.fill,
-            modulus: o.modulus,
-            reentry: o.reentry,
-            max_iterations: o.max_iterations,
-            despike: o.despike,
-            line: false,
-            line_side: DEFAULT_SIDE,
-            line_seeds: DEFAULT_SEEDS,
-        }
-    }
+    /// The other options as given (their pixel sides and boundary are set from the two
+    /// fields above).
+    pub options: CheckOptions,
+    /// How line scans are checked (read for line scans only).
+    pub line: LineOptions,
 }
 
 /// A checked request: what to check and how; both front ends run it.
@@ -135,30 +86,16 @@ impl CheckRequest {
         input_pixel: Option<f64>,
         s: &dyn Spelling,
     ) -> Result<SurfaceTask> {
-        let pixel_size = pixel_sides(self.pixel_size.as_deref(), input_pixel, s)?;
         let opts = CheckOptions {
-            pixel_size,
-            unit: self.unit,
+            pixel_size: pixel_sides(self.pixel_size.as_deref(), input_pixel, s)?,
             boundary: if self.periodic {
                 Boundary::Periodic
             } else {
                 Boundary::Free
             },
-            loads: self.loads,
-            solver: self.solver,
-            cross_check: self.cross_check,
-            cross_check_all: self.cross_check_all,
-            tol: self.tol,
-            fill: self.fill,
-            modulus: self.modulus,
-            reentry: self.reentry,
-            max_iterations: self.max_iterations,
-            despike: self.despike,
+            ..self.options
         };
-        let line = LineOptions {
-            side: self.line_side,
-            seeds: self.line_seeds,
-        };
+        let line = self.line;
         if let Input::Line(_) = input {
             crate::measured::line::check::validate(&opts, &line).map_err(|e| s.rename(e))?;
         }
@@ -190,7 +127,10 @@ fn pixel_sides(given: Option<&[f64]>, own: Option<f64>, s: &dyn Spelling) -> Res
         }
     };
     if let Some(p) = own {
-        if sides.iter().any(|&g| !((g - p).abs() <= 1e-9 * p.abs())) {
+        if sides
+            .iter()
+            .any(|&g| g.is_nan() || (g - p).abs() > 1e-9 * p.abs())
+        {
             return Err(Error::invalid(
                 &s.name("pixel_size"),
                 format!("{} x {}", sides[0], sides[1]),
@@ -209,9 +149,9 @@ fn pixel_sides(given: Option<&[f64]>, own: Option<f64>, s: &dyn Spelling) -> Res
 #[serde(untagged)]
 pub enum Checked {
     /// The check of height maps.
-    Surface(SurfaceCheck),
+    Surface(Box<SurfaceCheck>),
     /// The check of line scans.
-    Line(LineCheck),
+    Line(Box<LineCheck>),
 }
 
 impl Checked {
@@ -247,12 +187,10 @@ impl SurfaceTask {
         events: &mut dyn FnMut(Event) -> ControlFlow<StopReason>,
     ) -> Result<Checked> {
         match &self.input {
-            Input::Surface(scans) => {
-                check_surface(scans, &self.opts, out, s, events).map(Checked::Surface)
-            }
-            Input::Line(profiles) => {
-                check_line(profiles, &self.opts, &self.line, out, s, events).map(Checked::Line)
-            }
+            Input::Surface(scans) => check_surface(scans, &self.opts, out, s, events)
+                .map(|c| Checked::Surface(Box::new(c))),
+            Input::Line(profiles) => check_line(profiles, &self.opts, &self.line, out, s, events)
+                .map(|c| Checked::Line(Box::new(c))),
         }
     }
 }
@@ -516,4 +454,59 @@ pub fn load_line(scans: usize, e: &Event) -> Option<String> {
         ),
         Err(f) => format!("{at}: FAILED: {}", f.message),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::tasks::{Flags, Keywords};
+
+    fn request(pixel_size: Option<Vec<f64>>, seeds: u64) -> CheckRequest {
+        CheckRequest {
+            pixel_size,
+            periodic: false,
+            options: CheckOptions::default(),
+            line: LineOptions { side: 64, seeds },
+        }
+    }
+
+    fn line_input() -> Input {
+        let h: Vec<f64> = (0..128).map(|k| (k as f64 * 0.3).sin()).collect();
+        let p = Profiles::from_values(Path::new("p"), &[1, 128], h, true).unwrap();
+        Input::Line(Profiles::pool(vec![p]).unwrap())
+    }
+
+    #[test]
+    fn a_request_names_the_field_and_its_range_as_each_front_end_spells_it() {
+        let flags = Flags::default();
+        let e = request(Some(vec![1.0, 1.0, 1.0]), 4)
+            .task(Input::Surface(Vec::new()), None, &flags)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("--pixel-size") && e.contains("one value, or two"),
+            "{e}"
+        );
+        let e = request(None, 4)
+            .task(Input::Surface(Vec::new()), None, &Keywords)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("invalid pixel_size"), "{e}");
+        let e = request(Some(vec![1.0]), 1)
+            .task(line_input(), None, &flags)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("--line-seeds") && e.contains("[2, 64]"), "{e}");
+        // A resampled line scan brings its spacing; one given must be that one.
+        let t = request(None, 4)
+            .task(line_input(), Some(0.5), &flags)
+            .unwrap();
+        assert_eq!(t.opts.pixel_size, [0.5, 0.5]);
+        assert_eq!(t.opts.boundary, Boundary::Free);
+        let e = request(Some(vec![0.6]), 4)
+            .task(line_input(), Some(0.5), &Keywords)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("pixel_size") && e.contains("spacing"), "{e}");
+    }
 }
