@@ -241,6 +241,28 @@ fn no_module_imports_one_experiment_but_the_registry() {
     );
 }
 
+/// A measured surface is checked with the engine's sweeps and climbs, not with an
+/// experiment's: no module under `src/measured` uses `experiments` (what a validation and
+/// a measured scan share, the fixed-load climb, the contact history and the contact
+/// changes, lives in the engine).
+#[test]
+fn the_measured_check_imports_no_experiment() {
+    let wrong: Vec<String> = graph()
+        .into_iter()
+        .filter(|(m, _)| m[0] == "measured")
+        .flat_map(|(m, refs)| {
+            refs.into_iter()
+                .filter(|r| r[0] == "experiments")
+                .map(move |r| format!("{} uses {}", m.join("::"), r.join("::")))
+        })
+        .collect();
+    assert!(
+        wrong.is_empty(),
+        "the measured check uses experiments:\n{}",
+        wrong.join("\n")
+    );
+}
+
 #[test]
 fn the_reader_finds_crate_and_super_paths() {
     // In experiments/modes/onset.rs.

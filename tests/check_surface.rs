@@ -2,7 +2,10 @@
 //! (non-periodic) window gives a rising load curve beside Persson's predictions with a
 //! page, its figures and no NaN; a rectangular, partly unmeasured window in a named unit
 //! runs with `--fill interpolate` and `--modulus`, saying so; a sphere on a rectangular
-//! free boundary gives Hertz's contact area; bad scans and flags are refused with a word.
+//! free boundary gives Hertz's contact area; bad scans and flags are refused with a word; a
+//! line scan at non-uniform positions (`--line-scan`, an x-y file) is resampled with a
+//! warning and checked as its resampled profile is, and positions that do not increase are
+//! refused naming the line.
 
 use std::path::Path;
 use std::process::Command;
@@ -394,6 +397,20 @@ fn profile(n: usize, row: usize, scale: f64) -> Vec<f64> {
         .collect()
 }
 
+/// A quick line-scan check, in um: two loads, three synthesized 64^2 surfaces, no
+/// re-entry.
+const QUICK_LINE: [&str; 9] = [
+    "--unit",
+    "um",
+    "--loads",
+    "0.01,0.05",
+    "--line-side",
+    "64",
+    "--line-seeds",
+    "3",
+    "--no-reentry",
+];
+
 #[test]
 fn a_line_scan_is_checked_on_synthesized_surfaces_end_to_end() {
     // One stylus profile of 1024 points, one height per line of a text file, in um with a
@@ -405,24 +422,19 @@ fn a_line_scan_is_checked_on_synthesized_surfaces_end_to_end() {
         .map(|v| format!("{v}"))
         .collect();
     std::fs::write(d.join("trace.txt"), text.join("\n")).unwrap();
-    let out = run_ok(bin().current_dir(d).args([
-        "check-surface",
-        "--heights",
-        "trace.txt",
-        "--pixel-size",
-        "0.5",
-        "--unit",
-        "um",
-        "--loads",
-        "0.01,0.05",
-        "--line-side",
-        "64",
-        "--line-seeds",
-        "3",
-        "--no-reentry",
-        "--out",
-        "o",
-    ]));
+    let out = run_ok(
+        bin()
+            .current_dir(d)
+            .args([
+                "check-surface",
+                "--heights",
+                "trace.txt",
+                "--pixel-size",
+                "0.5",
+            ])
+            .args(QUICK_LINE)
+            .args(["--out", "o"]),
+    );
     assert!(
         out.contains("line scans: 1 profile(s) of 1024 points") && out.contains("3 synthesized"),
         "{out}"
@@ -646,4 +658,112 @@ fn despiking_replaces_the_spikes_and_says_how_many() {
         "refused",
     ]));
     assert!(err.contains("despike") && err.contains(">= 3"), "{err}");
+}
+
+/// A 1024-point profile at positions alternately 0.4 and 0.6 apart, as a stylus file's
+/// rounded positions come, written as `x h` lines (with a header comment) to `dir/name`;
+/// returns its positions and heights.
+fn xy_profile(dir: &Path, name: &str) -> (Vec<f64>, Vec<f64>) {
+    let h = profile(1024, 5, 0.5);
+    let mut x = vec![0.0];
+    for k in 1..h.len() {
+        x.push(x[k - 1] + if k % 2 == 1 { 0.4 } else { 0.6 });
+    }
+    let mut text = vec!["# position (um), height (um)".to_string()];
+    text.extend(x.iter().zip(&h).map(|(x, h)| format!("{x} {h}")));
+    std::fs::write(dir.join(name), text.join("\n")).unwrap();
+    (x, h)
+}
+
+#[test]
+fn a_line_scan_at_non_uniform_positions_is_resampled_with_a_warning_and_checked() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let (x, h) = xy_profile(d, "xy.txt");
+    let quick = [&QUICK_LINE[..], &["--no-cross-check"]].concat();
+    let out = bin()
+        .current_dir(d)
+        .args(["check-surface", "--line-scan", "xy.txt"])
+        .args(&quick)
+        .args(["--out", "o"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    let pixel = (x[x.len() - 1] - x[0]) / (x.len() - 1) as f64;
+    assert!(
+        stderr.contains("warning: xy.txt: a line scan at non-uniform positions (spacings 0.4 to 0.6) resampled onto 1024 evenly spaced points"),
+        "{stderr}"
+    );
+    let j = json(&d.join("o/surface.json"));
+    assert!((j["pixel_size"].as_f64().unwrap() / pixel - 1.0).abs() < 1e-12);
+    // The same curve as the resampled profile's, handed over as heights.
+    let even = persson_check::measured::line::resample::resample(
+        Path::new("xy"),
+        &x,
+        &h,
+        persson_check::measured::line::resample::Origin::Indices,
+    )
+    .unwrap();
+    let text: Vec<String> = even.heights.iter().map(|v| format!("{v:?}")).collect();
+    std::fs::write(d.join("even.txt"), text.join("\n")).unwrap();
+    run_ok(
+        bin()
+            .current_dir(d)
+            .args(["check-surface", "--heights", "even.txt", "--pixel-size"])
+            .arg(format!("{pixel:?}"))
+            .args(&quick)
+            .args(["--out", "e"]),
+    );
+    let e = json(&d.join("e/surface.json"));
+    assert_eq!(j["curve"], e["curve"]);
+    assert_eq!(j["curve"].as_array().unwrap().len(), 2);
+    // A pixel size that is not the positions' spacing is refused.
+    let err = run_err(
+        bin()
+            .current_dir(d)
+            .args([
+                "check-surface",
+                "--line-scan",
+                "xy.txt",
+                "--pixel-size",
+                "1",
+            ])
+            .args(["--out", "p"]),
+    );
+    assert!(
+        err.contains("--pixel-size") && err.contains("spacing"),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_line_scan_whose_positions_do_not_increase_is_refused_naming_the_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let text = "# x h\n0 1.0\n1 2.0\n\n2 1.5\n1.5 0.5\n3 0.0\n";
+    std::fs::write(d.join("back.txt"), text).unwrap();
+    let e = run_err(bin().current_dir(d).args([
+        "check-surface",
+        "--line-scan",
+        "back.txt",
+        "--out",
+        "o",
+    ]));
+    assert!(
+        e.contains("back.txt")
+            && e.contains("line 6: position 1.5 after 2 (line 5)")
+            && e.contains("increase strictly"),
+        "{e}"
+    );
+    std::fs::write(d.join("three.txt"), "0 1 2\n").unwrap();
+    let e = run_err(bin().current_dir(d).args([
+        "check-surface",
+        "--line-scan",
+        "three.txt",
+        "--out",
+        "o",
+    ]));
+    assert!(e.contains("three.txt") && e.contains("line 1"), "{e}");
+    assert!(!d.join("o").exists(), "a refused check wrote output");
 }

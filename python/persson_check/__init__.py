@@ -219,35 +219,22 @@ def _scan(value, i):
 
 def _uniform_profile(x, h, i):
     """A profile at increasing positions ``x`` resampled onto as many evenly spaced points
-    from its first to its last position, by linear interpolation, with a warning that
-    names the spacings it had; returns ``(heights, (pixel, pixel))``. The spectrum of a
-    profile is defined on even spacing (the conversion to 2D and the synthesis assume
-    it); linear interpolation damps the modes near the new spacing's cutoff, which the
-    page marks as uncertain anyway."""
+    from its first to its last position, by linear interpolation (the library's
+    resampling, as ``persson-check check-surface --line-scan`` does it), with a warning
+    that names the spacings it had; returns ``(heights, (pixel, pixel))``. Positions that
+    do not increase strictly are refused, naming the point."""
     x = _np.asarray(x, dtype=float)
     h = _np.asarray(h, dtype=float)
-    if x.ndim != 1 or x.size < 2 or x.shape != h.shape:
+    if x.ndim != 1 or h.ndim != 1:
         raise ValueError(
             f"heights[{i}]: a non-uniform line scan needs positions and heights of one "
             f"length, at least 2"
         )
-    steps = _np.diff(x)
-    if not (_np.all(_np.isfinite(steps)) and _np.all(steps > 0)):
-        raise ValueError(
-            f"heights[{i}]: a non-uniform line scan's positions must increase strictly "
-            f"(finite, no repeats); give it sorted, or resample it with to_uniform()"
-        )
-    pixel = (x[-1] - x[0]) / (x.size - 1)
-    grid = x[0] + pixel * _np.arange(x.size)
-    grid[-1] = x[-1]
-    resampled = _np.interp(grid, x, h)
-    _warnings.warn(
-        f"heights[{i}]: a line scan at non-uniform positions (spacings {steps.min():.4g} "
-        f"to {steps.max():.4g}) resampled onto {x.size} evenly spaced points "
-        f"{pixel:.6g} apart by linear interpolation",
-        stacklevel=5,
+    resampled, pixel, warning = _native.resample_line_scan(
+        f"heights[{i}]", x.tolist(), h.tolist()
     )
-    return _heights(resampled), (float(pixel), float(pixel))
+    _warnings.warn(f"heights[{i}]: {warning}", stacklevel=5)
+    return _heights(_np.asarray(resampled, dtype=float)), (float(pixel), float(pixel))
 
 
 def _same(a, b):

@@ -13,9 +13,8 @@ use persson_check::measured::check::{CheckOptions, Event};
 use persson_check::measured::fill::Fill;
 use persson_check::measured::line::check::LineOptions;
 use persson_check::measured::line::profiles::Profiles;
-use persson_check::measured::psd::Boundary;
 use persson_check::measured::scan::Scan;
-use persson_check::tasks::check as task;
+use persson_check::tasks::check::{self as task, CheckRequest, Input};
 use persson_check::tasks::solve::StopReason;
 use persson_check::tasks::{parse, Keywords};
 
@@ -141,51 +140,51 @@ pub fn check_surface<'py>(
     max_iterations: usize,
     despike: Option<f64>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let solver = parse::solver(solver).or_raise()?;
-    let opts = CheckOptions {
-        pixel_size: [pixel_size.0, pixel_size.1],
-        unit,
-        boundary: if periodic {
-            Boundary::Periodic
-        } else {
-            Boundary::Free
+    let request = CheckRequest {
+        pixel_size: Some(vec![pixel_size.0, pixel_size.1]),
+        periodic,
+        options: CheckOptions {
+            unit,
+            loads,
+            solver: parse::solver(solver).or_raise()?,
+            cross_check,
+            cross_check_all,
+            tol,
+            fill: self::fill(fill)?,
+            modulus,
+            reentry,
+            max_iterations,
+            despike,
+            ..CheckOptions::default()
         },
-        loads,
-        solver,
-        cross_check,
-        cross_check_all,
-        tol,
-        fill: self::fill(fill)?,
-        modulus,
-        reentry,
-        max_iterations,
-        despike,
-    };
-    if line || heights.iter().any(|h| h.ndim() == 1) {
-        let profiles = profiles(&heights)?;
-        let line = LineOptions {
+        line: LineOptions {
             side: line_side,
             seeds: line_seeds,
-        };
-        let count = usize::try_from(line_seeds).unwrap_or(usize::MAX);
-        let checked = run_logged(py, threads, progress.as_ref(), verbose, |hook| {
-            let mut events = |e: Event| log_event(hook, count, e);
-            task::check_line(
-                &profiles,
-                &opts,
-                &line,
-                out.as_deref(),
-                &Keywords,
-                &mut events,
-            )
-        })?;
-        return record(py, &checked);
-    }
-    let scans = scans(&heights)?;
-    let count = scans.len();
+        },
+    };
+    let input = if line || heights.iter().any(|h| h.ndim() == 1) {
+        Input::Line(profiles(&heights)?)
+    } else {
+        Input::Surface(scans(&heights)?)
+    };
+    let task = request.task(input, None, &Keywords).or_raise()?;
+    let count = task.curves();
     let checked = run_logged(py, threads, progress.as_ref(), verbose, |hook| {
         let mut events = |e: Event| log_event(hook, count, e);
-        task::check_surface(&scans, &opts, out.as_deref(), &Keywords, &mut events)
+        task.run(out.as_deref(), &Keywords, &mut events)
     })?;
     record(py, &checked)
+}
+
+/// A line scan at non-uniform positions `x` (heights `h`, the array named `name` in
+/// messages) resampled onto as many evenly spaced points by the library
+/// ([`persson_check::tasks::check::resample_profile`]): `(heights, spacing, warning)`.
+#[pyfunction]
+pub fn resample_line_scan(
+    name: &str,
+    x: Vec<f64>,
+    h: Vec<f64>,
+) -> PyResult<(Vec<f64>, f64, String)> {
+    let r = task::resample_profile(name, &x, &h).or_raise()?;
+    Ok((r.heights, r.pixel, r.warning))
 }

@@ -1,19 +1,24 @@
 //! `check-surface`: Persson's theory checked on measured height maps, or on line scans
-//! (a 1D input, or 2D inputs with `--line`: [`persson_check::measured::line`]).
+//! (a 1D input, 2D inputs with `--line`, or an x-y profile at non-uniform positions with
+//! `--line-scan`, resampled onto even spacing: [`persson_check::measured::line`]). The
+//! flags make the one request Python's keywords make too
+//! ([`persson_check::tasks::check::CheckRequest`]); this command reads the inputs, shows
+//! progress and prints what the check found.
 
 use std::io::IsTerminal;
 use std::ops::ControlFlow;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use clap::Args as ClapArgs;
 use indicatif::{ProgressBar, ProgressStyle};
-use persson_check::error::{Error, Result, StopReason};
-use persson_check::measured::check::{CheckOptions, Event, SurfaceCheck};
+use persson_check::error::Result;
+use persson_check::measured::check::{CheckOptions, Event};
 use persson_check::measured::fill::Fill;
 use persson_check::measured::line::check::{LineOptions, DEFAULT_SEEDS, DEFAULT_SIDE};
 use persson_check::measured::options::{CHECK_SOLVER, CHECK_TOL, MAX_ITERATIONS};
-use persson_check::measured::psd::Boundary;
-use persson_check::tasks::check::{check_line, check_surface, load_line, read_input, Input};
+use persson_check::tasks::check::{
+    load_line, read_input, read_line_scan, CheckRequest, Checked, Input, SurfaceTask,
+};
 use persson_check::tasks::SolverKind;
 
 use super::FLAGS;
@@ -24,8 +29,14 @@ pub struct Args {
     /// Height maps (.npy, 2D float, or a plain-text matrix), square or rectangular; several
     /// files are several scans of one surface (the error bars come from them). A 1D input
     /// (a .npy vector, one row or one column of text) is a line scan, a profile.
-    #[arg(long, num_args = 1.., required = true)]
+    #[arg(long, num_args = 1.., required_unless_present = "line_scan")]
     heights: Vec<PathBuf>,
+    /// A line scan at non-uniform positions: a two-column text file (position, height a
+    /// line, in one length unit), resampled onto as many evenly spaced points by linear
+    /// interpolation, with a warning; the positions must increase strictly. Its spacing
+    /// is the pixel size (--pixel-size may be left out).
+    #[arg(long = "line-scan", value_name = "FILE", conflicts_with_all = ["heights", "line"])]
+    line_scan: Option<PathBuf>,
     /// Read 2D inputs as line scans: each row a profile of one surface (its columns are the
     /// profiles across, for the isotropy check). The contact is then simulated on isotropic
     /// surfaces synthesized with the spectrum the profiles imply.
@@ -44,9 +55,9 @@ pub struct Args {
         allow_negative_numbers = true,
         value_delimiter = ',',
         num_args = 1..=2,
-        required = true
+        required_unless_present = "line_scan"
     )]
-    pixel_size: Vec<f64>,
+    pixel_size: Option<Vec<f64>>,
     /// The heights' length unit (m, mm, µm, nm, ...), printed with every length.
     #[arg(long)]
     unit: Option<String>,
@@ -98,114 +109,119 @@ pub struct Args {
     out: PathBuf,
 }
 
+impl Args {
+    /// The request the flags make (the one Python's keywords make too).
+    fn request(&self) -> CheckRequest {
+        CheckRequest {
+            pixel_size: self.pixel_size.clone(),
+            periodic: self.periodic,
+            options: CheckOptions {
+                unit: self.unit.clone(),
+                loads: self.loads.clone(),
+                solver: self.solver,
+                cross_check: !self.no_cross_check,
+                cross_check_all: self.cross_check_all,
+                tol: self.tol,
+                fill: self.fill,
+                modulus: self.modulus,
+                reentry: !self.no_reentry,
+                max_iterations: self.max_iterations,
+                despike: self.despike,
+                ..CheckOptions::default()
+            },
+            line: LineOptions {
+                side: self.line_side,
+                seeds: self.line_seeds,
+            },
+        }
+    }
+}
+
 pub fn run(args: Args) -> Result<()> {
-    let input = read_input(&args.heights, args.line, &FLAGS)?;
-    let pixel_size = match args.pixel_size[..] {
-        [p] => [p, p],
-        [a, b] => [a, b],
-        _ => {
-            return Err(Error::invalid(
-                "--pixel-size",
-                format!("{:?}", args.pixel_size),
-                "one value, or two separated by a comma",
-            ))
+    let (input, own_pixel) = match &args.line_scan {
+        Some(path) => {
+            let (input, pixel, warning) = read_line_scan(path)?;
+            eprintln!("warning: {}: {warning}", path.display());
+            (input, Some(pixel))
         }
+        None => (read_input(&args.heights, args.line, &FLAGS)?, None),
     };
-    let opts = CheckOptions {
-        pixel_size,
-        unit: args.unit,
-        boundary: if args.periodic {
-            Boundary::Periodic
-        } else {
-            Boundary::Free
-        },
-        loads: args.loads,
-        solver: args.solver,
-        cross_check: !args.no_cross_check,
-        cross_check_all: args.cross_check_all,
-        tol: args.tol,
-        fill: args.fill,
-        modulus: args.modulus,
-        reentry: !args.no_reentry,
-        max_iterations: args.max_iterations,
-        despike: args.despike,
-    };
-    let line = LineOptions {
-        side: args.line_side,
-        seeds: args.line_seeds,
-    };
-    let count = match &input {
-        Input::Surface(scans) => scans.len(),
-        Input::Line(_) => usize::try_from(line.seeds).unwrap_or(usize::MAX),
-    };
-    let out = args.out.as_path();
-    let run = |events: &mut dyn FnMut(Event) -> ControlFlow<StopReason>| -> Result<SurfaceCheck> {
-        match &input {
-            Input::Surface(scans) => check_surface(scans, &opts, Some(out), &FLAGS, events),
-            Input::Line(profiles) => {
-                check_line(profiles, &opts, &line, Some(out), &FLAGS, events).map(|c| c.surface)
-            }
-        }
-    };
+    let task = args.request().task(input, own_pixel, &FLAGS)?;
     let result = if std::io::stderr().is_terminal() {
-        let solves = count * if opts.cross_check { 2 } else { 1 };
-        let bar = ProgressBar::new(solves as u64);
-        bar.set_style(
-            ProgressStyle::with_template(
-                "{prefix:>16} [{elapsed_precise}] {bar:30} {pos}/{len} curves {msg}",
-            )
-            .expect("static template"),
-        );
-        bar.set_prefix("check-surface");
-        let mut events = |e: Event| {
-            match e {
-                Event::Iteration {
-                    scan, solver, load, ..
-                } => bar.set_message(format!(
-                    "scan {}, {}, load {}",
-                    scan + 1,
-                    solver.name(),
-                    load + 1
-                )),
-                Event::Outliers { .. } => {
-                    if let Some(line) = load_line(count, &e) {
-                        bar.println(line);
-                    }
-                }
-                Event::Load { load, loads, .. } => {
-                    if let Some(line) = load_line(count, &e) {
-                        bar.println(line);
-                    }
-                    // Both curves end at the last load.
-                    if load + 1 == loads {
-                        bar.inc(1);
-                    }
-                }
-            }
-            ControlFlow::Continue(())
-        };
-        let result = run(&mut events);
-        bar.finish_and_clear();
-        result?
+        with_progress_bar(&task, &args.out)?
     } else {
         // A log, a notebook, a batch job: one line per load as it ends.
+        let count = task.curves();
         let mut events = |e: Event| {
             if let Some(line) = load_line(count, &e) {
                 eprintln!("check-surface: {line}");
             }
             ControlFlow::Continue(())
         };
-        run(&mut events)?
+        task.run(Some(&args.out), &FLAGS, &mut events)?
     };
-    if let Input::Line(p) = &input {
+    summarize(&task, &result, &args.out);
+    Ok(())
+}
+
+/// The check run with a progress bar on the terminal: one step per curve, a line per
+/// load.
+fn with_progress_bar(task: &SurfaceTask, out: &Path) -> Result<Checked> {
+    let count = task.curves();
+    let solves = count * if task.opts.cross_check { 2 } else { 1 };
+    let bar = ProgressBar::new(solves as u64);
+    bar.set_style(
+        ProgressStyle::with_template(
+            "{prefix:>16} [{elapsed_precise}] {bar:30} {pos}/{len} curves {msg}",
+        )
+        .expect("static template"),
+    );
+    bar.set_prefix("check-surface");
+    let mut events = |e: Event| {
+        match e {
+            Event::Iteration {
+                scan, solver, load, ..
+            } => bar.set_message(format!(
+                "scan {}, {}, load {}",
+                scan + 1,
+                solver.name(),
+                load + 1
+            )),
+            Event::Outliers { .. } => {
+                if let Some(line) = load_line(count, &e) {
+                    bar.println(line);
+                }
+            }
+            Event::Load { load, loads, .. } => {
+                if let Some(line) = load_line(count, &e) {
+                    bar.println(line);
+                }
+                // Both curves end at the last load.
+                if load + 1 == loads {
+                    bar.inc(1);
+                }
+            }
+        }
+        ControlFlow::Continue(())
+    };
+    let result = task.run(Some(out), &FLAGS, &mut events);
+    bar.finish_and_clear();
+    result
+}
+
+/// What the check found, a line each: the line scans, the comparisons, the warnings and
+/// the failed solves, and where the page is.
+fn summarize(task: &SurfaceTask, checked: &Checked, out: &Path) {
+    if let Input::Line(p) = &task.input {
         outln!(
             "line scans: {} profile(s) of {} points; contact simulated on {} synthesized \
              surfaces",
             p.count(),
             p.points,
-            line.seeds
+            task.line.seeds
         );
     }
+    let result = checked.surface();
     for c in &result.comparisons {
         outln!("{:24} {} : {}", c.name, c.statistic, c.verdict);
     }
@@ -215,6 +231,5 @@ pub fn run(args: Args) -> Result<()> {
     for f in &result.failures {
         outln!("failed: {}", f.message);
     }
-    outln!("wrote {}", args.out.join("surface.md").display());
-    Ok(())
+    outln!("wrote {}", out.join("surface.md").display());
 }

@@ -19,6 +19,12 @@
 //!   progress display or a cancel check;
 //! * [`load`]: the load that gives a target contact area;
 //! * [`sweep`]: one realization solved at a sequence of magnifications, warm-started;
+//! * [`climb`]: a sweep's fixed-load steps through a list of magnifications, each step
+//!   recorded; [`history`]: every point's contact history over a climb (left, came back,
+//!   the flux into and out of contact over an interval); [`contact_change`]: which points
+//!   entered or left contact between two solutions, and the maps' packing and colours;
+//! * [`load_curve`]: one surface solved at increasing loads, each solve warm-started from
+//!   the last that converged, with a time budget per load;
 //! * [`scene`]: scene files (a surface and a solve);
 //! * [`tolerance`]: the slacks of comparisons between magnifications and shells;
 //! * [`mod@reference`]: closed-form solutions the solvers are tested against;
@@ -26,13 +32,17 @@
 //!   where it has them, with the same numbers.
 
 pub mod boussinesq;
+pub mod climb;
 pub mod contact;
+pub mod contact_change;
 pub mod distance;
 pub mod elastic;
 pub mod fft;
 pub mod field;
 pub mod grid;
+pub mod history;
 pub mod load;
+pub mod load_curve;
 pub mod reference;
 pub mod scene;
 pub mod solver;

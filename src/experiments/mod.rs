@@ -45,10 +45,10 @@
 
 pub mod climb;
 pub mod contact_area;
-pub mod contact_change;
+pub use crate::engine::contact_change;
 pub mod ensemble;
 pub mod flux;
-pub mod history;
+pub use crate::engine::history;
 pub mod keys;
 pub mod modes;
 pub mod other_grid;

@@ -9,9 +9,9 @@
 //! recorded as such, with the solver and the load, and the curve goes on from the last
 //! load that converged: one load never costs the others.
 //!
-//! A time budget stops a solve from its per-iteration monitor: past the deadline the
-//! monitor answers stop ([`StopReason::OutOfTime`]) and the solve ends in
-//! [`Error::Stopped`], which [`solve_bounded`] reports as over time; the solver is left
+//! The loads are stepped on the engine's [`LoadCurve`]. A time budget stops a solve from
+//! its per-iteration monitor: past the deadline the monitor answers stop
+//! ([`StopReason::OutOfTime`]) and the solve is recorded as over time; the solver is left
 //! ready, and the next load starts warm from the last that converged. A solve cancelled
 //! from outside (Ctrl-C in Python, through `monitor`) ends the check with its error.
 //!
@@ -38,6 +38,7 @@ use super::psd::{Boundary, ScanSpectrum, Shape};
 use super::theory::E_STAR;
 use crate::engine::contact::{ContactProblem, ContactSolution, Model};
 use crate::engine::grid::Grid;
+use crate::engine::load_curve::{ends_the_solve, LoadCurve, SolveEnd};
 use crate::engine::solver::{ConstrainedCg, SCAN_STAGNATION};
 use crate::engine::solver::{Progress, SolveOptions, Solver, SolverKind, Start};
 use crate::error::{Error, Result, StopReason};
@@ -239,58 +240,6 @@ impl Curve {
     }
 }
 
-/// `engine.solve_monitored`, stopped once `deadline` has passed: then the error says so,
-/// with the iterations done and the last residual estimate. `monitor` sees every
-/// iteration first, and may stop the solve itself (a cancel), which ends in its
-/// [`Error::Stopped`].
-pub fn solve_bounded(
-    engine: &mut dyn Solver,
-    problem: &ContactProblem,
-    start: Start,
-    opts: &SolveOptions,
-    deadline: Option<Instant>,
-    monitor: &mut dyn FnMut(Progress) -> ControlFlow<StopReason>,
-) -> std::result::Result<ContactSolution, SolveEnd> {
-    let run = engine.solve_monitored(problem, start, opts, &mut |p| {
-        monitor(p)?;
-        if deadline.is_some_and(|d| Instant::now() > d) {
-            return ControlFlow::Break(StopReason::OutOfTime);
-        }
-        ControlFlow::Continue(())
-    });
-    match run {
-        Ok(solution) => Ok(solution),
-        Err(Error::Stopped {
-            reason: StopReason::OutOfTime,
-            iteration,
-            residual,
-            ..
-        }) => Err(SolveEnd::OutOfTime(Progress {
-            iteration,
-            residual,
-        })),
-        Err(e) => Err(SolveEnd::Error(e)),
-    }
-}
-
-/// How a bounded solve ended without a solution.
-#[derive(Debug)]
-pub enum SolveEnd {
-    /// The solver's own error.
-    Error(Error),
-    /// Over the time budget, at this iteration and estimate.
-    OutOfTime(Progress),
-}
-
-/// Whether an error ends one solve only (the solver stopped), rather than the check (bad
-/// input, files).
-fn ends_the_solve(e: &Error) -> bool {
-    matches!(
-        e,
-        Error::NotConverged { .. } | Error::NonFinite { .. } | Error::LostContact { .. }
-    )
-}
-
 /// The solver `kind` as a measured scan needs it: CG with the scans' stagnation window
 /// ([`SCAN_STAGNATION`]), so that its safeguards against a cycling step act after 25
 /// iterations without progress rather than 200; the others as built.
@@ -306,9 +255,10 @@ pub fn scan_solver(kind: SolverKind) -> Box<dyn Solver + Send> {
 }
 
 /// Solves `body` at `loads` (increasing) with `solver` to `opts.tol` within
-/// `opts.max_iter` iterations a load, each load warm-started from the last that
-/// converged; `budget[i]` bounds the time of load `i` (`None`: no bound). `on_load` sees
-/// every load's outcome as it ends, `monitor` every iteration.
+/// `opts.max_iter` iterations a load, on the engine's [`LoadCurve`]: each load
+/// warm-started from the last that converged; `budget[i]` bounds the time of load `i`
+/// (`None`: no bound). `on_load` sees every load's outcome as it ends, `monitor` every
+/// iteration.
 pub fn solve_curve(
     body: &Body,
     loads: &[f64],
@@ -319,112 +269,46 @@ pub fn solve_curve(
     monitor: &mut dyn FnMut(usize, Progress) -> ControlFlow<StopReason>,
 ) -> Result<Curve> {
     let timer = Instant::now();
-    let tol = opts.tol;
-    let mut engine = scan_solver(solver);
-    let mut last: Option<ContactSolution> = None;
+    let mut curve = LoadCurve::new(&body.model, &body.heights, scan_solver(solver), opts);
     let mut points = Vec::with_capacity(loads.len());
     let mut pressures = Vec::with_capacity(loads.len());
     for (i, &p0) in loads.iter().enumerate() {
-        let problem = ContactProblem::new(&body.model, &body.heights, p0 * body.window_share())?;
-        let start = last.as_ref().map_or(Start::Cold, Start::Warm);
         let began = Instant::now();
         let allowed = budget.get(i).copied().flatten();
-        let deadline = allowed.map(|d| began + d);
-        let run = solve_bounded(
-            engine.as_mut(),
-            &problem,
-            start,
-            &opts,
-            deadline,
+        let run = curve.solve(
+            p0 * body.window_share(),
+            allowed.map(|d| began + d),
             &mut |p| monitor(i, p),
         );
-        let fail = |message: String, state: Option<SolveState>| Failed {
+        let load = Load {
             solver,
             p0,
-            message,
-            wall_s: began.elapsed().as_secs_f64(),
-            state,
+            at: format!(
+                "{} at p0 = {p0:.3e} E* (load {} of {})",
+                solver.name(),
+                i + 1,
+                loads.len()
+            ),
+            began,
+            allowed,
+            tol: opts.tol,
+            max_iter: opts.max_iter,
         };
-        let at = format!(
-            "{} at p0 = {p0:.3e} E* (load {} of {})",
-            solver.name(),
-            i + 1,
-            loads.len()
-        );
         let outcome = match run {
-            Ok(solution) => {
-                let touched = (0..solution.pressure.len())
-                    .filter(|&k| !body.model.under_wall(k))
-                    .any(|k| solution.pressure[k] > 0.0);
-                if touched {
-                    Err(fail(
-                        format!("{at}: the surface touched the floor outside the scan"),
-                        None,
-                    ))
-                } else {
-                    let window = body.window(&solution.pressure);
-                    let contact = window.iter().filter(|&&p| p > 0.0).count();
-                    let solved = Solved {
-                        p0,
-                        contact_area: contact as f64 / window.len() as f64,
-                        energy: body.elastic_energy(&solution),
-                        iterations: solution.stats.iterations,
-                        residual: solution.stats.residual.value(),
-                        wall_s: solution.stats.wall_s,
-                    };
-                    pressures.push(Some(window.iter().map(|p| (p / p0) as f32).collect()));
-                    last = Some(solution);
+            Ok(solution) => match load.solved(body, &solution) {
+                Ok((solved, window)) => {
+                    pressures.push(Some(window));
+                    curve.keep(solution);
                     Ok(solved)
                 }
-            }
-            Err(SolveEnd::Error(Error::NotConverged {
-                solver: name,
-                reason,
-                iterations,
-                residual,
-                tol,
-                contact_points,
-            })) => {
-                let contact = contact_points
-                    .map(|c| format!(", {c} points in contact"))
-                    .unwrap_or_default();
-                Err(fail(
-                    format!(
-                        "{at}: {name} did not converge ({reason}): residual {residual:.3e} > \
-                         tolerance {tol:.1e} after {iterations} iterations (budget {}){contact}",
-                        opts.max_iter
-                    ),
-                    Some(SolveState {
-                        iterations,
-                        residual,
-                        tol,
-                        contact_points,
-                    }),
-                ))
-            }
-            Err(SolveEnd::Error(e)) if ends_the_solve(&e) => Err(fail(format!("{at}: {e}"), None)),
-            Err(SolveEnd::Error(e)) => return Err(e),
-            Err(SolveEnd::OutOfTime(p)) => Err(fail(
-                format!(
-                    "{at}: stopped over its time budget of {:.1} s, after {} iterations, \
-                     residual estimate {:.3e} > tolerance {tol:.1e}",
-                    allowed.map_or(0.0, |d| d.as_secs_f64()),
-                    p.iteration,
-                    p.residual
-                ),
-                Some(SolveState {
-                    iterations: p.iteration,
-                    residual: p.residual,
-                    tol,
-                    contact_points: None,
-                }),
-            )),
+                Err(failed) => Err(failed),
+            },
+            Err(SolveEnd::Error(e)) if !ends_the_solve(&e) => return Err(e),
+            Err(end) => Err(load.failed(end)),
         };
         if outcome.is_err() {
             pressures.push(None);
-            // The next load starts warm from the last that converged, with nothing carried
-            // from the solves after it (GFMD's step), as a solver built afresh would.
-            engine.carry(None);
+            curve.reject();
         }
         on_load(i, &outcome);
         points.push(outcome);
@@ -436,6 +320,116 @@ pub fn solve_curve(
         pressures,
         wall_s: timer.elapsed().as_secs_f64(),
     })
+}
+
+/// One load of a curve being solved: what its outcome names.
+struct Load {
+    solver: SolverKind,
+    /// The load over the window, `p0 / E*`.
+    p0: f64,
+    /// The solver and the load, for messages.
+    at: String,
+    began: Instant,
+    /// The load's time budget.
+    allowed: Option<Duration>,
+    /// The tolerance and the iteration budget.
+    tol: f64,
+    max_iter: usize,
+}
+
+impl Load {
+    /// The load failed with `message` (and the solver's state where it said).
+    fn fail(&self, message: String, state: Option<SolveState>) -> Failed {
+        Failed {
+            solver: self.solver,
+            p0: self.p0,
+            message,
+            wall_s: self.began.elapsed().as_secs_f64(),
+            state,
+        }
+    }
+
+    /// A converged `solution` as the curve's point, with the window's pressures over the
+    /// load (`p / p0`); failed where the surface touched the floor outside the scan.
+    fn solved(
+        &self,
+        body: &Body,
+        solution: &ContactSolution,
+    ) -> std::result::Result<(Solved, Vec<f32>), Failed> {
+        let touched = (0..solution.pressure.len())
+            .filter(|&k| !body.model.under_wall(k))
+            .any(|k| solution.pressure[k] > 0.0);
+        if touched {
+            return Err(self.fail(
+                format!(
+                    "{}: the surface touched the floor outside the scan",
+                    self.at
+                ),
+                None,
+            ));
+        }
+        let window = body.window(&solution.pressure);
+        let contact = window.iter().filter(|&&p| p > 0.0).count();
+        let solved = Solved {
+            p0: self.p0,
+            contact_area: contact as f64 / window.len() as f64,
+            energy: body.elastic_energy(solution),
+            iterations: solution.stats.iterations,
+            residual: solution.stats.residual.value(),
+            wall_s: solution.stats.wall_s,
+        };
+        let p0 = self.p0;
+        Ok((solved, window.iter().map(|p| (p / p0) as f32).collect()))
+    }
+
+    /// The failure of a solve that ended without a solution (`end` ends the solve only).
+    fn failed(&self, end: SolveEnd) -> Failed {
+        let at = &self.at;
+        match end {
+            SolveEnd::Error(Error::NotConverged {
+                solver: name,
+                reason,
+                iterations,
+                residual,
+                tol,
+                contact_points,
+            }) => {
+                let contact = contact_points
+                    .map(|c| format!(", {c} points in contact"))
+                    .unwrap_or_default();
+                self.fail(
+                    format!(
+                        "{at}: {name} did not converge ({reason}): residual {residual:.3e} > \
+                         tolerance {tol:.1e} after {iterations} iterations (budget {}){contact}",
+                        self.max_iter
+                    ),
+                    Some(SolveState {
+                        iterations,
+                        residual,
+                        tol,
+                        contact_points,
+                    }),
+                )
+            }
+            SolveEnd::Error(e) => self.fail(format!("{at}: {e}"), None),
+            SolveEnd::OutOfTime(p) => self.fail(
+                format!(
+                    "{at}: stopped over its time budget of {:.1} s, after {} iterations, \
+                     residual estimate {:.3e} > tolerance {:.1e}",
+                    self.allowed.map_or(0.0, |d| d.as_secs_f64()),
+                    p.iteration,
+                    p.residual,
+                    self.tol
+                ),
+                Some(SolveState {
+                    iterations: p.iteration,
+                    residual: p.residual,
+                    tol: self.tol,
+                    contact_points: None,
+                }),
+            ),
+        }
+    }
 }
 
 #[cfg(test)]

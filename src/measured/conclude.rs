@@ -65,78 +65,12 @@ pub(super) fn conclude(
     let distribution = reached
         .get(reached.len() / 2)
         .map(|&i| distribution(measured, loads[i], i));
-    let over = |f: fn(&CurvePoint) -> Verdict| over_loads(curve.iter().map(f));
-    let mut comparisons = vec![
-        Comparison {
-            name: "contact_area".into(),
-            statistic: "a_r / a_r,Persson at each load (original theory)".into(),
-            verdict: over(|c| c.area_verdict),
-        },
-        Comparison {
-            name: "elastic_energy".into(),
-            statistic: "E_el / E_Persson at each load (original theory)".into(),
-            verdict: over(|c| c.energy_verdict),
-        },
-    ];
-    if let Some(d) = &distribution {
-        comparisons.push(Comparison {
-            name: "pressure_distribution".into(),
-            statistic: format!(
-                "rms pressure over Persson's at p0 = {} E*",
-                super::units::eng(d.p0)
-            ),
-            verdict: d.verdict,
-        });
-    }
-    let solvers_agree = opts.cross_check.then(|| {
-        measured.iter().all(|m| {
-            (0..loads.len()).all(|i| match (m.curves[0].solved(i), m.curves[1].solved(i)) {
-                (Some(a), Some(b)) => {
-                    relative(a.contact_area, b.contact_area) <= SOLVER_AGREEMENT
-                        && relative(a.energy, b.energy) <= SOLVER_AGREEMENT
-                }
-                _ => true,
-            })
-        })
-    });
-    let solvers = (0..measured[0].curves.len())
-        .map(|k| {
-            let solved = || {
-                measured
-                    .iter()
-                    .flat_map(|m| m.curves[k].points.iter().filter_map(|o| o.as_ref().ok()))
-            };
-            SolverWork {
-                solver: measured[0].curves[k].solver,
-                iterations: solved().map(|s| s.iterations).sum(),
-                max_residual: solved().map(|s| s.residual).fold(0.0, f64::max),
-                failed: measured
-                    .iter()
-                    .map(|m| m.curves[k].points.iter().filter(|o| o.is_err()).count())
-                    .sum(),
-                wall_s: measured.iter().map(|m| m.curves[k].wall_s).sum(),
-            }
-        })
-        .collect();
-    let failures = scans
-        .iter()
-        .zip(measured)
-        .flat_map(|(scan, m)| {
-            m.curves.iter().enumerate().flat_map(move |(k, c)| {
-                c.points.iter().filter_map(move |o| {
-                    o.as_ref().err().map(|f| Failure {
-                        scan: scan.source.display().to_string(),
-                        solver: f.solver,
-                        headline: k == 0,
-                        p0: f.p0,
-                        message: f.message.clone(),
-                        wall_s: f.wall_s,
-                        state: f.state,
-                    })
-                })
-            })
-        })
-        .collect();
+    let comparisons = comparisons(&curve, distribution.as_ref());
+    let solvers_agree = opts
+        .cross_check
+        .then(|| solvers_agree(measured, loads.len()));
+    let solvers = solver_work(measured);
+    let failures = failures(scans, measured);
     let statistics = statistics(measured);
     let warnings = warnings(&statistics, &curve, opts.loads.is_none());
     let reentry = measured[0].reentry.clone();
@@ -173,6 +107,96 @@ pub(super) fn conclude(
         outliers: measured.iter().map(|m| m.outliers.clone()).collect(),
         wall_s,
     }
+}
+
+/// The comparisons of the page's verdicts: the contact area and the energy over the
+/// loads, and the pressure distribution at the middle load.
+fn comparisons(curve: &[CurvePoint], distribution: Option<&Distribution>) -> Vec<Comparison> {
+    let over = |f: fn(&CurvePoint) -> Verdict| over_loads(curve.iter().map(f));
+    let mut comparisons = vec![
+        Comparison {
+            name: "contact_area".into(),
+            statistic: "a_r / a_r,Persson at each load (original theory)".into(),
+            verdict: over(|c| c.area_verdict),
+        },
+        Comparison {
+            name: "elastic_energy".into(),
+            statistic: "E_el / E_Persson at each load (original theory)".into(),
+            verdict: over(|c| c.energy_verdict),
+        },
+    ];
+    if let Some(d) = distribution {
+        comparisons.push(Comparison {
+            name: "pressure_distribution".into(),
+            statistic: format!(
+                "rms pressure over Persson's at p0 = {} E*",
+                super::units::eng(d.p0)
+            ),
+            verdict: d.verdict,
+        });
+    }
+    comparisons
+}
+
+/// Whether the two solvers agree within [`SOLVER_AGREEMENT`] on the contact area and the
+/// energy at every load both solved, on every scan.
+fn solvers_agree(measured: &[Measured], loads: usize) -> bool {
+    measured.iter().all(|m| {
+        (0..loads).all(|i| match (m.curves[0].solved(i), m.curves[1].solved(i)) {
+            (Some(a), Some(b)) => {
+                relative(a.contact_area, b.contact_area) <= SOLVER_AGREEMENT
+                    && relative(a.energy, b.energy) <= SOLVER_AGREEMENT
+            }
+            _ => true,
+        })
+    })
+}
+
+/// Each solver's work over every scan: iterations, largest residual, failed loads and
+/// wall time.
+fn solver_work(measured: &[Measured]) -> Vec<SolverWork> {
+    (0..measured[0].curves.len())
+        .map(|k| {
+            let solved = || {
+                measured
+                    .iter()
+                    .flat_map(|m| m.curves[k].points.iter().filter_map(|o| o.as_ref().ok()))
+            };
+            SolverWork {
+                solver: measured[0].curves[k].solver,
+                iterations: solved().map(|s| s.iterations).sum(),
+                max_residual: solved().map(|s| s.residual).fold(0.0, f64::max),
+                failed: measured
+                    .iter()
+                    .map(|m| m.curves[k].points.iter().filter(|o| o.is_err()).count())
+                    .sum(),
+                wall_s: measured.iter().map(|m| m.curves[k].wall_s).sum(),
+            }
+        })
+        .collect()
+}
+
+/// Every failed solve, with its scan and whether it was the headline solver's.
+fn failures(scans: &[Scan], measured: &[Measured]) -> Vec<Failure> {
+    scans
+        .iter()
+        .zip(measured)
+        .flat_map(|(scan, m)| {
+            m.curves.iter().enumerate().flat_map(move |(k, c)| {
+                c.points.iter().filter_map(move |o| {
+                    o.as_ref().err().map(|f| Failure {
+                        scan: scan.source.display().to_string(),
+                        solver: f.solver,
+                        headline: k == 0,
+                        p0: f.p0,
+                        message: f.message.clone(),
+                        wall_s: f.wall_s,
+                        state: f.state,
+                    })
+                })
+            })
+        })
+        .collect()
 }
 
 /// The warnings of [`warnings::LIMITS`] that the surface's statistics and the curve

@@ -5,13 +5,16 @@
 //! ([`reentry`]), spikes and outliers found before the solves ([`spikes`]), the words
 //! where the theory does not apply ([`warnings`]), the check
 //! ([`check`]: its [`options`], its [`curves`], its [`findings`] and how they are drawn from
-//! the measurements, `conclude`) and its page
-//! ([`mod@page`]); line scans, by way of the isotropic surface they imply ([`mod@line`]).
+//! the measurements, `conclude`) and its page ([`mod@page`], its [`figures`]); line scans,
+//! by way of the isotropic surface they imply ([`mod@line`]). The load curves and the
+//! re-entry climb run on the engine's sweeps ([`crate::engine::load_curve`],
+//! [`crate::engine::climb`]).
 
 pub mod body;
 pub mod check;
 mod conclude;
 pub mod curves;
+pub mod figures;
 pub mod fill;
 pub mod findings;
 pub mod line;

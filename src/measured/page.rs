@@ -1,7 +1,8 @@
 //! The check's outputs: `surface.json` (the [`SurfaceCheck`] as it is), `surface.md` (a
-//! page for people) and its figures under `figures/`: the power spectrum, the
-//! contact-area curve, the pressure distribution and the elastic energy, each beside
-//! Persson's original and corrected predictions. Every file is written atomically.
+//! page for people) and its figures under `figures/` ([`super::figures`]): the power
+//! spectrum, the contact-area curve, the pressure distribution and the elastic energy,
+//! each beside Persson's original and corrected predictions. Every file is written
+//! atomically.
 //!
 //! Numbers are written with three significant digits in engineering notation
 //! ([`super::units::eng`]), lengths with their unit, pressures in units of `E*` and, with
@@ -17,10 +18,12 @@ use super::check::{
 use super::fill::{Fill, MAX_FILLED_SHARE};
 use super::psd::Boundary;
 use super::spikes::SPIKE_RMS;
-use super::units::{eng, length, metres, percent, SQUARE_PIXEL_TOLERANCE};
+use super::units::{eng, length, percent, SQUARE_PIXEL_TOLERANCE};
 use super::warnings::{CONTACT_PRESSURE, LIMITS};
 use crate::error::Result;
-use crate::plot::{Axis, Figure, Series, Style};
+
+pub use super::figures::figures;
+use super::figures::{area_of, energy_of, energy_unit, unit};
 use crate::stats::Estimate;
 use crate::validation::Verdict;
 
@@ -47,11 +50,6 @@ fn mean_text(m: &Estimate) -> String {
     } else {
         format!("{} (one scan: no error bar)", eng(m.value))
     }
-}
-
-/// The unit of lengths, for text: `nm`, or `length unit`.
-fn unit(c: &SurfaceCheck) -> &str {
-    c.unit.as_deref().unwrap_or("length unit")
 }
 
 /// The page.
@@ -378,29 +376,6 @@ fn curve_table(s: &mut String, c: &SurfaceCheck, t: &CurveTable) {
     }
     let _ = writeln!(s, "\n![{}](figures/{}.png)\n", t.figure.1, t.figure.0);
 }
-
-/// The contact area's [value, error, cross-check, Persson, corrected].
-fn area_of(p: &CurvePoint) -> [Option<f64>; 5] {
-    [
-        Some(p.a_r),
-        p.a_r_std_error,
-        p.a_r_cross_check,
-        Some(p.a_r_persson),
-        Some(p.a_r_persson_corrected),
-    ]
-}
-
-/// The elastic energy's [value, error, cross-check, Persson, corrected].
-fn energy_of(p: &CurvePoint) -> [Option<f64>; 5] {
-    [
-        Some(p.energy),
-        p.energy_std_error,
-        p.energy_cross_check,
-        Some(p.energy_persson),
-        Some(p.energy_persson_corrected),
-    ]
-}
-
 fn curve(s: &mut String, c: &SurfaceCheck) {
     curve_table(
         s,
@@ -437,17 +412,6 @@ fn distribution(s: &mut String, c: &SurfaceCheck) {
         mean_text(&d.rms_ratio),
         d.verdict
     );
-}
-
-/// The energy's unit and the factor to it: J/m^2 with a modulus and a known unit, else
-/// `E*` (or `Pa`) times the length unit.
-fn energy_unit(c: &SurfaceCheck) -> (String, f64) {
-    let u = unit(c);
-    match (c.modulus, c.unit.as_deref().and_then(metres)) {
-        (Some(e), Some(m)) => ("J/m^2".to_string(), e * m),
-        (Some(e), None) => (format!("Pa {u}"), e),
-        (None, _) => (format!("E* {u}"), 1.0),
-    }
 }
 
 fn energy(s: &mut String, c: &SurfaceCheck) {
@@ -535,102 +499,4 @@ fn solvers(s: &mut String, c: &SurfaceCheck) {
         );
     }
     s.push('\n');
-}
-
-/// A load curve's series, in the order that keeps every series' colour across figures:
-/// the headline solver's points with their error bars over scans, Persson's two
-/// predictions, and the cross-check as a line through its loads where there is one;
-/// `pick` reads a point's [value, error, cross-check, Persson, corrected].
-fn curve_series(
-    c: &SurfaceCheck,
-    pick: fn(&CurvePoint) -> [Option<f64>; 5],
-    factor: f64,
-) -> Vec<Series> {
-    let line = |k: usize| -> Vec<(f64, f64)> {
-        c.curve
-            .iter()
-            .filter_map(|p| Some((p.p0, factor * pick(p)[k]?)))
-            .collect()
-    };
-    let mut series = vec![
-        Series::with_errors(
-            format!("simulation ({})", c.solver.name()),
-            Style::Points,
-            c.curve.iter().map(|p| {
-                let v = pick(p);
-                (
-                    p.p0,
-                    factor * v[0].unwrap_or(f64::NAN),
-                    factor * v[1].unwrap_or(f64::NAN),
-                )
-            }),
-        ),
-        Series::xy("Persson", Style::Line, line(3)),
-        Series::xy("Persson, corrected", Style::Dashed, line(4)),
-    ];
-    let cross = line(2);
-    if let (Some(k), false) = (c.cross_check, cross.is_empty()) {
-        series.push(Series::xy(
-            format!("cross-check ({})", k.name()),
-            Style::Line,
-            cross,
-        ));
-    }
-    series
-}
-
-/// The page's figures.
-pub fn figures(c: &SurfaceCheck) -> Vec<Figure> {
-    let u = unit(c);
-    let (energy_unit, energy_factor) = energy_unit(c);
-    let mut figures = vec![
-        Figure {
-            name: "psd".into(),
-            title: "Radially averaged power spectrum".into(),
-            x: Axis::log(format!("q (1/{u})")),
-            y: Axis::log(format!("C(q) ({u}^4)")),
-            y2: None,
-            series: vec![Series::xy(
-                "C(q)",
-                Style::LinePoints,
-                c.statistics.psd.iter().map(|b| (b.q, b.c)),
-            )],
-        },
-        Figure {
-            name: "contact_area".into(),
-            title: "Relative contact area against the load".into(),
-            x: Axis::log("p0 / E*"),
-            y: Axis::log("a_r"),
-            y2: None,
-            series: curve_series(c, area_of, 1.0),
-        },
-        Figure {
-            name: "elastic_energy".into(),
-            title: "Elastic energy per unit area against the load".into(),
-            x: Axis::log("p0 / E*"),
-            y: Axis::log(format!("E_el ({energy_unit})")),
-            y2: None,
-            series: curve_series(c, energy_of, energy_factor),
-        },
-    ];
-    if let Some(d) = &c.pressure_distribution {
-        let col = |k: usize| -> Vec<(f64, f64)> { d.bins.iter().map(|b| (b[0], b[k])).collect() };
-        figures.push(Figure {
-            name: "pressure_distribution".into(),
-            title: format!("Pressure distribution at p0 = {} E*", eng(d.p0)),
-            x: Axis::linear("p / p0"),
-            y: Axis::linear("Pr(p / p0)"),
-            y2: None,
-            series: vec![
-                Series::xy(
-                    format!("simulation ({})", c.solver.name()),
-                    Style::LinePoints,
-                    col(1),
-                ),
-                Series::xy("Persson", Style::Line, col(2)),
-                Series::xy("Persson, corrected", Style::Dashed, col(3)),
-            ],
-        });
-    }
-    figures
 }

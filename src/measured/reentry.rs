@@ -1,6 +1,7 @@
 //! The re-entry share over magnification on a scan's own shells: assumption (c) of the
 //! validations (`p = 0` absorbs), measured as the `c_reentry` validation measures it
-//! ([`crate::experiments::reentry`]), on the scan instead of a generated surface.
+//! (the validation's climbs, [`crate::engine::climb`]), on the scan instead of a generated
+//! surface.
 //!
 //! The scan's spectrum is truncated as that validation truncates its surfaces: at
 //! `zeta_max = L / lambda_s` with the long-wavelength cutoff at the scan's longer side
@@ -27,13 +28,13 @@ use serde::{Deserialize, Serialize};
 use super::body::window_of;
 use super::psd::{half_spectrum, Boundary, ScanSpectrum, Shape};
 use super::theory::E_STAR;
+use crate::engine::climb::{climb_steps, Recorder, Stepped};
 use crate::engine::contact::{ContactSolution, Model};
 use crate::engine::grid::Grid;
+use crate::engine::history::History;
 use crate::engine::solver::{SolveOptions, SolverKind};
 use crate::engine::sweep::{shell_steps, Roughness, Sweep};
 use crate::error::{Error, Result};
-use crate::experiments::climb::{climb_steps, Recorder, Stepped};
-use crate::experiments::history::History;
 
 /// The magnification the sweep climbs to, `L / lambda_s`: the reduced `c_reentry` scene's
 /// `zeta_max` (`lambda_l / lambda_s = 64 / 4`), with the scan's side as `lambda_l`. On a

@@ -6,12 +6,14 @@
 //! the surface's by the Abel transform ([`abel`]), Persson's theory is evaluated on the
 //! converted spectrum, and the contact is simulated on isotropic 2D surfaces synthesized
 //! with it (random phases, several seeds: [`synthesis`]), never on the measured profile.
-//! Which inputs are line scans ([`profiles`]); the check and its warnings ([`check`]);
-//! its page ([`page`]).
+//! Which inputs are line scans ([`profiles`]), and a profile at non-uniform positions (an
+//! x-y export) resampled onto even spacing ([`resample`]); the check and its warnings
+//! ([`check`]); its page ([`page`]).
 
 pub mod abel;
 pub mod check;
 pub mod page;
 pub mod profiles;
+pub mod resample;
 pub mod spectrum;
 pub mod synthesis;

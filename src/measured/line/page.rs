@@ -7,7 +7,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use super::abel::Uncertain;
-use super::check::LineCheck;
+use super::check::{LineCheck, LineFindings};
 use crate::error::Result;
 use crate::measured::units::eng;
 use crate::plot::{Axis, Figure, Series, Style};
@@ -40,6 +40,23 @@ pub fn markdown(c: &LineCheck) -> String {
         l.seeds,
         side = l.synthesized_side
     );
+    profiles(&mut s, l, u);
+    conversion(&mut s, l, u);
+    persson(&mut s, c);
+    let page = crate::measured::page::markdown(&c.surface);
+    let body = page
+        .strip_prefix("# Persson's theory on a measured surface\n")
+        .unwrap_or(&page);
+    let _ = write!(
+        s,
+        "\n# The check on the synthesized surfaces\n\nThe surfaces below are the synthesized \
+         ones (\"scans\"), not measurements.\n{body}"
+    );
+    s
+}
+
+/// The profiles: their sources and statistics.
+fn profiles(s: &mut String, l: &LineFindings, u: &str) {
     let sources: Vec<String> = l
         .sources
         .iter()
@@ -73,6 +90,10 @@ pub fn markdown(c: &LineCheck) -> String {
         l.tail_slope
             .map_or("— (does not fall: truncated)".into(), eng)
     );
+}
+
+/// The conversion of the profiles' spectrum to the surface's, bin by bin.
+fn conversion(s: &mut String, l: &LineFindings, u: &str) {
     let _ = writeln!(
         s,
         "## From the profiles' spectrum to the surface's\n\nMethod: {}.\n\n| q (1/{u}) | \
@@ -109,6 +130,11 @@ pub fn markdown(c: &LineCheck) -> String {
          bin holds few modes; those bins are marked, and drawn apart in the figure.\n\n\
          ![line spectrum](figures/line_psd.png)\n"
     );
+}
+
+/// Persson's theory on the converted spectrum beside the synthesized surfaces' curve.
+fn persson(s: &mut String, c: &LineCheck) {
+    let l = &c.line;
     let _ = writeln!(
         s,
         "## Persson's theory on the converted spectrum\n\nOver the profile's whole band \
@@ -138,16 +164,6 @@ pub fn markdown(c: &LineCheck) -> String {
             sim.map_or("—".into(), |q| eng(q.a_r_persson)),
         );
     }
-    let page = crate::measured::page::markdown(&c.surface);
-    let body = page
-        .strip_prefix("# Persson's theory on a measured surface\n")
-        .unwrap_or(&page);
-    let _ = write!(
-        s,
-        "\n# The check on the synthesized surfaces\n\nThe surfaces below are the synthesized \
-         ones (\"scans\"), not measurements.\n{body}"
-    );
-    s
 }
 
 /// The profiles' spectrum, the converted one (certain and uncertain bins apart) and the

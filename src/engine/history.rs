@@ -3,11 +3,11 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::engine::climb::{Arrays, Recorder};
 use crate::engine::contact::ContactSolution;
+use crate::engine::contact_change::{above, change, ENTERED, LEFT};
 use crate::engine::tolerance::ZETA_SLACK;
 use crate::error::Result;
-use crate::experiments::climb::{Arrays, Recorder};
-use crate::experiments::contact_change::{above, change, ENTERED, LEFT};
 use crate::io::checkpoint::{Array, Checkpoints};
 
 /// Map category: in contact at every step (grey).
