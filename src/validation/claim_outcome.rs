@@ -5,9 +5,31 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::claims::{Amendment, ErrorKind, Phrase, Rule, Unit};
-use super::judge::{normal_z, realizations_needed};
+use super::interval::{normal_z, realizations_needed};
+use super::phrase::{Phrase, Rule};
+use super::unit::Unit;
 use crate::stats::{Decision, Estimate, Region};
+
+/// What a measure's error bar measures.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ErrorKind {
+    /// The spread over realizations: more realizations shrink it as 1/sqrt(n).
+    #[default]
+    Realizations,
+    /// The scatter of points about a fitted law: more realizations do not shrink it.
+    Fit,
+}
+
+/// A change of a claim's rule after an outcome existed.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Amendment {
+    /// The first characters of the registered hash of the rule it replaces.
+    pub from: String,
+    /// Why, in words.
+    pub reason: String,
+}
 
 /// What a claim's measurement says.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -118,7 +140,7 @@ pub struct ClaimOutcome {
     /// What the error bar measures.
     #[serde(default)]
     pub error: ErrorKind,
-    /// The hash of the rule it was decided under ([`super::claims::ClaimSpec::rule_sha256`]); absent in
+    /// The hash of the rule it was decided under (the claim's `rule_sha256`); absent in
     /// outcomes written before the register.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rule_sha256: Option<String>,

@@ -47,9 +47,9 @@ use crate::error::{Error, Result};
 use crate::stats::Region;
 
 pub use super::claim_outcome::{
-    deciding, decision, ClaimKind, ClaimOutcome, ClaimResult, ReadingOutcome,
+    deciding, decision, Amendment, ClaimKind, ClaimOutcome, ClaimResult, ErrorKind, ReadingOutcome,
 };
-pub use super::judge::{interval_z, realizations_needed};
+pub use super::interval::{interval_z, realizations_needed};
 use super::measures::declared;
 pub use super::measures::{Measure, Measures};
 use crate::experiments::Keys;
@@ -166,27 +166,6 @@ fn yes() -> bool {
 
 fn scene_seeds() -> Vec<String> {
     vec!["seeds".into()]
-}
-
-/// What a measure's error bar measures.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum ErrorKind {
-    /// The spread over realizations: more realizations shrink it as 1/sqrt(n).
-    #[default]
-    Realizations,
-    /// The scatter of points about a fitted law: more realizations do not shrink it.
-    Fit,
-}
-
-/// A change of a claim's rule after an outcome existed.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Amendment {
-    /// The first characters of the registered hash of the rule it replaces.
-    pub from: String,
-    /// Why, in words.
-    pub reason: String,
 }
 
 /// Checks that every measure that the claims judged on a scene name (each claim's own, an

@@ -36,6 +36,7 @@ mod claim_outcome;
 pub mod claims;
 mod conclusion;
 pub mod definition;
+mod interval;
 mod judge;
 pub mod measure;
 pub mod measures;
