@@ -5,7 +5,9 @@
 //! free boundary gives Hertz's contact area; bad scans and flags are refused with a word; a
 //! line scan at non-uniform positions (`--line-scan`, an x-y file) is resampled with a
 //! warning and checked as its resampled profile is, and positions that do not increase are
-//! refused naming the line.
+//! refused naming the line; maps below the floor on size (7 x 4, 4 x 4) are refused by
+//! their size, one at the floor runs, and a scan with few contact points at its load
+//! warns of its resolution.
 
 use std::path::Path;
 use std::process::Command;
@@ -766,4 +768,85 @@ fn a_line_scan_whose_positions_do_not_increase_is_refused_naming_the_line() {
     ]));
     assert!(e.contains("three.txt") && e.contains("line 1"), "{e}");
     assert!(!d.join("o").exists(), "a refused check wrote output");
+}
+
+/// Maps smaller than `MIN_SIDE` (32) on a side are refused naming their size and the
+/// minimum; a map exactly at the minimum runs.
+#[test]
+fn maps_below_the_floor_on_size_are_refused_by_their_size() {
+    use persson_check::measured::scan::MIN_SIDE;
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    for (name, rows, cols) in [("seven.txt", 7, 4), ("four.txt", 4, 4)] {
+        let values: Vec<f64> = (0..rows * cols).map(|k| (k as f64 * 0.7).sin()).collect();
+        write_text(&d.join(name), &values, cols);
+        let e = run_err(
+            bin()
+                .current_dir(d)
+                .args(["check-surface", "--heights", name, "--pixel-size", "1"])
+                .args(["--out", "o"]),
+        );
+        let size = format!("{rows} x {cols}");
+        let floor = format!("{MIN_SIDE} x {MIN_SIDE}");
+        assert!(
+            e.contains("--heights") && e.contains(name) && e.contains(&size) && e.contains(&floor),
+            "{e}"
+        );
+    }
+    assert!(!d.join("o").exists(), "a refused check wrote output");
+    surface(d, "floor.npy", MIN_SIDE, 1);
+    run_ok(bin().current_dir(d).args([
+        "check-surface",
+        "--heights",
+        "floor.npy",
+        "--pixel-size",
+        "1",
+        "--loads",
+        "0.05",
+        "--no-cross-check",
+        "--no-reentry",
+        "--out",
+        "o",
+    ]));
+    assert!(d.join("o/surface.json").exists());
+}
+
+/// The names of the warnings of a periodic `n x n` generated scan checked at `p0`.
+fn warned_at(dir: &Path, n: usize, p0: &str) -> Vec<String> {
+    let name = format!("s{n}.npy");
+    surface(dir, &name, n, 2);
+    let out = format!("o{n}");
+    run_ok(bin().current_dir(dir).args([
+        "check-surface",
+        "--heights",
+        &name,
+        "--pixel-size",
+        "1",
+        "--periodic",
+        "--loads",
+        p0,
+        "--no-cross-check",
+        "--no-reentry",
+        "--out",
+        &out,
+    ]));
+    let j = json(&dir.join(out).join("surface.json"));
+    j["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|w| w["name"].as_str().unwrap().to_string())
+        .collect()
+}
+
+/// A 64^2 scan at a low load holds a few dozen contact points: a `resolution` warning;
+/// a 256^2 one at a moderate load holds thousands: none.
+#[test]
+fn too_few_contact_points_give_a_resolution_warning() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let w = warned_at(d, 64, "0.005");
+    assert!(w.contains(&"resolution".to_string()), "{w:?}");
+    let w = warned_at(d, 256, "0.05");
+    assert!(!w.contains(&"resolution".to_string()), "{w:?}");
 }

@@ -72,7 +72,8 @@ pub(super) fn conclude(
     let solvers = solver_work(measured);
     let failures = failures(scans, measured);
     let statistics = statistics(measured);
-    let warnings = warnings(&statistics, &curve, opts.loads.is_none());
+    let points = scans[0].shape.rows * scans[0].shape.cols;
+    let warnings = warnings(&statistics, &curve, opts.loads.is_none(), points);
     let reentry = measured[0].reentry.clone();
     SurfaceCheck {
         scans: scans
@@ -200,8 +201,14 @@ fn failures(scans: &[Scan], measured: &[Measured]) -> Vec<Failure> {
 }
 
 /// The warnings of [`warnings::LIMITS`] that the surface's statistics and the curve
-/// cross (the contact-area range only at the default loads).
-fn warnings(st: &Statistics, curve: &[CurvePoint], default_loads: bool) -> Vec<Warning> {
+/// cross (the contact-area range only at the default loads); `points` is a scan's number
+/// of grid points.
+fn warnings(
+    st: &Statistics,
+    curve: &[CurvePoint],
+    default_loads: bool,
+    points: usize,
+) -> Vec<Warning> {
     let areas = || curve.iter().map(|c| c.a_r);
     let mut found = vec![
         warnings::ANISOTROPY.check(st.anisotropy.value),
@@ -217,7 +224,30 @@ fn warnings(st: &Statistics, curve: &[CurvePoint], default_loads: bool) -> Vec<W
     }
     let pressure = curve.iter().map(|c| c.contact_pressure).fold(0.0, f64::max);
     found.push(warnings::CONTACT_PRESSURE.check(pressure));
+    let loads: Vec<(f64, f64)> = curve.iter().map(|c| (c.p0, c.a_r)).collect();
+    found.push(resolution(&loads, points));
     found.into_iter().flatten().collect()
+}
+
+/// The [`warnings::RESOLUTION`] warning of a curve of `(p0, a_r)` on a scan of `points`
+/// grid points: the fewest points in contact, and the loads where they are too few.
+fn resolution(curve: &[(f64, f64)], points: usize) -> Option<Warning> {
+    let in_contact = |a_r: f64| a_r * points as f64;
+    let fewest = curve
+        .iter()
+        .map(|&(_, a_r)| in_contact(a_r))
+        .fold(f64::INFINITY, f64::min);
+    let mut w = warnings::RESOLUTION.check(fewest)?;
+    let loads: Vec<String> = curve
+        .iter()
+        .filter(|&&(_, a_r)| warnings::RESOLUTION.crossed(in_contact(a_r)))
+        .map(|&(p0, a_r)| {
+            let n = in_contact(a_r);
+            format!("{} ({n:.0} of {points} points)", super::units::eng(p0))
+        })
+        .collect();
+    w.message = format!("{}; at p0/E* = {}", w.message, loads.join(", "));
+    Some(w)
 }
 
 /// `|a - b| / max(|a|, |b|)`, 0 when both are 0.
@@ -539,8 +569,12 @@ mod tests {
                 w.message
             );
         }
+        // A 48 x 56 window holds some 30 contact points at the lowest default load: it
+        // always warns of its resolution (tested apart, below).
+        assert!(c.warnings.iter().any(|w| w.name == "resolution"));
         c.warnings
             .iter()
+            .filter(|w| w.name != "resolution")
             .map(|w| (w.name.clone(), w.value, w.threshold))
             .collect()
     }
@@ -591,5 +625,18 @@ mod tests {
         // Steep: beyond small slopes, and past yield at the top default load.
         let w = names(&warned(window(rows, cols, 1.0), rows, cols));
         assert_eq!(w, ["rms_slope", "contact_pressure"]);
+    }
+
+    /// A 64^2 scan with 58 points in contact at the lowest load warns, naming that load
+    /// and not the higher one; a 256^2 scan at the same areas does not.
+    #[test]
+    fn too_few_contact_points_warn_of_the_resolution_at_their_loads() {
+        let curve = [(4.9e-3, 58.0 / 4096.0), (0.1, 0.2)];
+        let w = resolution(&curve, 64 * 64).unwrap();
+        assert_eq!((w.name.as_str(), w.value), ("resolution", 58.0));
+        assert!(w.message.contains("(58 of 4096 points)"), "{}", w.message);
+        assert!(!w.message.contains("819"), "{}", w.message);
+        assert_eq!(resolution(&curve, 256 * 256), None);
+        assert_eq!(resolution(&[], 64 * 64), None);
     }
 }

@@ -8,7 +8,7 @@ use serde::{Deserialize, Serialize};
 
 use super::fill::Fill;
 use super::psd::Boundary;
-use super::scan::Scan;
+use super::scan::{Scan, MIN_SIDE};
 use super::units::{check_unit, square_pixel};
 use crate::engine::solver::SolverKind;
 use crate::error::{check_positive, Error, Result};
@@ -131,6 +131,21 @@ pub fn validate(scans: &[Scan], opts: &CheckOptions) -> Result<f64> {
             "at least one height map",
         ));
     };
+    if first.shape.rows.min(first.shape.cols) < MIN_SIDE {
+        return Err(Error::invalid(
+            "heights",
+            format!(
+                "{} of {} points (rows x columns)",
+                first.source.display(),
+                first.shape
+            ),
+            format!(
+                "a height map of at least {MIN_SIDE} x {MIN_SIDE} points: a smaller one \
+                 holds too few contact points to draw a contact curve (a few at the lowest \
+                 loads, its area moving in steps of one point)"
+            ),
+        ));
+    }
     if opts.boundary == Boundary::Periodic && !first.shape.is_square() {
         return Err(Error::invalid(
             "periodic",

@@ -14,6 +14,12 @@ use super::psd::Shape;
 use crate::engine::grid::{MAX_N, MIN_N};
 use crate::error::{Error, Result};
 
+/// The smallest side of a height map the check takes, in points: at the lowest default
+/// load (a contact area of about 1%) a 32 x 32 map holds some ten contact points, and
+/// its area moves in steps of 0.1%; a 16 x 16 map holds two or three, in steps of 0.4%
+/// (`docs/check-surface.md`, "A floor on size").
+pub const MIN_SIDE: usize = 32;
+
 /// One scan: a height map and where it came from.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Scan {

@@ -150,8 +150,20 @@ pub const CONTACT_PRESSURE: Limit = Limit {
               for diamond): a real contact is plastic at these loads",
 };
 
+/// The fewest grid points in contact at any load: below a few hundred, the contact area
+/// moves in steps of one point in `rows * cols` and its patches are a few pixels wide.
+pub const RESOLUTION: Limit = Limit {
+    name: "resolution",
+    statistic: "the fewest grid points in contact at any load (a_r times the scan's points)",
+    threshold: 200.0,
+    side: Side::Below,
+    meaning: "the contact area moves in steps of one point and its patches are a few \
+              pixels wide: the grid resolves the contact poorly at these loads; measure a \
+              larger scan, or read the higher loads",
+};
+
 /// Every limit, in the order the page lists them.
-pub const LIMITS: [Limit; 8] = [
+pub const LIMITS: [Limit; 9] = [
     ANISOTROPY,
     NOISE_FLOOR,
     SKEWNESS,
@@ -160,6 +172,7 @@ pub const LIMITS: [Limit; 8] = [
     AREA_LOW,
     AREA_HIGH,
     CONTACT_PRESSURE,
+    RESOLUTION,
 ];
 
 /// A crossed threshold: the statistic's key, its value, the threshold, and the word.
@@ -190,6 +203,7 @@ mod tests {
         assert!(SKEWNESS.check(-2.0).is_some() && SKEWNESS.check(0.5).is_none());
         assert!(RMS_SLOPE.check(0.8).is_some() && RMS_SLOPE.check(0.2).is_none());
         assert!(RMS_SLOPE.check(f64::NAN).is_none());
+        assert!(RESOLUTION.check(58.0).is_some() && RESOLUTION.check(655.0).is_none());
         let w = NOISE_FLOOR.check(-0.25).unwrap();
         assert_eq!((w.value, w.threshold), (-0.25, -1.0));
         assert!(

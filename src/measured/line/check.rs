@@ -34,6 +34,7 @@ use crate::error::{Error, Result, StopReason};
 use crate::measured::check::{check, CheckOptions, Event, SurfaceCheck};
 use crate::measured::fill::Fill;
 use crate::measured::psd::Boundary;
+use crate::measured::scan::MIN_SIDE;
 use crate::measured::theory::{Theory, TheoryPoint};
 use crate::measured::units::square_pixel;
 use crate::measured::warnings::{Limit, Side, Warning, KURTOSIS, SKEWNESS};
@@ -97,11 +98,14 @@ impl Default for LineOptions {
 impl LineOptions {
     /// Checks the side and the seeds.
     pub fn validate(&self) -> Result<()> {
-        if !(MIN_N.max(16)..=MAX_SIDE).contains(&self.side) {
+        if !(MIN_N.max(MIN_SIDE)..=MAX_SIDE).contains(&self.side) {
             return Err(Error::invalid(
                 "line_side",
                 self.side,
-                format!("the side of the synthesized surfaces, in [16, {MAX_SIDE}] points"),
+                format!(
+                    "the side of the synthesized surfaces, in [{MIN_SIDE}, {MAX_SIDE}] points \
+                     (the height maps' floor, measured::scan::MIN_SIDE)"
+                ),
             ));
         }
         if !(2..=64).contains(&self.seeds) {
