@@ -569,9 +569,8 @@ mod tests {
                 w.message
             );
         }
-        // A 48 x 56 window holds some 30 contact points at the lowest default load: it
-        // always warns of its resolution (tested apart, below).
-        assert!(c.warnings.iter().any(|w| w.name == "resolution"));
+        // A 48 x 56 window holds few contact points at the lowest default loads: its
+        // resolution warning depends on the slope and is tested apart, below.
         c.warnings
             .iter()
             .filter(|w| w.name != "resolution")
