@@ -7,7 +7,9 @@
 //! warning and checked as its resampled profile is, and positions that do not increase are
 //! refused naming the line; maps below the floor on size (7 x 4, 4 x 4) are refused by
 //! their size, one at the floor runs, and a scan with few contact points at its load
-//! warns of its resolution.
+//! warns of its resolution; the contact area extrapolated to a vanishing pixel from a
+//! coarse scan lies closer to a fine scan's answer than the coarse scan's own area, and
+//! the page shows both.
 
 use std::path::Path;
 use std::process::Command;
@@ -849,4 +851,77 @@ fn too_few_contact_points_give_a_resolution_warning() {
     assert!(w.contains(&"resolution".to_string()), "{w:?}");
     let w = warned_at(d, 256, "0.05");
     assert!(!w.contains(&"resolution".to_string()), "{w:?}");
+}
+
+/// A periodic scan of the generated surface (`H = 0.8`, `lambda_l / lambda_s = 6.4`,
+/// realization `seed`) with `lambda_s / a = per_pixel`, as the check reads it.
+fn sampled(per_pixel: f64, seed: u64) -> persson_check::measured::scan::Scan {
+    use persson_check::engine::fft::Fft2;
+    use persson_check::engine::surface::{Surface, SurfaceModel};
+    use persson_check::measured::psd::Shape;
+    let lambda_l = 6.4 * per_pixel;
+    let n = (2.0 * lambda_l) as usize;
+    let s = Surface::generate(&SurfaceModel::new(n, 0.8, lambda_l, per_pixel, seed)).unwrap();
+    persson_check::measured::scan::Scan {
+        shape: Shape { rows: n, cols: n },
+        heights: s.heights_at(f64::INFINITY, &Fft2::new(s.grid())),
+        source: format!("lambda_s_{per_pixel}_px").into(),
+        filled: 0,
+    }
+}
+
+#[test]
+fn the_contact_area_extrapolated_from_a_coarse_pixel_lies_closer_to_a_fine_ones() {
+    use persson_check::measured::check::{check, CheckOptions};
+    use persson_check::measured::psd::Boundary;
+    // One realization at two pixels: lambda_s / a = 5 (a 64^2 scan, coarsened by 2 to
+    // lambda_s / a = 2.5, which still holds every mode) and lambda_s / a = 20 (256^2).
+    let opts = CheckOptions {
+        boundary: Boundary::Periodic,
+        loads: Some(vec![0.05, 0.145]),
+        cross_check: false,
+        reentry: false,
+        ..CheckOptions::default()
+    };
+    for seed in [1, 2] {
+        let coarse = check(&[sampled(5.0, seed)], &opts, &mut |_| {
+            std::ops::ControlFlow::Continue(())
+        })
+        .unwrap();
+        let fine = check(
+            &[sampled(20.0, seed)],
+            &CheckOptions {
+                extrapolate: false,
+                ..opts.clone()
+            },
+            &mut |_| std::ops::ControlFlow::Continue(()),
+        )
+        .unwrap();
+        for (c, f) in coarse.curve.iter().zip(&fine.curve) {
+            assert!(f.pixel.is_none());
+            let e = c.pixel.as_ref().expect("a 64^2 scan coarsens by 2");
+            // 64 / 4 = 16 < 32 points a side: no third level; lambda_s = 5 pixels keeps
+            // every mode at twice the pixel.
+            assert_eq!(e.coarse.len(), 1);
+            assert!(e.folded.is_empty());
+            let (raw, extrapolated) = ((c.a_r - f.a_r).abs(), (e.extrapolated - f.a_r).abs());
+            assert!(
+                extrapolated < raw,
+                "seed {seed}, p0 {}: a_r {} at lambda_s/a = 5, {} extrapolated, {} at \
+                 lambda_s/a = 20",
+                c.p0,
+                c.a_r,
+                e.extrapolated,
+                f.a_r
+            );
+            // The coarse pixel overstates the area, and the theory is set against the
+            // extrapolated one.
+            assert!(e.difference < 0.0);
+            let ratio = e.extrapolated / c.a_r_persson;
+            assert!((c.area_ratio.value - ratio).abs() < 1e-12);
+        }
+        let page = persson_check::measured::page::markdown(&coarse);
+        assert!(page.contains("## The pixel's own error"), "{page}");
+        assert!(page.contains("| p0 / E* | a_r at the pixel | at 2 pixels | extrapolated"));
+    }
 }

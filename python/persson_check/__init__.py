@@ -313,6 +313,7 @@ def check_surface(
     line_seeds=_CHECK["line_seeds"],
     max_iterations=_CHECK["max_iterations"],
     despike=None,
+    extrapolate=True,
 ):
     scans, sides, unit = _scans(heights, pixel_size, unit)
     return _native.check_surface(
@@ -337,6 +338,7 @@ def check_surface(
         int(line_seeds),
         max_iterations,
         None if despike is None else float(despike),
+        bool(extrapolate),
     )
 
 
@@ -367,7 +369,12 @@ before the solves under ``outliers`` (points beyond 6 rms heights, the largest i
 per load the share of the contact on them); ``despike=K`` (off by default, K >= 3) first
 replaces every point farther than K robust deviations (1.4826 times the median absolute
 deviation) from the median of its eight neighbours by harmonic interpolation, and says how
-many it replaced. ``reentry`` measures the
+many it replaced. ``extrapolate`` (on by default) also solves every load on the scan
+coarsened by 2, and by 4 where each side keeps 32 points, and extrapolates the contact
+area to a vanishing pixel (first-order Richardson, ``2 a_r(a) - a_r(2a)``): each point
+of ``curve`` then has ``pixel`` (the coarse areas, ``extrapolated``, ``difference``, and
+with three levels ``spread`` and ``order``), and the theory is set against the
+extrapolated area. ``reentry`` measures the
 re-entry share over magnification. ``out`` writes ``surface.json``, ``surface.md``,
 ``solves.jsonl`` and the figures there; ``verbose`` writes one line per load to
 ``sys.stderr`` as it ends.

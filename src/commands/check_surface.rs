@@ -104,6 +104,11 @@ pub struct Args {
     /// page says how many points were replaced.
     #[arg(long, value_name = "K", allow_negative_numbers = true)]
     despike: Option<f64>,
+    /// Skip the pixel's own error (default: every load also solved on the scan coarsened
+    /// by 2, and by 4 where each side keeps 32 points, and the contact area extrapolated
+    /// to a vanishing pixel, against which the theory is set).
+    #[arg(long = "no-extrapolate")]
+    no_extrapolate: bool,
     /// Output folder: surface.json, surface.md, solves.jsonl, figures/.
     #[arg(long)]
     out: PathBuf,
@@ -127,6 +132,7 @@ impl Args {
                 reentry: !self.no_reentry,
                 max_iterations: self.max_iterations,
                 despike: self.despike,
+                extrapolate: !self.no_extrapolate,
                 ..CheckOptions::default()
             },
             line: LineOptions {

@@ -28,6 +28,7 @@ use super::findings::{
     SOLVER_AGREEMENT,
 };
 use super::options::{other, CheckOptions};
+use super::pixel::PixelEstimate;
 use super::psd::{Boundary, RadialBin, ScanSpectrum};
 use super::reentry::Reentry;
 use super::scan::Scan;
@@ -42,6 +43,9 @@ pub(super) struct Measured {
     pub(super) spectrum: ScanSpectrum,
     pub(super) predicted: Vec<Predicted>,
     pub(super) curves: Vec<Curve>,
+    /// The headline solver's curves on the coarsened scan, `(factor, curve)`, finest
+    /// first ([`super::pixel`]; empty when not asked for or the scan is too small).
+    pub(super) pixel: Vec<(usize, Curve)>,
     pub(super) reentry: Option<Reentry>,
 }
 
@@ -308,9 +312,25 @@ fn error(e: Estimate) -> Option<f64> {
 fn curve_point(measured: &[Measured], i: usize, pixel: f64, modulus: Option<f64>) -> CurvePoint {
     let head = |m: &Measured| -> Solved { m.curves[0].solved(i).expect("reached").clone() };
     let area = mean_over(measured, |m| head(m).contact_area);
-    let area_ratio = mean_over(measured, |m| {
-        head(m).contact_area / m.predicted[i].contact_area
-    });
+    // Each scan's pixel estimate at this load, where every scan has one.
+    let estimates: Option<Vec<PixelEstimate>> = measured
+        .iter()
+        .map(|m| pixel_estimate(m, i, head(m).contact_area))
+        .collect();
+    // The theory is set against the contact area extrapolated to a vanishing pixel where
+    // there is one.
+    let area_ratio = Estimate::mean_of(
+        &measured
+            .iter()
+            .enumerate()
+            .map(|(k, m)| {
+                let a_r = estimates
+                    .as_ref()
+                    .map_or(head(m).contact_area, |e| e[k].extrapolated);
+                a_r / m.predicted[i].contact_area
+            })
+            .collect::<Vec<_>>(),
+    );
     let energy_ratio = mean_over(measured, |m| head(m).energy / m.predicted[i].energy);
     let energy = mean_over(measured, |m| head(m).energy);
     let cross_mean = |f: fn(&Solved) -> f64| -> Option<f64> {
@@ -335,6 +355,7 @@ fn curve_point(measured: &[Measured], i: usize, pixel: f64, modulus: Option<f64>
         a_r_cross_check: cross_mean(|s| s.contact_area),
         a_r_persson: persson(|p| p.contact_area),
         a_r_persson_corrected: persson(|p| p.contact_area_corrected),
+        pixel: estimates.as_deref().and_then(PixelEstimate::mean),
         area_ratio,
         area_verdict: RULE.judge(area_ratio, 1.0),
         contact_pressure,
@@ -347,6 +368,19 @@ fn curve_point(measured: &[Measured], i: usize, pixel: f64, modulus: Option<f64>
         energy_ratio,
         energy_verdict: RULE.judge(energy_ratio, 1.0),
     }
+}
+
+/// One scan's pixel estimate at load `i` from its contact area `fine` there and its
+/// coarse curves' (the levels up to the first coarse solve that failed at the load);
+/// `None` without a coarse level.
+fn pixel_estimate(m: &Measured, i: usize, fine: f64) -> Option<PixelEstimate> {
+    let levels: Vec<(usize, f64)> = m
+        .pixel
+        .iter()
+        .map_while(|(f, c)| c.solved(i).map(|s| (*f, s.contact_area)))
+        .collect();
+    let shortest = super::pixel::shortest_wavelength(&m.spectrum.shells);
+    PixelEstimate::of_levels(fine, &levels, shortest)
 }
 
 /// Histogram bins of `p / p0` in the distribution figure.
@@ -486,6 +520,7 @@ mod tests {
             spectrum,
             predicted,
             curves: vec![head, cross],
+            pixel: Vec::new(),
             reentry: None,
         }];
         let opts = CheckOptions::default();

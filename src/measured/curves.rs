@@ -4,6 +4,9 @@
 //! the headline reached ([`super::reentry`]); the scans' measurements then go to
 //! [`super::findings`].
 //!
+//! Unless asked not to, each load is also solved on the scan coarsened by 2 (and by 4),
+//! for the pixel's own error on the contact area ([`super::pixel`]).
+//!
 //! Before any solve, each scan's spikes and outliers are found ([`super::spikes`]),
 //! replaced first when despiking is asked, and reported ([`Event::Outliers`]).
 //!
@@ -137,6 +140,11 @@ pub fn check(
             k,
             events,
         )?;
+        let pixel = if opts.extrapolate {
+            coarse_curves(&spectrum, &loads, opts, k, events)?
+        } else {
+            Vec::new()
+        };
         let mut curves = vec![head];
         if opts.cross_check {
             let index = if opts.cross_check_all {
@@ -171,6 +179,7 @@ pub fn check(
             spectrum,
             predicted,
             curves,
+            pixel,
             reentry,
         });
     }
@@ -182,6 +191,47 @@ pub fn check(
         &measured,
         timer.elapsed().as_secs_f64(),
     ))
+}
+
+/// The scan's load curve on the grids coarsened by each factor of
+/// [`super::pixel::factors`], by the headline solver with the check's tolerance and
+/// iteration budget, for the pixel's own error ([`super::pixel`]). Its iterations reach
+/// `events` (whose answer may stop a solve); its loads' ends do not.
+fn coarse_curves(
+    spectrum: &ScanSpectrum,
+    loads: &[f64],
+    opts: &CheckOptions,
+    scan: usize,
+    events: &mut dyn FnMut(Event) -> ControlFlow<StopReason>,
+) -> Result<Vec<(usize, Curve)>> {
+    let solver = opts.solver;
+    let mut levels = Vec::new();
+    for factor in super::pixel::factors(spectrum.shape, spectrum.boundary) {
+        let (heights, shape) = super::pixel::coarsen(&spectrum.heights, spectrum.shape, factor);
+        let coarse = ScanSpectrum::new(&heights, shape, factor as f64, spectrum.boundary)?;
+        let body = Body::new(&coarse)?;
+        let curve = solve_curve(
+            &body,
+            loads,
+            solver,
+            SolveOptions {
+                tol: opts.tol,
+                max_iter: opts.max_iterations,
+            },
+            &[],
+            &mut |_, _| {},
+            &mut |load, progress| {
+                events(Event::Iteration {
+                    scan,
+                    solver,
+                    load,
+                    progress,
+                })
+            },
+        )?;
+        levels.push((factor, curve));
+    }
+    Ok(levels)
 }
 
 /// `count` of `n` load indices, evenly spread from the first to the last.

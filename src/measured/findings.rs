@@ -6,6 +6,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::fill::Fill;
+use super::pixel::PixelEstimate;
 use super::psd::{Boundary, RadialBin, Shape};
 use super::reentry::Reentry;
 use super::warnings::Warning;
@@ -39,7 +40,13 @@ pub struct CurvePoint {
     pub a_r_persson: f64,
     /// Persson's corrected theory.
     pub a_r_persson_corrected: f64,
-    /// `a_r / a_r,P` over the scans.
+    /// The pixel's own error: `a_r` on the coarsened scan and extrapolated to a vanishing
+    /// pixel ([`super::pixel`]; absent when not asked for, or the scan is too small to
+    /// coarsen).
+    #[serde(default)]
+    pub pixel: Option<PixelEstimate>,
+    /// `a_r / a_r,P` over the scans, with `a_r` extrapolated to a vanishing pixel where
+    /// [`CurvePoint::pixel`] is there.
     pub area_ratio: Estimate,
     /// The contact-area verdict at this load.
     pub area_verdict: Verdict,

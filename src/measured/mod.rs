@@ -20,6 +20,7 @@ pub mod findings;
 pub mod line;
 pub mod options;
 pub mod page;
+pub mod pixel;
 pub mod psd;
 pub mod reentry;
 pub mod scan;

@@ -63,6 +63,14 @@ pub struct CheckOptions {
     /// ([`super::spikes::despike`]; `None`: keep every point).
     #[serde(default)]
     pub despike: Option<f64>,
+    /// Whether every load is also solved on the scan coarsened by 2 (and 4), for the
+    /// contact area extrapolated to a vanishing pixel ([`super::pixel`]).
+    #[serde(default = "yes")]
+    pub extrapolate: bool,
+}
+
+fn yes() -> bool {
+    true
 }
 
 fn default_max_iterations() -> usize {
@@ -85,6 +93,7 @@ impl Default for CheckOptions {
             reentry: true,
             max_iterations: MAX_ITERATIONS,
             despike: None,
+            extrapolate: true,
         }
     }
 }
