@@ -925,3 +925,93 @@ fn the_contact_area_extrapolated_from_a_coarse_pixel_lies_closer_to_a_fine_ones(
         assert!(page.contains("| p0 / E* | a_r at the pixel | at 2 pixels | extrapolated"));
     }
 }
+
+#[test]
+fn a_noise_floor_is_cut_off_by_default_and_a_tip_radius_cuts_longer_wavelengths() {
+    use persson_check::measured::check::{check, CheckOptions};
+    use persson_check::measured::cutoff::Reason;
+    use persson_check::measured::psd::Boundary;
+    let go = &mut |_: persson_check::measured::check::Event| std::ops::ControlFlow::Continue(());
+    // A periodic 256^2 scan (lambda_s = 20 pixels) with white noise of 0.15 of its rms
+    // height over it.
+    let mut scan = sampled(20.0, 3);
+    let h_rms = (scan.heights.iter().map(|v| v * v).sum::<f64>() / 65536.0).sqrt();
+    let mut x = 5u64;
+    for v in &mut scan.heights {
+        x = x
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        *v += 0.15 * h_rms * 12f64.sqrt() * ((x >> 11) as f64 / 2f64.powi(53) - 0.5);
+    }
+    let opts = CheckOptions {
+        boundary: Boundary::Periodic,
+        loads: Some(vec![0.05]),
+        cross_check: false,
+        reentry: false,
+        extrapolate: false,
+        ..CheckOptions::default()
+    };
+    let cut = check(std::slice::from_ref(&scan), &opts, go).unwrap();
+    let kept = check(
+        std::slice::from_ref(&scan),
+        &CheckOptions {
+            cutoff: false,
+            ..opts.clone()
+        },
+        go,
+    )
+    .unwrap();
+    let k = cut.cutoff.scans[0].expect("a noise floor");
+    assert!(matches!(k.reason, Reason::NoiseFloor { .. }));
+    assert!(k.pixels > 2.5, "{k:?}");
+    assert!(kept.cutoff.scans[0].is_none() && !kept.cutoff.asked);
+    // The floor's steep slopes are gone from the heights solved: a lower g, and with it
+    // a larger contact area (a_r ~ p0 / (E* g)); the warning speaks only where the floor
+    // was kept.
+    let g = |c: &persson_check::measured::check::SurfaceCheck| {
+        c.cutoff.slope_rms_spectral.unwrap().value
+    };
+    assert!(g(&cut) < 0.9 * g(&kept), "{} {}", g(&cut), g(&kept));
+    assert!(cut.curve[0].a_r > kept.curve[0].a_r);
+    let warned = |c: &persson_check::measured::check::SurfaceCheck| {
+        c.warnings.iter().any(|w| w.name == "noise_floor")
+    };
+    assert!(warned(&kept) && !warned(&cut));
+    let page = persson_check::measured::page::markdown(&cut);
+    assert!(page.contains("## Reliable scales") && page.contains("noise floor (top octave"));
+    // A tip blunter than the surface's rms curvature at its finest scales cuts it,
+    // by its radius, at a longer wavelength the blunter it is.
+    let mut tip = |r: f64| {
+        check(
+            std::slice::from_ref(&scan),
+            &CheckOptions {
+                tip_radius: Some(r),
+                ..opts.clone()
+            },
+            go,
+        )
+        .unwrap()
+        .cutoff
+        .scans[0]
+            .unwrap()
+    };
+    let (sharp, blunt) = (tip(5.0), tip(50.0));
+    assert_eq!(blunt.reason, Reason::TipRadius { radius: 50.0 });
+    assert!(blunt.wavelength > sharp.wavelength, "{sharp:?} {blunt:?}");
+    // A radius out of range, or with no cutoff, is refused by its flag.
+    let dir = tempfile::tempdir().unwrap();
+    surface(dir.path(), "s.npy", 64, 1);
+    for bad in [
+        &["--tip-radius", "-1"][..],
+        &["--tip-radius", "2", "--no-cutoff"],
+    ] {
+        let err = run_err(
+            bin()
+                .current_dir(dir.path())
+                .args(["check-surface", "--heights", "s.npy", "--pixel-size", "1"])
+                .args(bad)
+                .args(["--out", "o"]),
+        );
+        assert!(err.contains("--tip-radius"), "{err}");
+    }
+}

@@ -314,6 +314,8 @@ def check_surface(
     max_iterations=_CHECK["max_iterations"],
     despike=None,
     extrapolate=True,
+    cutoff=True,
+    tip_radius=None,
 ):
     scans, sides, unit = _scans(heights, pixel_size, unit)
     return _native.check_surface(
@@ -339,6 +341,8 @@ def check_surface(
         max_iterations,
         None if despike is None else float(despike),
         bool(extrapolate),
+        bool(cutoff),
+        None if tip_radius is None else float(tip_radius),
     )
 
 
@@ -374,7 +378,11 @@ coarsened by 2, and by 4 where each side keeps 32 points, and extrapolates the c
 area to a vanishing pixel (first-order Richardson, ``2 a_r(a) - a_r(2a)``): each point
 of ``curve`` then has ``pixel`` (the coarse areas, ``extrapolated``, ``difference``, and
 with three levels ``spread`` and ``order``), and the theory is set against the
-extrapolated area. ``reentry`` measures the
+extrapolated area. ``cutoff`` (on by default) first cuts each scan at its shortest
+reliable wavelength, where its spectrum flattens into a noise floor, or where the rms
+curvature exceeds that of a tip of radius ``tip_radius`` (the heights' unit) when given;
+the heights solved and the spectrum Persson is evaluated on are filtered there, and the
+result's ``cutoff`` names each scan's cutoff and why. ``reentry`` measures the
 re-entry share over magnification. ``out`` writes ``surface.json``, ``surface.md``,
 ``solves.jsonl`` and the figures there; ``verbose`` writes one line per load to
 ``sys.stderr`` as it ends.

@@ -114,7 +114,7 @@ fn fill(name: &str) -> PyResult<Fill> {
 /// writes one line per load to `sys.stderr` as it ends. The GIL is released; Ctrl-C
 /// stops the solve under way.
 #[pyfunction]
-#[pyo3(signature = (heights, pixel_size, unit, periodic, loads, solver, cross_check, cross_check_all, tol, fill, modulus, reentry, out, threads, progress, verbose, line, line_side, line_seeds, max_iterations, despike, extrapolate))]
+#[pyo3(signature = (heights, pixel_size, unit, periodic, loads, solver, cross_check, cross_check_all, tol, fill, modulus, reentry, out, threads, progress, verbose, line, line_side, line_seeds, max_iterations, despike, extrapolate, cutoff, tip_radius))]
 #[allow(clippy::too_many_arguments)]
 pub fn check_surface<'py>(
     py: Python<'py>,
@@ -140,6 +140,8 @@ pub fn check_surface<'py>(
     max_iterations: usize,
     despike: Option<f64>,
     extrapolate: bool,
+    cutoff: bool,
+    tip_radius: Option<f64>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let request = CheckRequest {
         pixel_size: Some(vec![pixel_size.0, pixel_size.1]),
@@ -157,6 +159,8 @@ pub fn check_surface<'py>(
             max_iterations,
             despike,
             extrapolate,
+            cutoff,
+            tip_radius,
             ..CheckOptions::default()
         },
         line: LineOptions {

@@ -109,6 +109,15 @@ pub struct Args {
     /// to a vanishing pixel, against which the theory is set).
     #[arg(long = "no-extrapolate")]
     no_extrapolate: bool,
+    /// Keep every wavelength down to the pixel (default: each scan cut at its shortest
+    /// reliable wavelength, the onset of a noise floor in its spectrum or the tip's
+    /// limit with --tip-radius, in the spectrum and in the heights solved).
+    #[arg(long = "no-cutoff")]
+    no_cutoff: bool,
+    /// The radius of the instrument's tip, in the heights' unit: wavelengths whose rms
+    /// curvature the tip cannot follow are cut.
+    #[arg(long = "tip-radius", allow_negative_numbers = true)]
+    tip_radius: Option<f64>,
     /// Output folder: surface.json, surface.md, solves.jsonl, figures/.
     #[arg(long)]
     out: PathBuf,
@@ -133,6 +142,8 @@ impl Args {
                 max_iterations: self.max_iterations,
                 despike: self.despike,
                 extrapolate: !self.no_extrapolate,
+                cutoff: !self.no_cutoff,
+                tip_radius: self.tip_radius,
                 ..CheckOptions::default()
             },
             line: LineOptions {

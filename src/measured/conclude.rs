@@ -24,8 +24,8 @@
 
 use super::body::{Curve, Solved};
 use super::findings::{
-    Comparison, CurvePoint, Distribution, Failure, SolverWork, Statistics, SurfaceCheck, RULE,
-    SOLVER_AGREEMENT,
+    Comparison, CurvePoint, Cutoffs, Distribution, Failure, SolverWork, Statistics, SurfaceCheck,
+    RULE, SOLVER_AGREEMENT,
 };
 use super::options::{other, CheckOptions};
 use super::pixel::PixelEstimate;
@@ -46,6 +46,9 @@ pub(super) struct Measured {
     /// The headline solver's curves on the coarsened scan, `(factor, curve)`, finest
     /// first ([`super::pixel`]; empty when not asked for or the scan is too small).
     pub(super) pixel: Vec<(usize, Curve)>,
+    /// The scan's short-wavelength cutoff and its spectrum as measured, where it was cut
+    /// ([`super::cutoff`]; `spectrum` is then the filtered heights').
+    pub(super) cut: Option<(super::cutoff::Cutoff, ScanSpectrum)>,
     pub(super) reentry: Option<Reentry>,
 }
 
@@ -77,7 +80,18 @@ pub(super) fn conclude(
     let failures = failures(scans, measured);
     let statistics = statistics(measured);
     let points = scans[0].shape.rows * scans[0].shape.cols;
-    let warnings = warnings(&statistics, &curve, opts.loads.is_none(), points);
+    // A floor the cutoff removed from every scan no longer speaks for the contact.
+    let floor_cut = measured.iter().all(|m| {
+        m.cut
+            .as_ref()
+            .is_some_and(|c| matches!(c.0.reason, super::cutoff::Reason::NoiseFloor { .. }))
+    });
+    let warnings = warnings(
+        &statistics,
+        &curve,
+        (opts.loads.is_none(), floor_cut),
+        points,
+    );
     let reentry = measured[0].reentry.clone();
     SurfaceCheck {
         scans: scans
@@ -95,6 +109,15 @@ pub(super) fn conclude(
         filled: scans.iter().map(|s| s.filled).collect(),
         spectrum_method: spectrum_method(opts.boundary),
         statistics,
+        cutoff: Cutoffs {
+            asked: opts.cutoff,
+            tip_radius: opts.tip_radius,
+            scans: measured
+                .iter()
+                .map(|m| m.cut.as_ref().map(|c| c.0))
+                .collect(),
+            slope_rms_spectral: Some(mean_over(measured, |m| m.spectrum.slope_rms_spectral)),
+        },
         warnings,
         solver: opts.solver,
         cross_check: opts.cross_check.then(|| other(opts.solver)),
@@ -205,18 +228,19 @@ fn failures(scans: &[Scan], measured: &[Measured]) -> Vec<Failure> {
 }
 
 /// The warnings of [`warnings::LIMITS`] that the surface's statistics and the curve
-/// cross (the contact-area range only at the default loads); `points` is a scan's number
-/// of grid points.
+/// cross (the contact-area range only at the default loads, the noise floor only where
+/// no cutoff removed it from every scan); `points` is a scan's number of grid points.
 fn warnings(
     st: &Statistics,
     curve: &[CurvePoint],
-    default_loads: bool,
+    (default_loads, floor_cut): (bool, bool),
     points: usize,
 ) -> Vec<Warning> {
     let areas = || curve.iter().map(|c| c.a_r);
     let mut found = vec![
         warnings::ANISOTROPY.check(st.anisotropy.value),
         st.high_q_slope
+            .filter(|_| !floor_cut)
             .and_then(|s| warnings::NOISE_FLOOR.check(s.value)),
         warnings::SKEWNESS.check(st.skewness.value),
         warnings::KURTOSIS.check(st.kurtosis.value),
@@ -444,26 +468,32 @@ fn distribution(measured: &[Measured], p0: f64, kept: usize) -> Distribution {
     }
 }
 
+/// The scans' statistics as measured (before any cutoff: the data's own description,
+/// whose warnings are about the data).
 fn statistics(measured: &[Measured]) -> Statistics {
-    let bins = measured[0].spectrum.radial.len();
+    fn of(m: &Measured) -> &ScanSpectrum {
+        m.cut.as_ref().map_or(&m.spectrum, |c| &c.1)
+    }
+    let first = of(&measured[0]);
+    let bins = first.radial.len();
     let psd = (0..bins)
         .map(|b| {
-            let at = |m: &Measured| m.spectrum.radial.get(b).map_or(f64::NAN, |r| r.c);
+            let at = |m: &Measured| of(m).radial.get(b).map_or(f64::NAN, |r| r.c);
             RadialBin {
-                q: measured[0].spectrum.radial[b].q,
+                q: first.radial[b].q,
                 c: mean_over(measured, at).value,
-                modes: measured[0].spectrum.radial[b].modes,
+                modes: first.radial[b].modes,
             }
         })
         .collect();
-    let slopes: Option<Vec<f64>> = measured.iter().map(|m| m.spectrum.high_q_slope).collect();
+    let slopes: Option<Vec<f64>> = measured.iter().map(|m| of(m).high_q_slope).collect();
     Statistics {
-        h_rms: mean_over(measured, |m| m.spectrum.h_rms),
-        slope_rms: mean_over(measured, |m| m.spectrum.slope_rms),
-        slope_rms_spectral: mean_over(measured, |m| m.spectrum.slope_rms_spectral),
-        skewness: mean_over(measured, |m| m.spectrum.skewness),
-        kurtosis: mean_over(measured, |m| m.spectrum.kurtosis),
-        anisotropy: mean_over(measured, |m| m.spectrum.anisotropy),
+        h_rms: mean_over(measured, |m| of(m).h_rms),
+        slope_rms: mean_over(measured, |m| of(m).slope_rms),
+        slope_rms_spectral: mean_over(measured, |m| of(m).slope_rms_spectral),
+        skewness: mean_over(measured, |m| of(m).skewness),
+        kurtosis: mean_over(measured, |m| of(m).kurtosis),
+        anisotropy: mean_over(measured, |m| of(m).anisotropy),
         high_q_slope: slopes.map(|s| Estimate::mean_of(&s)),
         psd,
     }
@@ -521,6 +551,7 @@ mod tests {
             predicted,
             curves: vec![head, cross],
             pixel: Vec::new(),
+            cut: None,
             reentry: None,
         }];
         let opts = CheckOptions::default();
@@ -591,9 +622,11 @@ mod tests {
             source: "scan.npy".into(),
             filled: 0,
         };
+        // The data's warnings as they are: no cutoff (which removes a noise floor).
         let opts = CheckOptions {
             cross_check: false,
             reentry: false,
+            cutoff: false,
             ..CheckOptions::default()
         };
         let c = check(&[scan], &opts, &mut |_| std::ops::ControlFlow::Continue(())).unwrap();
@@ -644,8 +677,28 @@ mod tests {
                 v + 0.3 * ((x >> 11) as f64 / 2f64.powi(53) - 0.5)
             })
             .collect();
-        let w = warned(noisy, rows, cols);
+        let w = warned(noisy.clone(), rows, cols);
         assert!(names(&w).contains(&"noise_floor".to_string()), "{w:?}");
+        // With the cutoff (the default) the floor is cut off, and no longer warned of.
+        let scan = Scan {
+            shape: Shape { rows, cols },
+            heights: noisy,
+            source: "noisy.npy".into(),
+            filled: 0,
+        };
+        let opts = CheckOptions {
+            cross_check: false,
+            reentry: false,
+            extrapolate: false,
+            ..CheckOptions::default()
+        };
+        let c = check(&[scan], &opts, &mut |_| std::ops::ControlFlow::Continue(())).unwrap();
+        let cut = c.cutoff.scans[0].expect("a noise floor");
+        assert!(matches!(
+            cut.reason,
+            crate::measured::cutoff::Reason::NoiseFloor { .. }
+        ));
+        assert!(c.warnings.iter().all(|w| w.name != "noise_floor"));
         // Particles on a nearly flat window: far from Gaussian heights, and the load
         // carried by their tips.
         let mut dotted = window(rows, cols, 0.01);

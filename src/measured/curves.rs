@@ -4,7 +4,8 @@
 //! the headline reached ([`super::reentry`]); the scans' measurements then go to
 //! [`super::findings`].
 //!
-//! Unless asked not to, each load is also solved on the scan coarsened by 2 (and by 4),
+//! Unless asked not to, each scan is first cut at its shortest reliable wavelength (the
+//! noise floor's onset, or a tip's radius: [`super::cutoff`]), and each load is also solved on the scan coarsened by 2 (and by 4),
 //! for the pixel's own error on the contact area ([`super::pixel`]).
 //!
 //! Before any solve, each scan's spikes and outliers are found ([`super::spikes`]),
@@ -102,8 +103,8 @@ pub fn check(
             Some(threshold) => despike(&s.heights, shape, threshold),
             None => (s.heights.clone(), 0),
         };
-        let spectrum = ScanSpectrum::new(&heights, shape, pixel, opts.boundary)?;
-        let mut found = Outliers::of(&spectrum.heights);
+        let as_measured = ScanSpectrum::new(&heights, shape, pixel, opts.boundary)?;
+        let mut found = Outliers::of(&as_measured.heights);
         found.despiked = despiked;
         // Only an iteration's answer is read (see above).
         let _ = events(Event::Outliers {
@@ -111,15 +112,33 @@ pub fn check(
             outliers: &found,
         });
         outliers.push(found);
-        spectra.push(spectrum);
+        let cut = if opts.cutoff {
+            super::cutoff::apply(&as_measured, pixel, opts.tip_radius)?
+        } else {
+            None
+        };
+        spectra.push(match cut {
+            Some((cutoff, filtered)) => Spectra {
+                spectrum: filtered,
+                cut: Some((cutoff, as_measured)),
+            },
+            None => Spectra {
+                spectrum: as_measured,
+                cut: None,
+            },
+        });
     }
-    let spectra: Vec<ScanSpectrum> = spectra;
     // The loads come from the first scan's spectrum: common to every scan.
-    let loads = loads(&Theory::new(&spectra[0].shells)?, opts.loads.as_deref())?;
+    let loads = loads(
+        &Theory::new(&spectra[0].spectrum.shells)?,
+        opts.loads.as_deref(),
+    )?;
     let mut measured = Vec::with_capacity(scans.len());
     // One body for every scan: its half-space depends on the shape alone.
     let mut body: Option<Body> = None;
-    for (k, (spectrum, mut outliers)) in spectra.into_iter().zip(outliers).enumerate() {
+    for (k, (Spectra { spectrum, cut }, mut outliers)) in
+        spectra.into_iter().zip(outliers).enumerate()
+    {
         let theory = Theory::new(&spectrum.shells)?;
         let predicted = loads.iter().map(|&p| theory.at(p)).collect::<Result<_>>()?;
         let body = match body.as_mut() {
@@ -180,6 +199,7 @@ pub fn check(
             predicted,
             curves,
             pixel,
+            cut,
             reentry,
         });
     }
@@ -232,6 +252,13 @@ fn coarse_curves(
         levels.push((factor, curve));
     }
     Ok(levels)
+}
+
+/// A scan's spectrum as solved, and where a cutoff filtered it, the cutoff and the
+/// spectrum as measured.
+struct Spectra {
+    spectrum: ScanSpectrum,
+    cut: Option<(super::cutoff::Cutoff, ScanSpectrum)>,
 }
 
 /// `count` of `n` load indices, evenly spread from the first to the last.

@@ -5,6 +5,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::cutoff::Cutoff;
 use super::fill::Fill;
 use super::pixel::PixelEstimate;
 use super::psd::{Boundary, RadialBin, Shape};
@@ -153,6 +154,19 @@ pub struct Statistics {
     pub psd: Vec<RadialBin>,
 }
 
+/// The scans' short-wavelength cutoffs ([`super::cutoff`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+pub struct Cutoffs {
+    /// Whether a cutoff was asked for (`--no-cutoff` not given).
+    pub asked: bool,
+    /// The tip's radius given, in the length unit.
+    pub tip_radius: Option<f64>,
+    /// Each scan's cutoff, where it has one.
+    pub scans: Vec<Option<Cutoff>>,
+    /// Persson's `g_bar` of the heights solved (after the cutoff), mean over scans.
+    pub slope_rms_spectral: Option<Estimate>,
+}
+
 /// Everything the check found: `surface.json`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SurfaceCheck {
@@ -178,8 +192,11 @@ pub struct SurfaceCheck {
     pub filled: Vec<usize>,
     /// How the spectrum was taken.
     pub spectrum_method: String,
-    /// The surface's statistics.
+    /// The surface's statistics, as measured (before any cutoff).
     pub statistics: Statistics,
+    /// The short-wavelength cutoffs, and the slope of the heights solved.
+    #[serde(default)]
+    pub cutoff: Cutoffs,
     /// Where the scan lies outside what the theory assumes.
     pub warnings: Vec<Warning>,
     /// The headline solver.

@@ -67,6 +67,13 @@ pub struct CheckOptions {
     /// contact area extrapolated to a vanishing pixel ([`super::pixel`]).
     #[serde(default = "yes")]
     pub extrapolate: bool,
+    /// Whether each scan is cut at its shortest reliable wavelength: the noise floor's
+    /// onset, or the tip's radius where given ([`super::cutoff`]).
+    #[serde(default = "yes")]
+    pub cutoff: bool,
+    /// The radius of the instrument's tip, in the heights' unit (`None`: not given).
+    #[serde(default)]
+    pub tip_radius: Option<f64>,
 }
 
 fn yes() -> bool {
@@ -94,6 +101,8 @@ impl Default for CheckOptions {
             max_iterations: MAX_ITERATIONS,
             despike: None,
             extrapolate: true,
+            cutoff: true,
+            tip_radius: None,
         }
     }
 }
@@ -122,6 +131,16 @@ pub fn validate(scans: &[Scan], opts: &CheckOptions) -> Result<f64> {
     }
     if let Some(k) = opts.despike {
         super::spikes::check_threshold(k)?;
+    }
+    if let Some(r) = opts.tip_radius {
+        check_positive("tip_radius", r)?;
+        if !opts.cutoff {
+            return Err(Error::invalid(
+                "tip_radius",
+                r,
+                "left out with no cutoff (the tip's radius sets a cutoff)",
+            ));
+        }
     }
     if let Some(given) = &opts.loads {
         super::theory::check_loads(given)?;

@@ -63,8 +63,9 @@ pub fn markdown(c: &SurfaceCheck) -> String {
     failures(&mut s, c);
     verdicts(&mut s, c);
     surface(&mut s, c);
+    super::resolved::cutoff(&mut s, c);
     curve(&mut s, c);
-    pixel_error(&mut s, c);
+    super::resolved::pixel_error(&mut s, c);
     distribution(&mut s, c);
     energy(&mut s, c);
     reentry(&mut s, c);
@@ -397,94 +398,6 @@ fn curve(s: &mut String, c: &SurfaceCheck) {
             figure: ("contact_area", "contact area"),
         },
     );
-}
-
-/// The pixel's own error on each contact area ([`super::pixel`]).
-fn pixel_error(s: &mut String, c: &SurfaceCheck) {
-    let _ = writeln!(s, "## The pixel's own error\n");
-    if !c.curve.iter().any(|p| p.pixel.is_some()) {
-        let _ = writeln!(
-            s,
-            "Not estimated (not asked for, or the scan is too small to coarsen: each side \
-             must keep {} points at twice the pixel).\n",
-            super::scan::MIN_SIDE
-        );
-        return;
-    }
-    let levels = c
-        .curve
-        .iter()
-        .filter_map(|p| p.pixel.as_ref())
-        .map(|e| e.coarse.len())
-        .max()
-        .unwrap_or(0);
-    let _ = writeln!(
-        s,
-        "Every load solved again on the scan coarsened by {} (every second{} point), and \
-         the contact area extrapolated to a vanishing pixel by first-order Richardson, \
-         `2 a_r(a) - a_r(2a)`: a pixel misjudges a band along the contact line, an error \
-         of first order in the pixel.{}\n",
-        if levels > 1 { "2 and by 4" } else { "2" },
-        if levels > 1 { ", every fourth" } else { "" },
-        if levels > 1 {
-            " The third level gives the extrapolation's spread, \
-             `|R(a, 2a) - R(2a, 4a)|`, and the order the three levels show."
-        } else {
-            ""
-        }
-    );
-    let mut head = vec!["p0 / E*", "a_r at the pixel", "at 2 pixels"];
-    if levels > 1 {
-        head.push("at 4 pixels");
-    }
-    head.extend(["extrapolated", "difference"]);
-    if levels > 1 {
-        head.extend(["spread", "order"]);
-    }
-    let _ = writeln!(
-        s,
-        "| {} |\n|{}",
-        head.join(" | "),
-        "---|".repeat(head.len())
-    );
-    let opt = |v: Option<f64>| v.map_or_else(|| "—".into(), eng);
-    for p in &c.curve {
-        let Some(e) = &p.pixel else { continue };
-        let mut row = vec![eng(p.p0), eng(p.a_r)];
-        row.extend((0..levels).map(|k| opt(e.coarse.get(k).map(|l| l.1))));
-        row.extend([eng(e.extrapolated), eng(e.difference)]);
-        if levels > 1 {
-            row.extend([
-                opt(e.spread),
-                e.order.map_or("—".into(), |o| format!("{o:.2}")),
-            ]);
-        }
-        let _ = writeln!(s, "| {} |", row.join(" | "));
-    }
-    let folded = |f: usize| {
-        c.curve
-            .iter()
-            .filter_map(|p| p.pixel.as_ref())
-            .any(|e| e.folded.contains(&f))
-    };
-    if folded(2) {
-        let _ = writeln!(
-            s,
-            "\nThe scan holds roughness finer than 4 pixels, which the grid coarsened by 2 \
-             folds onto its own wavevectors: the extrapolation mixes the pixel's error with \
-             that change of the surface (a short-wavelength cutoff of at least 4 pixels \
-             keeps it apart)."
-        );
-    } else if folded(4) {
-        let _ = writeln!(
-            s,
-            "\nThe scan holds roughness finer than 8 pixels, which the grid coarsened by 4 \
-             folds onto its own wavevectors: the spread and the order mix the pixel's error \
-             with that change of the surface; the extrapolation, from the pixel and twice \
-             the pixel, does not."
-        );
-    }
-    let _ = writeln!(s);
 }
 
 fn distribution(s: &mut String, c: &SurfaceCheck) {
