@@ -231,6 +231,15 @@ fn scales(args: &Args, list: &Path) -> Result<()> {
             );
         }
     }
+    for f in &result.scans {
+        let Some(check) = &f.check else { continue };
+        for w in &check.warnings {
+            outln!("{}: warning: {}: {}", f.label, w.name, w.message);
+        }
+        for failure in &check.failures {
+            outln!("{}: failed: {}", f.label, failure.message);
+        }
+    }
     outln!("wrote {}", args.out.join("scales.md").display());
     Ok(())
 }
