@@ -24,7 +24,10 @@
 //! periodogram ordinate is exponentially distributed (its standard deviation is its mean),
 //! so `C(b)` has the standard error `C(b) / sqrt(N(b))`. A scan that holds many modes in
 //! a bin (the larger scan, at its short wavelengths) outweighs one that holds a few (the
-//! smaller scan, near its longest wavelengths), as the variance of each asks.
+//! smaller scan, near its longest wavelengths), as the variance of each asks. A bin's mean
+//! `C` lies above `C` at its mean `q` by the curvature of the spectrum over the bin: 3.7%
+//! for `C ~ q^-3.6` over a tenth of a decade with modes spread as a 2D scan's (uniform in
+//! `q^2`), 2.9% with samples uniform in `ln q`.
 //!
 //! **Gaps.** Bands that do not overlap leave a gap between the highest `q` reached below
 //! and the next band's lowest ([`Gap`]); its bins hold no sample. Across a gap, and within
