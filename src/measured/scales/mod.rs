@@ -34,7 +34,9 @@
 //! window's equivalent noise bandwidth (1.5 modes along each axis), since neighbouring
 //! windowed modes are correlated; a line scan each bin of its converted spectrum that
 //! the conversion does not mark uncertain, counting `(C / sigma_C)^2` modes (the modes an
-//! exponentially distributed estimate with that relative error rests on).
+//! exponentially distributed estimate with that relative error rests on). A line scan's
+//! band is narrowed to the wavevectors of those bins: beyond them it resolves nothing
+//! reliably, and a gap is reported where no other scan does.
 //!
 //! Its parts: the findings as data and the check here, the page ([`page`]).
 
@@ -305,6 +307,19 @@ fn samples(m: &Measured, pixel: f64, boundary: Boundary) -> Result<Vec<Sample>> 
     }
 }
 
+/// Why line scans without a certain bin in their band are refused.
+const NO_CERTAIN_BIN: &str = "line scans whose converted spectrum has a bin the conversion \
+    does not mark uncertain within their band (longer or more profiles)";
+
+/// A line scan's band narrowed to the `q` of its certain bins: it resolves nothing
+/// reliably beyond them (the conversion marks the lowest and the highest bins uncertain).
+fn certain(band: Band, samples: &[Sample]) -> Option<Band> {
+    let inside = || samples.iter().map(|s| s.q).filter(|&q| band.holds(q));
+    let lo = inside().min_by(f64::total_cmp)?;
+    let hi = inside().max_by(f64::total_cmp)?;
+    Some(Band { lo, hi })
+}
+
 /// Checks the scans before any work: at least two, positive pixels, units that convert.
 ///
 /// # Errors
@@ -358,7 +373,13 @@ fn spectra(scans: &[ScaleScan], boundary: Boundary) -> Result<Spectra> {
         let pixel = s.pixel * f;
         let (_, side) = shape_of(&m);
         let band = reliable_band(side as f64 * pixel, pixel, boundary, None);
-        parts.push((band, samples(&m, pixel, boundary)?));
+        let samples = samples(&m, pixel, boundary)?;
+        let band = match m {
+            Measured::Map(_) => band,
+            Measured::Line(_) => certain(band, &samples)
+                .ok_or_else(|| Error::invalid(&s.label, "line scans", NO_CERTAIN_BIN))?,
+        };
+        parts.push((band, samples));
         converted_scans.push((m, pixel));
     }
     let stitched = stitch(&parts)?;

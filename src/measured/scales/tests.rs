@@ -1,4 +1,4 @@
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use super::*;
 use crate::engine::fft::Fft2;
@@ -205,4 +205,62 @@ fn persson_on_the_whole_surface_sees_more_slope_than_on_the_coarse_band() {
     assert!(g2(sp.stitched.band) > 2.0 * g2(sp.bands[0]));
     let p0 = 0.01;
     assert!(whole.at(p0).unwrap().contact_area < coarse.at(p0).unwrap().contact_area);
+}
+
+#[test]
+fn line_scans_at_the_coarse_scale_give_the_spectrum_by_their_conversion() {
+    // The coarse scale measured as 64 profiles of 1024 points (pixel 10: 10.24e3 long),
+    // eight rows 128 apart of each of eight realizations, each its own input, beside the
+    // fine 512^2 window (pixel 1).
+    let n = 1024;
+    let dq = 2.0 * std::f64::consts::PI / n as f64;
+    let power = |q_grid: f64| generating(q_grid / 10.0) / 10f64.powi(4) * dq * dq;
+    let mut parts = Vec::new();
+    for seed in 0..8 {
+        let s = Surface::generate_tabulated(n, &power, 20 + seed, Amplitudes::Gaussian).unwrap();
+        let h = s.heights_at(f64::INFINITY, &Fft2::new(s.grid()));
+        for r in 0..8 {
+            let row: Vec<f64> = h[r * 128 * n..(r * 128 + 1) * n]
+                .iter()
+                .map(|v| v * 10.0)
+                .collect();
+            parts.push(Profiles::from_values(Path::new("row"), &[n], row, true).unwrap());
+        }
+    }
+    let scans = vec![
+        ScaleScan {
+            label: "stylus".into(),
+            measured: Measured::Line(Profiles::pool(parts).unwrap()),
+            pixel: 10.0,
+            unit: None,
+        },
+        map("fine", window(1024, 512, 1.0, 8, 1.0), 1.0, None),
+    ];
+    let sp = spectra(&scans, Boundary::Free).unwrap();
+    // The profiles' band is that of their certain converted bins, inside the reliable
+    // band of 4 x 2 pi / L to wavelengths of 4 pixels.
+    let band = sp.bands[0];
+    let reliable = reliable_band(10240.0, 10.0, Boundary::Free, None);
+    assert!(band.lo >= reliable.lo && band.hi <= reliable.hi, "{band:?}");
+    let line = &sp.stitched.scans[0];
+    assert!(line.len() >= 8, "{line:?}");
+    for b in line {
+        let d = b.c / generating(b.q) - 1.0;
+        eprintln!(
+            "line q {:.3e}: {d:+.3} (stated {:.3})",
+            b.q,
+            b.std_error / b.c
+        );
+    }
+    let gap = sp.stitched.gaps.first().map_or(0.0, |g| g.to / g.from);
+    eprintln!("band {band:?}, gap {:?}", sp.stitched.gaps);
+    assert!(gap < 2.0, "{:?}", sp.stitched.gaps);
+    for b in &sp.stitched.bins {
+        let d = b.c / generating(b.q) - 1.0;
+        assert!(
+            d.abs() < 0.1 + 3.0 * b.std_error / b.c,
+            "q {}: {d:+.3}",
+            b.q
+        );
+    }
 }
