@@ -5,6 +5,7 @@ mod architecture;
 mod audit;
 mod bad_input;
 mod cg_bits;
+mod check_scales;
 mod check_surface;
 mod claims;
 mod code_shape;

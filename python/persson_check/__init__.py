@@ -241,12 +241,48 @@ def _same(a, b):
     return all(_np.isclose(x, y, rtol=1e-9, atol=0.0) for x, y in zip(a, b))
 
 
+def _scale_item(value, i):
+    """One scan of a surface at several scales: ``(heights, pixel, unit)`` from a
+    topography (its pixel and unit) or a tuple ``(heights, pixel_size[, unit])``."""
+    if isinstance(value, tuple):
+        if not 2 <= len(value) <= 3:
+            raise ValueError(
+                f"heights[{i}]: a scan at its own scale is (heights, pixel_size) or "
+                f"(heights, pixel_size, unit), not a tuple of {len(value)}"
+            )
+        unit = value[2] if len(value) == 3 else None
+        if unit is not None and not isinstance(unit, str):
+            raise TypeError(f"heights[{i}].unit: a length unit's name (str), not {unit!r}")
+        return _heights(value[0]), float(value[1]), unit
+    if not _is_topography(value):
+        raise ValueError(
+            f"heights[{i}]: with scales=True each scan brings its own pixel size: a "
+            "SurfaceTopography topography, or a tuple (heights, pixel_size[, unit])"
+        )
+    array, pixels, unit = _scan(value, i)
+    if pixels is None:
+        raise ValueError(f"heights[{i}]: a topography of shape {_np.shape(array)}, not a scan")
+    a, b = pixels
+    if abs(a - b) > 1e-3 * max(a, b):
+        raise ValueError(
+            f"heights[{i}].pixel_size: {_number(a)} x {_number(b)}: square pixels, sides "
+            "within 0.1% of each other (resample the topography onto square pixels first)"
+        )
+    return array, float(_np.sqrt(a * b)), unit
+
+
 def _scans(heights, pixel_size, unit):
     """The scans as float64 arrays, the pixel sides of them all and their length unit."""
     several = isinstance(heights, (list, tuple)) and any(
-        isinstance(h, _np.ndarray) or _is_topography(h) for h in heights
+        isinstance(h, (_np.ndarray, tuple)) or _is_topography(h) for h in heights
     )
     values = list(heights) if several else [heights]
+    for i, value in enumerate(values):
+        if isinstance(value, tuple):
+            raise ValueError(
+                f"heights[{i}]: a (heights, pixel_size[, unit]) tuple is a scan at its own "
+                "scale: pass scales=True to check one surface measured at several scales"
+            )
     scans, pixels, units = [], [], []
     for i, value in enumerate(values):
         array, pixel, scan_unit = _scan(value, i)
@@ -275,7 +311,8 @@ def _scans(heights, pixel_size, unit):
             raise ValueError(
                 f"pixel_size: {_number(sides[0])} x {_number(sides[1])} given, but a "
                 f"topography's pixel is {_number(pixel[0])} x {_number(pixel[1])} "
-                "(physical_sizes over points); give one or the other, or equal ones"
+                "(physical_sizes over points); give one or the other, or equal ones "
+                "(scans of one surface at several scales: scales=True)"
             )
     for i, scan_unit in units:
         if unit is None:
@@ -316,7 +353,33 @@ def check_surface(
     extrapolate=True,
     cutoff=True,
     tip_radius=None,
+    scales=False,
 ):
+    if scales:
+        return _check_scales(
+            heights,
+            pixel_size,
+            unit,
+            periodic=periodic,
+            loads=loads,
+            solver=solver,
+            cross_check=cross_check,
+            cross_check_all=cross_check_all,
+            tol=tol,
+            fill=fill,
+            modulus=modulus,
+            reentry=reentry,
+            out=out,
+            threads=threads,
+            progress=progress,
+            verbose=verbose,
+            line=line,
+            max_iterations=max_iterations,
+            despike=despike,
+            extrapolate=extrapolate,
+            cutoff=cutoff,
+            tip_radius=tip_radius,
+        )
     scans, sides, unit = _scans(heights, pixel_size, unit)
     return _native.check_surface(
         scans,
@@ -342,6 +405,47 @@ def check_surface(
         None if despike is None else float(despike),
         bool(extrapolate),
         bool(cutoff),
+        None if tip_radius is None else float(tip_radius),
+    )
+
+
+def _check_scales(heights, pixel_size, unit, **kw):
+    """``check_surface(..., scales=True)``: the scans of one surface at several scales."""
+    if pixel_size is not None or unit is not None:
+        raise ValueError(
+            "pixel_size and unit: with scales=True each scan brings its own (a topography, "
+            "or a tuple (heights, pixel_size[, unit])); leave them out"
+        )
+    if not isinstance(heights, (list, tuple)) or len(heights) < 2:
+        raise ValueError(
+            "heights: with scales=True a list of scans of one surface at different scales"
+        )
+    scans = [_scale_item(value, i) for i, value in enumerate(heights)]
+    loads = kw.pop("loads")
+    modulus = kw.pop("modulus")
+    despike = kw.pop("despike")
+    tip_radius = kw.pop("tip_radius")
+    out = kw.pop("out")
+    return _native.check_scales(
+        scans,
+        kw.pop("periodic"),
+        None if loads is None else [float(p) for p in loads],
+        kw.pop("solver"),
+        kw.pop("cross_check"),
+        kw.pop("cross_check_all"),
+        kw.pop("tol"),
+        kw.pop("fill"),
+        None if modulus is None else float(modulus),
+        kw.pop("reentry"),
+        None if out is None else _os.fspath(out),
+        kw.pop("threads"),
+        kw.pop("progress"),
+        kw.pop("verbose"),
+        kw.pop("line"),
+        kw.pop("max_iterations"),
+        None if despike is None else float(despike),
+        bool(kw.pop("extrapolate")),
+        bool(kw.pop("cutoff")),
         None if tip_radius is None else float(tip_radius),
     )
 
@@ -397,6 +501,18 @@ uncertain, and Persson on the whole converted band. The result's ``curve`` holds
 Persson's ``a_r_persson`` and ``a_r_persson_corrected`` with the elastic energies;
 ``warnings`` where the scan lies outside what the theory assumes; ``comparisons`` the
 verdicts. The GIL is released; Ctrl-C stops it.
+
+One surface at several scales: ``scales=True`` with a list of scans, each bringing its own
+pixel size, a SurfaceTopography topography or a tuple ``(heights, pixel_size)`` or
+``(heights, pixel_size, unit)`` (a 1D array or topography, or any with ``line=True``, is
+line scans). Scans in different units are converted into the first's. Their spectra are
+stitched into the surface's (each over the band it resolves reliably, averaged where bands
+overlap, weighted by their independent modes; a gap between bands is reported), Persson's
+theory is evaluated on the stitched spectrum and on each scan's band, and each height map
+is simulated alone and set against Persson on its band and on the whole surface. Returns
+the dict of ``scales.json`` (``stitched``, ``scans`` with each areal scan's
+``comparison`` and its own ``check``, ``whole``); ``out`` writes ``scales.md``, its
+figures and each areal scan's own page in ``scan-<k>/``.
 """
 
 

@@ -219,6 +219,10 @@ def check_surface(
     line_seeds: int = ...,
     max_iterations: int = ...,
     despike: Optional[float] = None,
+    extrapolate: bool = True,
+    cutoff: bool = True,
+    tip_radius: Optional[float] = None,
+    scales: bool = False,
 ) -> dict[str, Any]:
     """Persson's theory checked on measured height maps or line scans (surface.json as a
-    dict)."""
+    dict); with scales=True, one surface measured at several scales (scales.json)."""

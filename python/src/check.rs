@@ -182,6 +182,98 @@ pub fn check_surface<'py>(
     record(py, &checked)
 }
 
+/// One surface at several scales, as `check-surface --scales` checks it
+/// ([`persson_check::tasks::scales::check_scales`]): `scans` are `(heights, pixel, unit)`,
+/// each with its own pixel and unit (a 1D array, or any with `line`, line scans), named
+/// `heights[i]` in messages; the other keywords as [`check_surface`]'s, for every areal
+/// scan. Returns the dict of `scales.json`.
+#[pyfunction]
+#[pyo3(signature = (scans, periodic, loads, solver, cross_check, cross_check_all, tol, fill, modulus, reentry, out, threads, progress, verbose, line, max_iterations, despike, extrapolate, cutoff, tip_radius))]
+#[allow(clippy::too_many_arguments)]
+pub fn check_scales<'py>(
+    py: Python<'py>,
+    scans: Vec<(PyReadonlyArrayDyn<'py, f64>, f64, Option<String>)>,
+    periodic: bool,
+    loads: Option<Vec<f64>>,
+    solver: &str,
+    cross_check: bool,
+    cross_check_all: bool,
+    tol: f64,
+    fill: &str,
+    modulus: Option<f64>,
+    reentry: bool,
+    out: Option<PathBuf>,
+    threads: Option<i64>,
+    progress: Option<Bound<'py, PyAny>>,
+    verbose: bool,
+    line: bool,
+    max_iterations: usize,
+    despike: Option<f64>,
+    extrapolate: bool,
+    cutoff: bool,
+    tip_radius: Option<f64>,
+) -> PyResult<Bound<'py, PyAny>> {
+    use persson_check::measured::psd::Boundary;
+    use persson_check::measured::scales::{Measured, ScaleScan};
+    let opts = CheckOptions {
+        boundary: if periodic {
+            Boundary::Periodic
+        } else {
+            Boundary::Free
+        },
+        loads,
+        solver: parse::solver(solver).or_raise()?,
+        cross_check,
+        cross_check_all,
+        tol,
+        fill: self::fill(fill)?,
+        modulus,
+        reentry,
+        max_iterations,
+        despike,
+        extrapolate,
+        cutoff,
+        tip_radius,
+        ..CheckOptions::default()
+    };
+    let (arrays, given): (Vec<_>, Vec<_>) = scans.into_iter().map(|(a, p, u)| (a, (p, u))).unzip();
+    let scans = named(&arrays)?
+        .into_iter()
+        .zip(given)
+        .enumerate()
+        .map(|(i, ((name, shape, values), (pixel, unit)))| {
+            let measured = if line || shape.len() == 1 {
+                Measured::Line(
+                    Profiles::pool(vec![
+                        Profiles::from_values(&name, &shape, values, true).or_raise()?
+                    ])
+                    .or_raise()?,
+                )
+            } else {
+                Measured::Map(Scan::from_values(&name, &shape, values).or_raise()?)
+            };
+            Ok(ScaleScan {
+                label: format!("heights[{i}]"),
+                measured,
+                pixel,
+                unit,
+            })
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    let count = scans.len();
+    let checked = run_logged(py, threads, progress.as_ref(), verbose, |hook| {
+        let mut events = |e: Event| log_event(hook, count, e);
+        persson_check::tasks::scales::check_scales(
+            scans,
+            &opts,
+            out.as_deref(),
+            &Keywords,
+            &mut events,
+        )
+    })?;
+    record(py, &checked)
+}
+
 /// A line scan at non-uniform positions `x` (heights `h`, the array named `name` in
 /// messages) resampled onto as many evenly spaced points by the library
 /// ([`persson_check::tasks::check::resample_profile`]): `(heights, spacing, warning)`.

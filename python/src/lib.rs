@@ -15,7 +15,7 @@
 //! | [`sweeps`] | `sweep` and its iterator of steps |
 //! | [`theory`] | `theory` and the contact-area law |
 //! | [`validations`] | `validate`, `plan`, `merge`, `report` |
-//! | [`check`] | `check_surface`: Persson on the user's own height maps, and line scans at non-uniform positions resampled |
+//! | [`check`] | `check_surface`: Persson on the user's own height maps, and line scans at non-uniform positions resampled; `check_scales`: one surface at several scales |
 //!
 //! The public signatures, with their defaults, are those of the Python wrappers in
 //! `persson_check/__init__.py`, which convert arrays and paths and call these.
@@ -61,6 +61,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(validations::merge, m)?)?;
     m.add_function(wrap_pyfunction!(validations::report_md, m)?)?;
     m.add_function(wrap_pyfunction!(check::check_surface, m)?)?;
+    m.add_function(wrap_pyfunction!(check::check_scales, m)?)?;
     m.add_function(wrap_pyfunction!(check::resample_line_scan, m)?)?;
     Ok(())
 }

@@ -3,7 +3,8 @@
 //! `--line-scan`, resampled onto even spacing: [`persson_check::measured::line`]). The
 //! flags make the one request Python's keywords make too
 //! ([`persson_check::tasks::check::CheckRequest`]); this command reads the inputs, shows
-//! progress and prints what the check found.
+//! progress and prints what the check found. `--scales FILE.toml` checks one surface
+//! measured at several scales ([`persson_check::tasks::scales`]).
 
 use std::io::IsTerminal;
 use std::ops::ControlFlow;
@@ -16,9 +17,12 @@ use persson_check::measured::check::{CheckOptions, Event};
 use persson_check::measured::fill::Fill;
 use persson_check::measured::line::check::{LineOptions, DEFAULT_SEEDS, DEFAULT_SIDE};
 use persson_check::measured::options::{CHECK_SOLVER, CHECK_TOL, MAX_ITERATIONS};
+use persson_check::measured::psd::Boundary;
+use persson_check::measured::units::{eng, length};
 use persson_check::tasks::check::{
     load_line, read_input, read_line_scan, CheckRequest, Checked, Input, SurfaceTask,
 };
+use persson_check::tasks::scales::{check_scales, read_list};
 use persson_check::tasks::SolverKind;
 
 use super::FLAGS;
@@ -29,8 +33,15 @@ pub struct Args {
     /// Height maps (.npy, 2D float, or a plain-text matrix), square or rectangular; several
     /// files are several scans of one surface (the error bars come from them). A 1D input
     /// (a .npy vector, one row or one column of text) is a line scan, a profile.
-    #[arg(long, num_args = 1.., required_unless_present = "line_scan")]
+    #[arg(long, num_args = 1.., required_unless_present_any = ["line_scan", "scales"])]
     heights: Vec<PathBuf>,
+    /// One surface measured at several scales: a scan list (TOML), a [[scan]] table per
+    /// scan with its file, pixel_size, unit (optional; scans in other units are converted)
+    /// and line (optional). Their spectra are stitched into the surface's, Persson's
+    /// theory is evaluated on it and on each scan's band, and each height map is simulated
+    /// and set against both. Each scan brings its own pixel size: --pixel-size is refused.
+    #[arg(long, value_name = "FILE.toml", conflicts_with_all = ["heights", "line_scan", "line", "pixel_size"])]
+    scales: Option<PathBuf>,
     /// A line scan at non-uniform positions: a two-column text file (position, height a
     /// line, in one length unit), resampled onto as many evenly spaced points by linear
     /// interpolation, with a warning; the positions must increase strictly. Its spacing
@@ -55,7 +66,7 @@ pub struct Args {
         allow_negative_numbers = true,
         value_delimiter = ',',
         num_args = 1..=2,
-        required_unless_present = "line_scan"
+        required_unless_present_any = ["line_scan", "scales"]
     )]
     pixel_size: Option<Vec<f64>>,
     /// The heights' length unit (m, mm, µm, nm, ...), printed with every length.
@@ -155,6 +166,9 @@ impl Args {
 }
 
 pub fn run(args: Args) -> Result<()> {
+    if let Some(list) = &args.scales {
+        return scales(&args, list);
+    }
     let (input, own_pixel) = match &args.line_scan {
         Some(path) => {
             let (input, pixel, warning) = read_line_scan(path)?;
@@ -178,6 +192,72 @@ pub fn run(args: Args) -> Result<()> {
         task.run(Some(&args.out), &FLAGS, &mut events)?
     };
     summarize(&task, &result, &args.out);
+    Ok(())
+}
+
+/// The check of one surface at several scales (`--scales`): a line per load as it ends,
+/// then a line per areal scan's comparison and where the page is.
+fn scales(args: &Args, list: &Path) -> Result<()> {
+    let scans = read_list(list, &FLAGS)?;
+    let request = args.request();
+    let opts = CheckOptions {
+        boundary: if args.periodic {
+            Boundary::Periodic
+        } else {
+            Boundary::Free
+        },
+        ..request.options
+    };
+    let count = scans.len();
+    let mut events = |e: Event| {
+        if let Some(line) = load_line(count, &e) {
+            eprintln!("check-surface: {line}");
+        }
+        ControlFlow::Continue(())
+    };
+    let result = check_scales(scans, &opts, Some(&args.out), &FLAGS, &mut events)?;
+    let u = result.unit.as_deref();
+    for g in &result.stitched.gaps {
+        let two_pi = 2.0 * std::f64::consts::PI;
+        outln!(
+            "gap: no scan resolves the wavelengths from {} down to {}: the stitched spectrum \
+             is interpolated across it",
+            length(two_pi / g.from, u),
+            length(two_pi / g.to, u)
+        );
+    }
+    outln!(
+        "stitched spectrum: {} bins from q = {} to {} 1/{}; whole surface: rms slope {}",
+        result.stitched.bins.len(),
+        eng(result.stitched.band.lo),
+        eng(result.stitched.band.hi),
+        u.unwrap_or("length unit"),
+        eng(result.slope_rms)
+    );
+    for f in &result.scans {
+        let Some(rows) = &f.comparison else { continue };
+        for r in [rows.first(), rows.last()].into_iter().flatten() {
+            outln!(
+                "{}: p0 = {} E*: a_r = {} simulated, Persson {} on its band, {} on the whole \
+                 surface",
+                f.label,
+                eng(r.p0),
+                eng(r.a_r),
+                eng(r.a_r_persson_band),
+                eng(r.a_r_persson_whole)
+            );
+        }
+    }
+    for f in &result.scans {
+        let Some(check) = &f.check else { continue };
+        for w in &check.warnings {
+            outln!("{}: warning: {}: {}", f.label, w.name, w.message);
+        }
+        for failure in &check.failures {
+            outln!("{}: failed: {}", f.label, failure.message);
+        }
+    }
+    outln!("wrote {}", args.out.join("scales.md").display());
     Ok(())
 }
 

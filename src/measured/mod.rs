@@ -6,7 +6,9 @@
 //! where the theory does not apply ([`warnings`]), the check
 //! ([`check`]: its [`options`], its [`curves`], its [`findings`] and how they are drawn from
 //! the measurements, `conclude`) and its page ([`mod@page`], its [`figures`]); line scans,
-//! by way of the isotropic surface they imply ([`mod@line`]). The load curves and the
+//! by way of the isotropic surface they imply ([`mod@line`]); one surface measured at
+//! several scales, its scans' spectra stitched into one ([`stitch`]) and each areal scan
+//! set against Persson on its band and on the whole surface ([`scales`]). The load curves and the
 //! re-entry climb run on the engine's sweeps ([`crate::engine::load_curve`],
 //! [`crate::engine::climb`]).
 
@@ -25,8 +27,10 @@ pub mod pixel;
 pub mod psd;
 pub mod reentry;
 mod resolved;
+pub mod scales;
 pub mod scan;
 pub mod spikes;
+pub mod stitch;
 pub mod theory;
 pub mod units;
 pub mod warnings;

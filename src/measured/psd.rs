@@ -178,6 +178,44 @@ impl ScanSpectrum {
     }
 }
 
+/// One mode of a scan's spectrum in the scan's units, as the radial average sees it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ModePower {
+    /// `|q|` (1 / length).
+    pub q: f64,
+    /// `C = A / (2 pi)^2 |h~(q)|^2` of this mode alone (length^4).
+    pub c: f64,
+    /// The modes of the full spectrum it stands for (1 or 2: `q` and `-q`).
+    pub weight: f64,
+}
+
+/// Every mode of a scan's half spectrum, transformed as [`ScanSpectrum::new`] transforms
+/// it (a periodic scan as it is, a free one detrended and Hann-windowed), without `q = 0`
+/// and the Nyquist rows and columns (as the radial average leaves them out), in the
+/// scan's units: what [`crate::measured::stitch`] bins on a grid of its own.
+pub fn scan_modes(
+    heights: &[f64],
+    shape: Shape,
+    pixel: f64,
+    boundary: Boundary,
+) -> Result<Vec<ModePower>> {
+    let scaled: Vec<f64> = heights.iter().map(|h| h / pixel).collect();
+    let modes = match boundary {
+        Boundary::Periodic => periodic_modes(&scaled, shape)?.1,
+        Boundary::Free => window_modes(&hann(&remove_plane(&scaled, shape), shape), shape)?.0,
+    };
+    let area = shape.points() as f64 / (2.0 * std::f64::consts::PI).powi(2);
+    Ok(modes
+        .into_iter()
+        .filter(|m| !m.nyquist)
+        .map(|m| ModePower {
+            q: m.qx.hypot(m.qy) / pixel,
+            c: area * m.power * pixel.powi(4),
+            weight: m.weight,
+        })
+        .collect())
+}
+
 /// A periodic scan's heights as `solve --heights` takes them (the surface of its modes up
 /// to the shortest wavelength present), its half spectrum and its shells on the grid.
 fn periodic_modes(scaled: &[f64], shape: Shape) -> Result<(Vec<f64>, Vec<Mode>, ShellSpectrum)> {

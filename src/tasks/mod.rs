@@ -13,6 +13,7 @@
 //! | Persson's theory on a surface's spectrum | [`theory::theory`] | | `theory` |
 //! | the validations, their plan and merge | [`validations`] | `validate [--plan] [--merge]` | `validate`, `plan`, `merge` |
 //! | Persson checked on measured height maps | [`check::check_surface`] | `check-surface` | `check_surface` |
+//! | one surface measured at several scales | [`scales::check_scales`] | `check-surface --scales` | `check_surface(..., scales=True)` |
 //! | the parsers: solver names, the load, ranges | [`parse`] | flags | keywords |
 //! | stored job results recomputed and compared | [`audit::audit`] | `audit` | |
 //!
@@ -33,6 +34,7 @@
 pub mod audit;
 pub mod check;
 pub mod parse;
+pub mod scales;
 pub mod solve;
 pub mod surface;
 pub mod sweep;
