@@ -95,39 +95,7 @@ pub fn check(
 ) -> Result<SurfaceCheck> {
     let timer = std::time::Instant::now();
     let pixel = validate(scans, opts)?;
-    let shape = scans[0].shape;
-    let mut outliers = Vec::with_capacity(scans.len());
-    let mut spectra = Vec::with_capacity(scans.len());
-    for (k, s) in scans.iter().enumerate() {
-        let (heights, despiked) = match opts.despike {
-            Some(threshold) => despike(&s.heights, shape, threshold),
-            None => (s.heights.clone(), 0),
-        };
-        let as_measured = ScanSpectrum::new(&heights, shape, pixel, opts.boundary)?;
-        let mut found = Outliers::of(&as_measured.heights);
-        found.despiked = despiked;
-        // Only an iteration's answer is read (see above).
-        let _ = events(Event::Outliers {
-            scan: k,
-            outliers: &found,
-        });
-        outliers.push(found);
-        let cut = if opts.cutoff {
-            super::cutoff::apply(&as_measured, pixel, opts.tip_radius)?
-        } else {
-            None
-        };
-        spectra.push(match cut {
-            Some((cutoff, filtered)) => Spectra {
-                spectrum: filtered,
-                cut: Some((cutoff, as_measured)),
-            },
-            None => Spectra {
-                spectrum: as_measured,
-                cut: None,
-            },
-        });
-    }
+    let (outliers, spectra) = spectra(scans, opts, pixel, events)?;
     // The loads come from the first scan's spectrum: common to every scan.
     let loads = loads(
         &Theory::new(&spectra[0].spectrum.shells)?,
@@ -211,6 +179,50 @@ pub fn check(
         &measured,
         timer.elapsed().as_secs_f64(),
     ))
+}
+
+/// Each scan's spikes and outliers (reported as found) and its spectrum, despiked where
+/// asked and cut at its shortest reliable wavelength unless asked not to.
+fn spectra(
+    scans: &[Scan],
+    opts: &CheckOptions,
+    pixel: f64,
+    events: &mut dyn FnMut(Event) -> ControlFlow<StopReason>,
+) -> Result<(Vec<Outliers>, Vec<Spectra>)> {
+    let shape = scans[0].shape;
+    let mut outliers = Vec::with_capacity(scans.len());
+    let mut spectra = Vec::with_capacity(scans.len());
+    for (k, s) in scans.iter().enumerate() {
+        let (heights, despiked) = match opts.despike {
+            Some(threshold) => despike(&s.heights, shape, threshold),
+            None => (s.heights.clone(), 0),
+        };
+        let as_measured = ScanSpectrum::new(&heights, shape, pixel, opts.boundary)?;
+        let mut found = Outliers::of(&as_measured.heights);
+        found.despiked = despiked;
+        // Only an iteration's answer is read (see above).
+        let _ = events(Event::Outliers {
+            scan: k,
+            outliers: &found,
+        });
+        outliers.push(found);
+        let cut = if opts.cutoff {
+            super::cutoff::apply(&as_measured, pixel, opts.tip_radius)?
+        } else {
+            None
+        };
+        spectra.push(match cut {
+            Some((cutoff, filtered)) => Spectra {
+                spectrum: filtered,
+                cut: Some((cutoff, as_measured)),
+            },
+            None => Spectra {
+                spectrum: as_measured,
+                cut: None,
+            },
+        });
+    }
+    Ok((outliers, spectra))
 }
 
 /// The scan's load curve on the grids coarsened by each factor of
