@@ -46,7 +46,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::line::abel::LogLog;
-use crate::engine::spectrum::{Shell, ShellSpectrum};
+use crate::engine::spectrum::ShellSpectrum;
 use crate::error::{Error, Result};
 use crate::stats::{Bins, Histogram};
 
@@ -243,29 +243,9 @@ impl Stitched {
     pub fn shells(&self, band: Band, unit: f64) -> ShellSpectrum {
         let c = self.spectrum();
         let q_lo = self.band.lo;
-        let dq = q_lo * unit;
         let top = (band.hi / q_lo * (1.0 + 1e-9)).floor() as usize;
-        let two_pi = 2.0 * std::f64::consts::PI;
-        let shells = (1..=top)
-            .filter_map(|k| {
-                let q = q_lo * k as f64;
-                if !band.holds(q) {
-                    return None;
-                }
-                let modes = two_pi * k as f64;
-                let h2 = modes * c(q) / unit.powi(4) * dq * dq;
-                let q_grid = dq * k as f64;
-                (h2 > 0.0).then_some(Shell {
-                    k2: u32::try_from(k * k).unwrap_or(u32::MAX),
-                    q: q_grid,
-                    zeta: k as f64,
-                    modes: modes.round() as u32,
-                    h2,
-                    q2h2: q_grid * q_grid * h2,
-                })
-            })
-            .collect();
-        ShellSpectrum { q_l: dq, shells }
+        let ks = (1..=top).filter(|&k| band.holds(q_lo * k as f64));
+        crate::measured::theory::annuli(q_lo * unit, ks, |k| c(q_lo * k as f64), unit)
     }
 }
 

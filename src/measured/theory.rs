@@ -12,7 +12,7 @@
 use serde::{Deserialize, Serialize};
 use statrs::function::erf::erf_inv;
 
-use crate::engine::spectrum::ShellSpectrum;
+use crate::engine::spectrum::{Shell, ShellSpectrum};
 use crate::error::{Error, Result};
 use crate::persson::{Broadening, Correction, Prediction, PressureDistribution};
 
@@ -139,6 +139,36 @@ pub struct TheoryPoint {
     pub a_r_persson: f64,
     /// Corrected theory.
     pub a_r_persson_corrected: f64,
+}
+
+/// The shells of an isotropic spectrum on the lattice of annuli `k` of width `dq` (grid
+/// units of the length `unit`): annulus `k` holds `2 pi k` modes at `|q| = k dq`, each of
+/// power `C dq^2 / unit^4`, with `c(k)` the spectrum `C` (length^4) at its physical
+/// wavevector; empty annuli are left out. Line scans' converted spectra and stitched
+/// spectra reach [`Theory::new`] this way.
+pub fn annuli(
+    dq: f64,
+    ks: impl Iterator<Item = usize>,
+    c: impl Fn(usize) -> f64,
+    unit: f64,
+) -> ShellSpectrum {
+    let two_pi = 2.0 * std::f64::consts::PI;
+    let shells = ks
+        .filter_map(|k| {
+            let modes = two_pi * k as f64;
+            let h2 = modes * c(k) / unit.powi(4) * dq * dq;
+            let q = dq * k as f64;
+            (h2 > 0.0).then_some(Shell {
+                k2: u32::try_from(k * k).unwrap_or(u32::MAX),
+                q,
+                zeta: k as f64,
+                modes: modes.round() as u32,
+                h2,
+                q2h2: q * q * h2,
+            })
+        })
+        .collect();
+    ShellSpectrum { q_l: dq, shells }
 }
 
 #[cfg(test)]

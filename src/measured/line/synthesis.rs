@@ -19,7 +19,7 @@
 use std::path::PathBuf;
 
 use super::abel::{Converted, LogLog};
-use crate::engine::spectrum::{Shell, ShellSpectrum};
+use crate::engine::spectrum::ShellSpectrum;
 use crate::engine::surface::{Amplitudes, Surface};
 use crate::engine::tolerance::ZETA_SLACK;
 use crate::error::{Error, Result};
@@ -95,24 +95,8 @@ pub fn synthesize(c: &Isotropic, pixel: f64, side: usize, seeds: u64) -> Result<
 /// The shells of the converted spectrum over the profile's band, in grid units (lengths
 /// over the pixel) as [`crate::measured::theory::Theory`] takes them (module docs).
 pub fn shells(c: &Isotropic, pixel: f64, points: usize) -> ShellSpectrum {
-    let two_pi = 2.0 * std::f64::consts::PI;
-    let dq = two_pi / points as f64;
-    let shells = (1..=points / 2)
-        .filter_map(|k| {
-            let q = dq * k as f64;
-            let modes = two_pi * k as f64;
-            let h2 = modes * c.at(q / pixel) / pixel.powi(4) * dq * dq;
-            (h2 > 0.0).then_some(Shell {
-                k2: u32::try_from(k * k).unwrap_or(u32::MAX),
-                q,
-                zeta: k as f64,
-                modes: modes.round() as u32,
-                h2,
-                q2h2: q * q * h2,
-            })
-        })
-        .collect();
-    ShellSpectrum { q_l: dq, shells }
+    let dq = 2.0 * std::f64::consts::PI / points as f64;
+    crate::measured::theory::annuli(dq, 1..=points / 2, |k| c.at(dq * k as f64 / pixel), pixel)
 }
 
 #[cfg(test)]
