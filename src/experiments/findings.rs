@@ -8,6 +8,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
+use super::keys::DetailKey;
 use super::study::Study;
 use crate::error::{Error, Result};
 use crate::plot::{Axis, Figure, Raster, Waterfall};
@@ -42,7 +43,7 @@ impl Criteria {
 pub struct Detail {
     /// Stable identifier (tests and the report use it, never the label).
     #[serde(default)]
-    pub key: String,
+    pub key: DetailKey,
     /// Label, in words.
     pub name: String,
     /// Measurement.
@@ -59,7 +60,7 @@ pub struct Detail {
 
 impl Detail {
     /// A detail with key `key` and label `name`, without Persson's or the paper's value.
-    pub fn new(key: impl Into<String>, name: impl Into<String>, value: Estimate) -> Self {
+    pub fn new(key: impl Into<DetailKey>, name: impl Into<String>, value: Estimate) -> Self {
         Self {
             key: key.into(),
             name: name.into(),
@@ -245,7 +246,8 @@ impl Conclusion {
     }
 
     /// The detail with key `key`, if any.
-    pub fn detail(&self, key: &str) -> Option<&Detail> {
+    pub fn detail(&self, key: impl Into<DetailKey>) -> Option<&Detail> {
+        let key = key.into();
         self.details.iter().find(|d| d.key == key)
     }
 

@@ -66,6 +66,6 @@ mod shipped;
 
 pub use self::experiment::{Experiment, JobContext, JobOf, Jobs, ResultOf, Run, Work};
 pub use self::findings::{figure, Conclusion, Criteria, Detail, Guard, Table, UNDECIDED};
-pub use self::keys::Keys;
+pub use self::keys::{DetailKey, Keys};
 #[cfg(test)]
 pub(crate) use self::shipped::{assert_refused, shipped_scenes, shipped_valid};

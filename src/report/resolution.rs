@@ -8,7 +8,7 @@ use super::format::{md, num, or_dash, pm, prose, push_table};
 use super::outcomes::Loaded;
 use super::Scorecard;
 use crate::plot::{Axis, Figure, Series, Style};
-use crate::validation::Detail;
+use crate::validation::{Detail, DetailKey};
 
 /// Secondary statistics of one validation measured on several grids.
 #[derive(Debug, Clone)]
@@ -16,7 +16,7 @@ pub(super) struct Resolution {
     pub(super) validation: String,
     /// Groups of details with one key (one statistic, several grids), by key, each sorted
     /// by grid.
-    pub(super) groups: Vec<(String, Vec<(usize, Detail)>)>,
+    pub(super) groups: Vec<(DetailKey, Vec<(usize, Detail)>)>,
     pub(super) figure: Option<PathBuf>,
 }
 
@@ -24,7 +24,7 @@ pub(super) struct Resolution {
 pub(super) fn resolution_studies(loaded: &[Loaded]) -> Vec<Resolution> {
     let mut out = Vec::new();
     for l in loaded {
-        let mut groups: Vec<(String, Vec<(usize, Detail)>)> = Vec::new();
+        let mut groups: Vec<(DetailKey, Vec<(usize, Detail)>)> = Vec::new();
         for d in &l.outcome.details {
             let Some(n) = d.grid else { continue };
             // The paper's value beside it: its claim's, read from the outcome.

@@ -3,13 +3,17 @@
 //!
 //! * `headline`: the validation's statistic;
 //! * `detail:KEY`, or `detail:KEY@N` for the detail measured on the `N x N` grid of a
-//!   resolution study;
+//!   resolution study; the key is typed ([`DetailKey`]: a stem and the values that pick
+//!   one member of a family, as the load in `share_ar0.14`), so that a value written
+//!   otherwise (`share_ar0.140`) names the same detail;
 //! * `study:STUDY/ROW/COLUMN`: a cell of a [`crate::experiments::study::Study`];
 //! * `cross_check:SOLVER`: another solver's headline.
 //!
 //! A form that is none of these, a grid that is not a count, or a solver that does not
-//! exist is refused at load; the text a measure prints ([`std::fmt::Display`]) is the text
-//! it was read from, so the register's hashes and the outcomes' records are unchanged.
+//! exist is refused at load; the text a measure prints ([`std::fmt::Display`]) is its
+//! canonical form, the text it was read from when that writes each value as Rust prints
+//! it (as every shipped definition does), so the register's hashes and the outcomes'
+//! records are unchanged.
 
 use std::fmt;
 use std::str::FromStr;
@@ -17,6 +21,7 @@ use std::str::FromStr;
 use serde::{Deserialize, Serialize};
 
 use crate::engine::solver::SolverKind;
+use crate::experiments::DetailKey;
 
 /// The forms a measure takes, as error messages list them.
 pub const FORMS: &str = "headline, detail:KEY[@N], study:STUDY/ROW/COLUMN or cross_check:SOLVER";
@@ -30,7 +35,7 @@ pub enum Measure {
     /// A detail of the run, on the `grid x grid` grid where it names one.
     Detail {
         /// The detail's key.
-        key: String,
+        key: DetailKey,
         /// Points per side of the grid, for a step of a resolution study.
         grid: Option<usize>,
     },
@@ -49,7 +54,7 @@ pub enum Measure {
 
 impl Measure {
     /// The detail `key` on no particular grid.
-    pub fn detail(key: impl Into<String>) -> Self {
+    pub fn detail(key: impl Into<DetailKey>) -> Self {
         Measure::Detail {
             key: key.into(),
             grid: None,

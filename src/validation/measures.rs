@@ -116,9 +116,11 @@ pub(super) fn declared(
             if keys.has_detail(key, *grid) {
                 Ok(())
             } else {
-                let named = measure.to_string();
-                let named = named.strip_prefix("detail:").unwrap_or(&named);
-                Err(listed("a detail", named, &keys.detail_names()))
+                let named = match grid {
+                    Some(n) => format!("{key}@{n}"),
+                    None => key.to_string(),
+                };
+                Err(listed("a detail", &named, &keys.detail_names()))
             }
         }
         Measure::Study { study, column, .. } => match keys.study_columns(study) {

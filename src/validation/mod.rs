@@ -60,4 +60,4 @@ pub use runner::{Mode, RunOptions};
 pub use source::Source;
 
 // The outcome's secondary statistics and checks are the experiments' own records.
-pub use crate::experiments::{Detail, Guard};
+pub use crate::experiments::{Detail, DetailKey, Guard};

@@ -7,7 +7,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
 use super::definition::Scale;
-use super::measures::PendingPart;
+use super::measures::{Measure, PendingPart};
 use super::source::Source;
 use super::store;
 use crate::error::Result;
@@ -66,13 +66,12 @@ pub(crate) fn pending_parts<E: Experiment>(
     Ok(pending)
 }
 
-/// The measures `keys` declare as a claim names them, without grids or study cells:
-/// `detail:KEY` and `study:KEY`.
+/// The measures `keys` declare as a claim names them, without grids or study cells
+/// ([`Measure::family`]): `detail:KEY` and `study:KEY`.
 fn measure_names(keys: &Keys) -> BTreeSet<String> {
     let details = keys
-        .detail_names()
-        .into_iter()
-        .map(|k| format!("detail:{}", k.split('@').next().unwrap_or(&k)));
+        .detail_keys()
+        .filter_map(|k| Measure::detail(k.clone()).family());
     let studies = keys.study_names().into_iter().map(|k| format!("study:{k}"));
     details.chain(studies).collect()
 }

@@ -289,8 +289,9 @@ mod tests {
         let s = shipped("d_onset");
         let reduced = Registry::builtin().keys(&s, Scale::Reduced).unwrap();
         let full = Registry::builtin().keys(&s, Scale::Full).unwrap();
-        assert!(!reduced.has_detail("onset_ar0.87_zt16", None));
-        assert!(full.has_detail("onset_ar0.87_zt16", None));
+        let key = "onset_ar0.87_zt16".into();
+        assert!(!reduced.has_detail(&key, None));
+        assert!(full.has_detail(&key, None));
         // The same measure on a claim the reduced scene judges is refused there.
         let e = refused(&edited(
             "d_onset",

@@ -11,6 +11,7 @@
 //! `s_lower / s_upper - 1`, per realization, then the mean over realizations (0 for a
 //! logarithmic law; positive where the gap falls faster at the lowest loads).
 
+use crate::experiments::keys::{DetailKey, Tag};
 use serde::{Deserialize, Serialize};
 
 use super::AreaScene;
@@ -152,8 +153,8 @@ pub fn slope_change(job: &GapJob, r: &GapResult) -> Option<f64> {
 }
 
 /// The key of the slope change at Hurst exponent `hurst`.
-pub fn key(hurst: f64) -> String {
-    format!("gap_log_slope_change_H{hurst}")
+pub fn key(hurst: f64) -> DetailKey {
+    DetailKey::new("gap_log_slope_change").at(Tag::Hurst, hurst)
 }
 
 /// The slope change at each of the plan's Hurst exponents: per realization, then the

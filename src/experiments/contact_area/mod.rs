@@ -55,6 +55,7 @@ pub mod stats;
 mod study;
 pub mod system_size;
 
+use crate::experiments::keys::{DetailKey, Tag};
 use std::collections::BTreeMap;
 
 use self::figures::{area_figures, area_table};
@@ -78,8 +79,8 @@ pub fn persson_kappa() -> f64 {
 }
 
 /// The key of the slope at one Hurst exponent.
-fn hurst_key(hurst: f64) -> String {
-    format!("kappa_H{hurst}")
+fn hurst_key(hurst: f64) -> DetailKey {
+    DetailKey::new("kappa").at(Tag::Hurst, hurst)
 }
 
 /// The keys of the other details ([`Experiment::keys`]): the slope on each grid (one key,
@@ -193,7 +194,7 @@ impl Experiment for ContactArea {
     /// The slope on every grid and at every Hurst exponent, and the law's deviation.
     fn details(run: &Run, s: &AreaStats) -> Vec<Detail> {
         let (criteria, scene, label) = (run.criteria, run.scene, grid_label(run.scene));
-        let kappa = |key: String, name: String, value| {
+        let kappa = |key: DetailKey, name: String, value| {
             Detail::new(key, name, value)
                 .persson(persson_kappa())
                 .paper(criteria.paper_value)

@@ -9,6 +9,7 @@
 //! statistic is the change of largest magnitude over those loads, with its error (the
 //! two systems' realizations are independent surfaces).
 
+use crate::experiments::keys::{DetailKey, Tag};
 use serde::{Deserialize, Serialize};
 
 use super::ladder::{solve_ladder, AreaJob, AreaResult};
@@ -106,8 +107,8 @@ impl SizeJob {
 }
 
 /// The key of the change at Hurst exponent `hurst`.
-pub fn key(hurst: f64) -> String {
-    format!("size_kappa_change_H{hurst}")
+pub fn key(hurst: f64) -> DetailKey {
+    DetailKey::new("size_kappa_change").at(Tag::Hurst, hurst)
 }
 
 /// `kappa` at load `k` over the ladders: the mean of `a_r / p~0` over realizations.

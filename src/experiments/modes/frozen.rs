@@ -2,6 +2,7 @@
 //! statistics are in [`super::stats`]; here the findings (details, checks, golden
 //! values) and the account.
 
+use crate::experiments::keys::{DetailKey, Tag};
 use std::collections::BTreeMap;
 
 use super::figures::{asymptote_figure, asymptote_table, curve_figures, curve_table};
@@ -25,13 +26,17 @@ fn paper_k(criteria: &Criteria) -> Option<(f64, f64)> {
 }
 
 /// The key of the change of `E_norm` after resolution at load `load`, target `zeta_t`.
-fn change_key(load: f64, zeta_t: f64) -> String {
-    format!("change_ar{load}_zt{zeta_t}")
+fn change_key(load: f64, zeta_t: f64) -> DetailKey {
+    DetailKey::new("change")
+        .at(Tag::ContactArea, load)
+        .at(Tag::ZetaT, zeta_t)
 }
 
 /// The key of the asymptote of `E_norm` at load `load`, target `zeta_t`.
-fn asymptote_key(load: f64, zeta_t: f64) -> String {
-    format!("asymptote_ar{load}_zt{zeta_t}")
+fn asymptote_key(load: f64, zeta_t: f64) -> DetailKey {
+    DetailKey::new("asymptote")
+        .at(Tag::ContactArea, load)
+        .at(Tag::ZetaT, zeta_t)
 }
 
 /// The keys of the other details ([`Experiment::keys`]).
@@ -202,7 +207,7 @@ impl Experiment for ModeFrozen {
         let mut golden = BTreeMap::new();
         for a in &s.after {
             let key = change_key(a.load, scene.targets[a.target]);
-            golden.insert(key, round_sig(a.change.value, 2));
+            golden.insert(key.to_string(), round_sig(a.change.value, 2));
         }
         golden.insert("change_headline".into(), round_sig(s.headline().value, 2));
         if let Some(d) = s.long_minus_short {
@@ -503,25 +508,25 @@ mod tests {
         let (k, b, onset) = ((0.9, 1.0), 0.8, 0.05);
         let results = synthetic(&scene, k, b, onset);
         let c = ModeFrozen::conclude(&criteria, &scene, &results).unwrap();
-        let value = |key: &str| c.detail(key).unwrap().value.value;
+        let value = |key: DetailKey| c.detail(key).unwrap().value.value;
         // Every band holds `onset` before resolution.
         for &a in &scene.contact_areas {
-            assert!((value(&onset_key(a)) - onset).abs() < 1e-12);
+            assert!((value(onset_key(a)) - onset).abs() < 1e-12);
         }
         // The largest |change| at the highest load, among its change details.
         let highest = scene.contact_areas.iter().copied().fold(0.0, f64::max);
         let changes: Vec<f64> = scene
             .targets
             .iter()
-            .map(|zt| value(&format!("change_ar{highest}_zt{zt}")))
+            .map(|zt| value(change_key(highest, *zt)))
             .collect();
         let max = changes
             .iter()
             .copied()
             .fold(0.0, |m: f64, x| if x.abs() > m.abs() { x } else { m });
-        assert_eq!(value("change_full_contact_max"), max);
+        assert_eq!(value("change_full_contact_max".into()), max);
         // At the end of the sweep every target holds K1 exp(-K2 x) + b / zeta_end.
-        assert!(value("e_end_long_minus_short_cd").abs() < 1e-12);
+        assert!(value("e_end_long_minus_short_cd".into()).abs() < 1e-12);
         // Against 1/zeta the fall-off is E + b / zeta: the chord in zeta lies above it.
         let steps = scene.steps();
         let zt = scene.targets[0];

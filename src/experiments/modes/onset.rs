@@ -1,6 +1,7 @@
 //! Assumption (d): a mode holds energy only once its roughness is resolved. Statistics,
 //! then findings (details, checks, golden values), then the account.
 
+use crate::experiments::keys::{DetailKey, Tag};
 use std::collections::BTreeMap;
 
 use super::figures::{curve_figures, curve_table};
@@ -128,8 +129,8 @@ impl OnsetStats {
 }
 
 /// The key of the onset detail of load `load` on the band of target `zeta_t`.
-fn onset_at_key(load: f64, zeta_t: f64) -> String {
-    format!("onset_ar{load}_zt{zeta_t}")
+fn onset_at_key(load: f64, zeta_t: f64) -> DetailKey {
+    super::stats::onset_key(load).at(Tag::ZetaT, zeta_t)
 }
 
 /// The key of the detail of where the bands peak.
@@ -252,7 +253,7 @@ impl Experiment for ModeOnset {
             BTreeMap::from([("onset_headline".to_string(), round_sig(s.headline.value, 2))]);
         for o in &s.onsets {
             let key = onset_at_key(o.load, scene.targets[o.target]);
-            golden_values.insert(key, golden(o.e_norm.value));
+            golden_values.insert(key.to_string(), golden(o.e_norm.value));
         }
         golden_values
     }
@@ -374,7 +375,7 @@ mod tests {
         assert!((m.value - 0.25).abs() < 1e-12, "{m:?}");
         // Equal onset at every load: no guards, and every onset detail reads the same.
         assert!(c.guards.is_empty());
-        for d in c.details.iter().filter(|d| d.key.starts_with("onset_ar")) {
+        for d in c.details.iter().filter(|d| d.key.stem() == "onset") {
             assert!((d.value.value - 0.25).abs() < 1e-12, "{d:?}");
         }
     }

@@ -9,6 +9,7 @@ use super::{ModeResult, ModeScene};
 use crate::engine::tolerance::ZETA_SLACK;
 use crate::experiments::climb::step_of;
 use crate::experiments::ensemble::{group, load_range, LoadGroup};
+use crate::experiments::keys::{DetailKey, Tag};
 use crate::stats::{pearson, round_sig, Estimate, LineFit};
 
 /// One realization's onset: the mean over targets of `E_norm` at `onset_ratio zeta_t`.
@@ -362,8 +363,8 @@ fn long_minus_short(scene: &ModeScene, load: &Load) -> Option<Estimate> {
 
 /// The key of the onset detail of load `load` (the mean over targets of `E_norm` at
 /// `onset_ratio zeta_t`).
-pub fn onset_key(load: f64) -> String {
-    format!("onset_ar{load}")
+pub fn onset_key(load: f64) -> DetailKey {
+    DetailKey::new("onset").at(Tag::ContactArea, load)
 }
 
 /// The loads of the paper's fig. elastic_energy_H08 panels c and d (contact area at full

@@ -56,6 +56,7 @@ pub mod stats;
 pub mod tolerance;
 pub mod variants;
 
+use crate::experiments::keys::{DetailKey, Tag};
 use std::collections::{BTreeMap, BTreeSet};
 
 use serde::{Deserialize, Serialize};
@@ -286,18 +287,18 @@ impl ReentryScene {
 type Run<'a> = super::Run<'a, Reentry>;
 
 /// The key of the share out of contact at the first shell only, at load `a_r`.
-pub fn out_at_first_key(contact_area: f64) -> String {
-    format!("out_at_first_ar{contact_area}")
+pub fn out_at_first_key(contact_area: f64) -> DetailKey {
+    DetailKey::new("out_at_first").at(Tag::ContactArea, contact_area)
 }
 
 /// The key of the re-entry share at load `contact_area`.
-fn share_key(contact_area: f64) -> String {
-    format!("share_ar{contact_area}")
+fn share_key(contact_area: f64) -> DetailKey {
+    DetailKey::new("share").at(Tag::ContactArea, contact_area)
 }
 
 /// The key of the share that left after `zeta = 1` and came back, at load `contact_area`.
-fn after_first_key(contact_area: f64) -> String {
-    format!("share_after_first_ar{contact_area}")
+fn after_first_key(contact_area: f64) -> DetailKey {
+    DetailKey::new("share_after_first").at(Tag::ContactArea, contact_area)
 }
 
 /// The keys of the details of one history ([`Experiment::keys`]): its shells, and the flux

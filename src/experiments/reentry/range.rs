@@ -13,6 +13,7 @@ use super::stats::ReentryStats;
 use super::tolerance::ToleranceGrid;
 use super::variants::Variant;
 use super::{ReentryJob, ReentryOutput, ReentryScene};
+use crate::experiments::keys::{DetailKey, Tag};
 use crate::stats::Estimate;
 
 /// The share over the headline's range against a smaller one at the same `eps_c`.
@@ -26,8 +27,8 @@ pub struct RangeGain {
 }
 
 /// The key of the gain at load `load`.
-pub fn gain_key(load: f64) -> String {
-    format!("range_gain_ar{load}")
+pub fn gain_key(load: f64) -> DetailKey {
+    DetailKey::new("range_gain").at(Tag::ContactArea, load)
 }
 
 /// The tolerance study's grid of a smaller range at the headline's `lambda_s` and

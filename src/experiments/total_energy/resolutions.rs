@@ -14,6 +14,7 @@
 //! from the headline grid's is the difference of two means over independent realizations
 //! (different grids draw different surfaces), with the combined standard error.
 
+use crate::experiments::keys::{DetailKey, Tag};
 use serde::{Deserialize, Serialize};
 
 use super::{EnergyResult, EnergyScene};
@@ -229,15 +230,15 @@ pub fn stats(
 
 /// The keys of a resolution's details at load `a`: its `S~` and the shift from the
 /// headline grid's.
-fn s_tilde_key(name: &str, a: f64) -> String {
-    format!("{name}_s_tilde_ar{a}")
+fn s_tilde_key(name: &str, a: f64) -> DetailKey {
+    DetailKey::new(format!("{name}_s_tilde")).at(Tag::ContactArea, a)
 }
-fn shift_key(name: &str, a: f64) -> String {
-    format!("{name}_s_tilde_shift_ar{a}")
+fn shift_key(name: &str, a: f64) -> DetailKey {
+    DetailKey::new(format!("{name}_s_tilde_shift")).at(Tag::ContactArea, a)
 }
 
 /// The keys of every detail [`details`] can write for `resolutions`.
-pub fn detail_keys(resolutions: &[Resolution]) -> Vec<String> {
+pub fn detail_keys(resolutions: &[Resolution]) -> Vec<DetailKey> {
     resolutions
         .iter()
         .flat_map(|r| {

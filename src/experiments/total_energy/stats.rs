@@ -4,6 +4,7 @@
 //! Ensemble ratios are ratios of sums over realizations, load by load
 //! ([`crate::experiments::ensemble::LoadGroup::ratio`]).
 
+use crate::experiments::keys::{DetailKey, Tag};
 use std::collections::BTreeMap;
 
 use super::resolutions::ResolutionStats;
@@ -246,30 +247,34 @@ pub struct EnergyStats {
 
 /// The keys of a load's details: both theories' ratios at full resolution, the corrected
 /// one's at the lowest magnification, and `S~` over window `w`.
-fn original_key(a: f64) -> String {
-    format!("original_ar{a}")
+fn original_key(a: f64) -> DetailKey {
+    DetailKey::new("original").at(Tag::ContactArea, a)
 }
-fn corrected_key(a: f64) -> String {
-    format!("corrected_ar{a}")
+fn corrected_key(a: f64) -> DetailKey {
+    DetailKey::new("corrected").at(Tag::ContactArea, a)
 }
-fn corrected_start_key(a: f64) -> String {
-    format!("corrected_start_ar{a}")
+fn corrected_start_key(a: f64) -> DetailKey {
+    DetailKey::new("corrected_start").at(Tag::ContactArea, a)
 }
-fn s_tilde_key(a: f64, w: usize) -> String {
-    format!("s_tilde_ar{a}_window{w}")
+fn s_tilde_key(a: f64, w: usize) -> DetailKey {
+    DetailKey::new("s_tilde")
+        .at(Tag::ContactArea, a)
+        .at(Tag::Window, w as f64)
 }
 
 /// The key of the corrected ratio at the load nearest `p~0 = 0.1` at the lowest
 /// magnification, and at the step nearest each of [`NEAR_P01_ZETAS`] ([`near_p01_key`]).
 const NEAR_P01_START: &str = "corrected_start_p0.1";
 const NEAR_P01_ZETAS: [f64; 2] = [2.0, 4.0];
-fn near_p01_key(zeta: f64) -> String {
-    format!("corrected_p0.1_zeta{zeta}")
+fn near_p01_key(zeta: f64) -> DetailKey {
+    DetailKey::new("corrected")
+        .at(Tag::Pressure, 0.1)
+        .at(Tag::Zeta, zeta)
 }
 /// E_exa / E_c of a load at the step nearest zeta = 2 and 4 (the caption's "low
 /// magnification" beyond zeta = 1).
-fn corrected_at_key(a: f64, zeta: f64) -> String {
-    format!("corrected_ar{a}_zeta{zeta}")
+fn corrected_at_key(a: f64, zeta: f64) -> DetailKey {
+    corrected_key(a).at(Tag::Zeta, zeta)
 }
 
 /// The step of `zetas` nearest `z` (on a log scale).
@@ -303,16 +308,16 @@ const OTHER_DETAILS: [&str; 8] = [
 ];
 
 /// The keys of every detail [`details`] can write for `scene` (the resolutions' apart).
-pub fn detail_keys(scene: &EnergyScene) -> Vec<String> {
+pub fn detail_keys(scene: &EnergyScene) -> Vec<DetailKey> {
     let mut keys = Vec::new();
     for &a in &scene.contact_areas {
         keys.extend([original_key(a), corrected_key(a), corrected_start_key(a)]);
         keys.extend((0..scene.increments_at.len()).map(|w| s_tilde_key(a, w)));
         keys.extend(NEAR_P01_ZETAS.map(|z| corrected_at_key(a, z)));
     }
-    keys.push(NEAR_P01_START.to_string());
+    keys.push(NEAR_P01_START.into());
     keys.extend(NEAR_P01_ZETAS.map(near_p01_key));
-    keys.extend(OTHER_DETAILS.map(String::from));
+    keys.extend(OTHER_DETAILS.map(DetailKey::from));
     keys
 }
 

@@ -21,6 +21,7 @@ use serde::Serialize;
 
 use crate::experiments::study::Cell;
 use crate::stats::Estimate;
+use crate::validation::measures::Measure;
 use crate::validation::Outcome;
 #[cfg(doc)]
 use crate::validation::{ClaimOutcome, ClaimResult};
@@ -104,11 +105,11 @@ pub fn statistics(outcome: &Outcome) -> Vec<Statistic> {
         Measured::new(outcome.value, outcome.std_error),
     )];
     for d in &outcome.details {
-        let key = match d.grid {
-            Some(grid) => format!("detail:{}@{grid}", d.key),
-            None => format!("detail:{}", d.key),
+        let key = Measure::Detail {
+            key: d.key.clone(),
+            grid: d.grid,
         };
-        out.push((key, d.value.into()));
+        out.push((key.to_string(), d.value.into()));
     }
     for c in &outcome.cross_checks {
         out.push((

@@ -4,6 +4,7 @@
 
 use super::{Variant, VariantJob, VariantResult};
 use crate::experiments::contact_change::unpack_categories;
+use crate::experiments::keys::{DetailKey, Tag};
 use crate::experiments::reentry::shells::{self, ShellStats};
 use crate::experiments::reentry::stats::Share;
 use crate::experiments::study::{with_settings, Cell, Study};
@@ -213,8 +214,8 @@ pub fn raster(v: &VariantStats) -> Option<Raster> {
 /// headline's, and for a variant that starts later, the contact area at its start, the
 /// share of it that remained, and the re-entered over the always-in-contact.
 /// The key of statistic `stat` of variant `name` at load `a`.
-pub fn key(name: &str, stat: &str, a: f64) -> String {
-    format!("{name}_{stat}_ar{a}")
+pub fn key(name: &str, stat: &str, a: f64) -> DetailKey {
+    DetailKey::new(format!("{name}_{stat}")).at(Tag::ContactArea, a)
 }
 const SHARE: &str = "share";
 const SHIFT: &str = "share_shift";
@@ -244,7 +245,7 @@ impl Headline<'_> {
 
 /// The keys of the details a variant can have ([`details`]), beside `headline`, with a grid
 /// of the same cutoffs on another number of points or without.
-pub fn detail_keys(variant: &Variant, headline: Headline, same_cutoffs: bool) -> Vec<String> {
+pub fn detail_keys(variant: &Variant, headline: Headline, same_cutoffs: bool) -> Vec<DetailKey> {
     let name = &variant.name;
     let mut keys = Vec::new();
     for &a in &variant.contact_areas {
@@ -388,11 +389,11 @@ mod tests {
             assert!(!headline.compares(&other, 0.14), "{other:?}");
         }
         let keys = detail_keys(&v, headline, true);
-        assert!(keys.contains(&"h03_share_shift_ar0.14".to_string()));
-        assert!(!keys.contains(&"h03_share_shift_ar0.88".to_string()));
-        assert!(keys.contains(&"h03_size_shift_ar0.88".to_string()));
+        assert!(keys.contains(&"h03_share_shift_ar0.14".into()));
+        assert!(!keys.contains(&"h03_share_shift_ar0.88".into()));
+        assert!(keys.contains(&"h03_size_shift_ar0.88".into()));
         assert!(!detail_keys(&v, headline, false)
             .iter()
-            .any(|k| k.contains("size_shift")));
+            .any(|k| k.stem().contains("size_shift")));
     }
 }
