@@ -10,6 +10,7 @@ use std::path::PathBuf;
 use serde::de::DeserializeOwned;
 use serde::Serialize;
 
+use super::declared::DetailTable;
 use super::findings::{Conclusion, Criteria, Detail, Guard, Table};
 use super::keys::Keys;
 use super::study::Study;
@@ -179,17 +180,37 @@ pub trait Experiment {
     /// The headline statistic and Persson's prediction of it.
     fn headline(stats: &Self::Stats) -> (Estimate, f64);
 
-    /// The measures a run of `scene` gives the claims ([`Keys`]): the key of every detail
-    /// and every study (with its columns) that [`Experiment::details`] and
-    /// [`Experiment::studies`] can write for it, built by the same functions. A claim that
-    /// names another is refused when its definition loads.
-    fn keys(_scene: &Self::Scene) -> Keys {
-        Keys::default()
+    /// The secondary statistics a run of `scene` can have, declared once
+    /// ([`DetailTable`]): each detail's key, label, Persson's and the paper's values, and
+    /// how its value is read from the statistics. What a run writes
+    /// ([`Experiment::details`]) and what a claim may name ([`Experiment::keys`]) both
+    /// derive from it. `criteria` gives the paper's values (the default where only the
+    /// keys are wanted).
+    fn detail_table<'s>(
+        _scene: &'s Self::Scene,
+        _criteria: &'s Criteria,
+    ) -> DetailTable<'s, Self::Stats> {
+        DetailTable::default()
     }
 
-    /// Secondary statistics, with stable keys (declared by [`Experiment::keys`]).
-    fn details(_run: &Run<Self>, _stats: &Self::Stats) -> Vec<Detail> {
-        Vec::new()
+    /// The studies a run of `scene` can have, with their columns, as [`Experiment::studies`]
+    /// writes them.
+    fn declare_studies(_scene: &Self::Scene, _keys: &mut Keys) {}
+
+    /// The measures a run of `scene` gives the claims ([`Keys`]): the rows of
+    /// [`Experiment::detail_table`] and the studies of [`Experiment::declare_studies`]. A
+    /// claim that names another is refused when its definition loads.
+    fn keys(scene: &Self::Scene) -> Keys {
+        let criteria = Criteria::default();
+        let mut keys = Self::detail_table(scene, &criteria).keys();
+        Self::declare_studies(scene, &mut keys);
+        keys
+    }
+
+    /// Secondary statistics: the rows of [`Experiment::detail_table`] the run has values
+    /// for.
+    fn details(run: &Run<Self>, stats: &Self::Stats) -> Vec<Detail> {
+        Self::detail_table(run.scene, run.criteria).details(stats)
     }
 
     /// Implementation guards (a conservation law, a counting identity): shown, never part

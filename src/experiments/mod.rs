@@ -45,6 +45,7 @@
 
 pub mod climb;
 pub mod contact_area;
+pub mod declared;
 pub use crate::engine::contact_change;
 pub mod ensemble;
 pub mod flux;

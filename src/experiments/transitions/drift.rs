@@ -10,11 +10,12 @@ use super::stats::{
 };
 use super::{others, own, TransitionResult, TransitionScene};
 use crate::error::Result;
-use crate::experiments::{Detail, Experiment, Keys, Table};
+use crate::experiments::declared::DetailTable;
+use crate::experiments::{Criteria, Experiment, Table};
 use crate::plot::{Figure, Series, Style};
 use crate::stats::{round_sig, Estimate};
 
-/// The keys of the details ([`Experiment::keys`]).
+/// The keys of the details ([`Experiment::detail_table`]).
 const MU_LOW: &str = "mu_low";
 const MU_HIGH: &str = "mu_high";
 const MU_LOWEST_BIN: &str = "mu_lowest_bin";
@@ -22,15 +23,6 @@ const A_R_RELATIVE_CHANGE: &str = "a_r_relative_change";
 const LOST_OVER_PERSSON: &str = "lost_over_persson";
 const SHARE_WALKERS_NEGATIVE_DRIFT: &str = "share_walkers_negative_drift";
 const LOST_LOWEST_MINUS_HIGH: &str = "lost_lowest_minus_high";
-const DETAILS: [&str; 7] = [
-    MU_LOW,
-    MU_HIGH,
-    MU_LOWEST_BIN,
-    A_R_RELATIVE_CHANGE,
-    LOST_OVER_PERSSON,
-    SHARE_WALKERS_NEGATIVE_DRIFT,
-    LOST_LOWEST_MINUS_HIGH,
-];
 
 /// The other scene's headline (with an other scene).
 const OTHER_MU_C: &str = "other_scene_mu_c";
@@ -59,6 +51,8 @@ pub struct DriftStats {
     /// Share of the lowest analysed bin's walkers that left contact, less the share of
     /// those at high pressure that did.
     pub lost_lowest_minus_high: Estimate,
+    /// `a_r(zeta + dzeta) / a_r(zeta) - 1` over the realizations.
+    pub a_r_relative_change: Estimate,
     /// The other scene's `mu_c` (none without an other scene).
     pub other_mu_c: Option<Estimate>,
 }
@@ -104,6 +98,7 @@ impl DriftStats {
             lost_lowest_minus_high: mean_where(results, |r| {
                 lost_lowest_minus_high(scene, r, scene.high_pressure)
             }),
+            a_r_relative_change: relative_area_change(results),
             other_mu_c: None,
         }
     }
@@ -127,91 +122,72 @@ impl Experiment for Drift {
         (s.mu_c, 0.0)
     }
 
-    fn keys(scene: &TransitionScene) -> Keys {
-        let mut keys = Keys::default();
-        keys.details(DETAILS);
-        if scene.other_scene.is_some() {
-            keys.detail(OTHER_MU_C);
-        }
-        keys
-    }
-
-    /// The drift by region (Persson: 0 everywhere).
-    fn details(run: &Run, s: &DriftStats) -> Vec<Detail> {
-        let scene = run.scene;
-        [
-            (
-                MU_LOW,
-                format!("mu_n at p < {} p0/a_r", scene.low_pressure),
-                s.low,
-            ),
-            (
-                MU_HIGH,
-                format!("mu_n at p >= {} p0/a_r", scene.high_pressure),
-                s.high,
-            ),
-            (
-                MU_LOWEST_BIN,
-                "mu_n in the lowest analysed bin".to_string(),
-                s.lowest,
-            ),
-        ]
-        .into_iter()
-        .map(|(key, name, e)| Detail::new(key, name, e).persson(0.0))
-        .chain(std::iter::once(Detail::new(
+    /// The drift by region (Persson: 0 everywhere), the change of `a_r` over the step, the
+    /// walkers lost against Persson's mirror Gaussian, and the other scene's `mu_c`.
+    fn detail_table<'s>(
+        scene: &'s TransitionScene,
+        _criteria: &'s Criteria,
+    ) -> DetailTable<'s, DriftStats> {
+        let mut t = DetailTable::default();
+        let low = format!("mu_n at p < {} p0/a_r", scene.low_pressure);
+        t.always(MU_LOW, low, |s: &DriftStats| s.low).persson(0.0);
+        let high = format!("mu_n at p >= {} p0/a_r", scene.high_pressure);
+        t.always(MU_HIGH, high, |s: &DriftStats| s.high)
+            .persson(0.0);
+        t.always(
+            MU_LOWEST_BIN,
+            "mu_n in the lowest analysed bin",
+            |s: &DriftStats| s.lowest,
+        )
+        .persson(0.0);
+        t.always(
             A_R_RELATIVE_CHANGE,
             format!(
                 "relative change of a_r over the step, zeta {} -> {}",
                 scene.zeta,
                 scene.zeta + scene.dzeta
             ),
-            relative_area_change(&own(run.results)),
-        )))
-        .chain([
-            Detail::new(
-                LOST_OVER_PERSSON,
-                "walkers that left contact over the step over the number Persson's \
-                 drift-free mirror Gaussian with D_P absorbs at p = 0",
-                s.lost_over_persson,
-            )
-            .persson(1.0),
-            Detail::new(
-                SHARE_WALKERS_NEGATIVE_DRIFT,
-                format!(
-                    "share of the walkers below {MEAN_CONTACT_PRESSURE} p0/a_r in bins of \
-                     negative drift"
-                ),
-                s.share_negative_drift,
-            ),
-            Detail::new(
-                LOST_LOWEST_MINUS_HIGH,
-                format!(
-                    "share of the walkers of the lowest analysed bin that left contact over \
-                     the step, less that of the walkers at p >= {} p0/a_r",
-                    scene.high_pressure
-                ),
-                s.lost_lowest_minus_high,
-            ),
-        ])
-        .chain(
-            s.other_mu_c
-                .zip(scene.other_scene.as_ref())
-                .map(|(mu, other)| {
-                    Detail::new(
-                        OTHER_MU_C,
-                        format!(
-                            "mu_c in the other scene: H = {}, a_r = {} at zeta {} -> {}",
-                            other.hurst,
-                            other.contact_area,
-                            other.zeta,
-                            other.zeta + other.dzeta
-                        ),
-                        mu,
-                    )
-                    .persson(0.0)
-                }),
+            |s: &DriftStats| s.a_r_relative_change,
+        );
+        t.always(
+            LOST_OVER_PERSSON,
+            "walkers that left contact over the step over the number Persson's \
+             drift-free mirror Gaussian with D_P absorbs at p = 0",
+            |s: &DriftStats| s.lost_over_persson,
         )
-        .collect()
+        .persson(1.0);
+        t.always(
+            SHARE_WALKERS_NEGATIVE_DRIFT,
+            format!(
+                "share of the walkers below {MEAN_CONTACT_PRESSURE} p0/a_r in bins of \
+                 negative drift"
+            ),
+            |s: &DriftStats| s.share_negative_drift,
+        );
+        t.always(
+            LOST_LOWEST_MINUS_HIGH,
+            format!(
+                "share of the walkers of the lowest analysed bin that left contact over \
+                 the step, less that of the walkers at p >= {} p0/a_r",
+                scene.high_pressure
+            ),
+            |s: &DriftStats| s.lost_lowest_minus_high,
+        );
+        if let Some(other) = &scene.other_scene {
+            t.row(
+                OTHER_MU_C,
+                format!(
+                    "mu_c in the other scene: H = {}, a_r = {} at zeta {} -> {}",
+                    other.hurst,
+                    other.contact_area,
+                    other.zeta,
+                    other.zeta + other.dzeta
+                ),
+                |s: &DriftStats| s.other_mu_c,
+            )
+            .persson(0.0);
+        }
+        t
     }
 
     fn golden(_run: &Run, s: &DriftStats) -> BTreeMap<String, f64> {
