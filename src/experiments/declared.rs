@@ -4,20 +4,27 @@
 //! ([`crate::experiments::Experiment::details`]) and what a claim may name
 //! ([`crate::experiments::Keys`]) derive from the one table, so they cannot drift apart: a
 //! row whose statistic a run lacks (a part of the scene left out, a fit that needs more
-//! points) is declared and not written.
+//! points) is declared and not written. A row whose label (or Persson's value) holds a
+//! measured number reads it from the statistics with its value
+//! ([`DetailTable::row_labelled`], [`Declared::persson_from`]); its key stays the scene's.
 
 use super::findings::Detail;
 use super::keys::{DetailKey, Keys};
 use crate::stats::Estimate;
 
-/// How a row reads its value from the statistics `S` (`None`: the run has none).
-type Read<'s, S> = Box<dyn Fn(&S) -> Option<Estimate> + 's>;
+/// How a row reads its value from the statistics `S`, with its label where that holds a
+/// measured number (`None`: the run has no value).
+type Read<'s, S> = Box<dyn Fn(&S) -> Option<(Option<String>, Estimate)> + 's>;
+
+/// How a row reads Persson's value from the statistics `S` (`None`: it has none).
+type ReadPersson<'s, S> = Box<dyn Fn(&S) -> Option<f64> + 's>;
 
 /// One declared detail: everything but the value, and how the value is read.
 struct Row<'s, S> {
     key: DetailKey,
+    /// The label (of a row labelled by its reading, the one read instead).
     name: String,
-    persson: Option<f64>,
+    persson: ReadPersson<'s, S>,
     paper: Option<f64>,
     grid: Option<usize>,
     read: Read<'s, S>,
@@ -37,10 +44,17 @@ impl<S> Default for DetailTable<'_, S> {
 /// The row just declared, to give it Persson's or the paper's value or a grid.
 pub struct Declared<'t, 's, S>(&'t mut Row<'s, S>);
 
-impl<S> Declared<'_, '_, S> {
+impl<'s, S> Declared<'_, 's, S> {
     /// With Persson's value.
     pub fn persson(self, v: f64) -> Self {
-        self.0.persson = Some(v);
+        self.0.persson = Box::new(move |_: &S| Some(v));
+        self
+    }
+
+    /// With Persson's value read from the statistics, where it depends on a measured
+    /// number (as a correction factor of the measured contact area); `None`: none.
+    pub fn persson_from(self, read: impl Fn(&S) -> Option<f64> + 's) -> Self {
+        self.0.persson = Box::new(read);
         self
     }
 
@@ -66,16 +80,19 @@ impl<'s, S> DetailTable<'s, S> {
         name: impl Into<String>,
         read: impl Fn(&S) -> Option<Estimate> + 's,
     ) -> Declared<'_, 's, S> {
-        self.rows.push(Row {
-            key: key.into(),
-            name: name.into(),
-            persson: None,
-            paper: None,
-            grid: None,
-            read: Box::new(read),
-        });
-        let last = self.rows.len() - 1;
-        Declared(&mut self.rows[last])
+        let read = move |s: &S| read(s).map(|v| (None, v));
+        self.push(key.into(), name.into(), Box::new(read))
+    }
+
+    /// Declares the detail `key` whose label holds a measured number: `read` takes the
+    /// label with the value from the statistics (`None` where a run has none).
+    pub fn row_labelled(
+        &mut self,
+        key: impl Into<DetailKey>,
+        read: impl Fn(&S) -> Option<(String, Estimate)> + 's,
+    ) -> Declared<'_, 's, S> {
+        let read = move |s: &S| read(s).map(|(name, v)| (Some(name), v));
+        self.push(key.into(), String::new(), Box::new(read))
     }
 
     /// Declares the detail `key` that every run has: `read` always gives a value.
@@ -86,6 +103,20 @@ impl<'s, S> DetailTable<'s, S> {
         read: impl Fn(&S) -> Estimate + 's,
     ) -> Declared<'_, 's, S> {
         self.row(key, name, move |s| Some(read(s)))
+    }
+
+    /// Adds the row `key` labelled `name` (unless `read` gives the label) and returns it.
+    fn push(&mut self, key: DetailKey, name: String, read: Read<'s, S>) -> Declared<'_, 's, S> {
+        self.rows.push(Row {
+            key,
+            name,
+            persson: Box::new(|_: &S| None),
+            paper: None,
+            grid: None,
+            read,
+        });
+        let last = self.rows.len() - 1;
+        Declared(&mut self.rows[last])
     }
 
     /// The declared keys, each with its grid, added to `keys`.
@@ -111,9 +142,10 @@ impl<'s, S> DetailTable<'s, S> {
         self.rows
             .iter()
             .filter_map(|r| {
-                let value = (r.read)(stats)?;
-                let mut d = Detail::new(r.key.clone(), r.name.clone(), value).paper(r.paper);
-                d.persson = r.persson;
+                let (name, value) = (r.read)(stats)?;
+                let name = name.unwrap_or_else(|| r.name.clone());
+                let mut d = Detail::new(r.key.clone(), name, value).paper(r.paper);
+                d.persson = (r.persson)(stats);
                 d.grid = r.grid;
                 Some(d)
             })
@@ -163,5 +195,29 @@ mod tests {
         let without = Stats { fit: None, ..with };
         assert_eq!(t.details(&without).len(), 1);
         assert_eq!(t.keys().detail_names().len(), 2);
+    }
+
+    #[test]
+    fn a_labelled_row_reads_its_label_and_persson_from_the_statistics() {
+        let mut t = DetailTable::default();
+        t.row_labelled("fit", |s: &Stats| {
+            let fit = s.fit?;
+            Some((format!("fit, measured low {}", s.low.value), fit))
+        })
+        .persson_from(|s: &Stats| Some(2.0 * s.low.value))
+        .paper(Some(3.0));
+        assert_eq!(t.keys().detail_names(), ["fit"]);
+        let with = Stats {
+            low: Estimate::new(0.5, 0.1),
+            fit: Some(Estimate::new(2.0, 0.0)),
+        };
+        let d = t.details(&with);
+        assert_eq!(d.len(), 1);
+        assert_eq!(d[0].name, "fit, measured low 0.5");
+        assert_eq!((d[0].persson, d[0].paper), (Some(1.0), Some(3.0)));
+        assert_eq!(d[0].value.value, 2.0);
+        // No value: declared, not written.
+        let without = Stats { fit: None, ..with };
+        assert!(t.details(&without).is_empty());
     }
 }

@@ -14,14 +14,16 @@
 use crate::experiments::keys::{DetailKey, Tag};
 use serde::{Deserialize, Serialize};
 
+use super::stats::AreaStats;
 use super::AreaScene;
 use crate::engine::contact::Model;
 use crate::engine::solver::SolveOptions;
 use crate::engine::surface::{Surface, SurfaceModel};
 use crate::engine::sweep::Sweep;
 use crate::error::{check_positive, Error, Result};
+use crate::experiments::declared::DetailTable;
 use crate::experiments::scene::check_increasing;
-use crate::experiments::{Detail, JobContext, Work};
+use crate::experiments::{JobContext, Work};
 use crate::stats::{Estimate, LineFit};
 
 /// The mean gap study, as a scene states it (`[full.gap]`).
@@ -173,21 +175,29 @@ pub fn slope_changes(plan: &GapPlan, results: &[(&GapJob, &GapResult)]) -> Vec<(
         .collect()
 }
 
-/// The slope change at one Hurst exponent as a detail.
-pub fn detail(plan: &GapPlan, hurst: f64, change: Estimate) -> Detail {
+/// Declares the slope change at each of the plan's Hurst exponents as a detail (written
+/// where a realization gave one).
+pub fn declare(t: &mut DetailTable<'_, AreaStats>, plan: &GapPlan) {
     let p = &plan.reduced_pressures;
     let half = p.len().div_ceil(2);
-    Detail::new(
-        key(hurst),
-        format!(
-            "d(mean gap)/d ln p~0 over p~0 = {:?} over that over p~0 = {:?}, minus 1, H = \
-             {hurst} (per realization, then over realizations; Persson's logarithmic law: 0)",
-            &p[..half],
-            &p[half..]
-        ),
-        change,
-    )
-    .persson(0.0)
+    for &hurst in &plan.hursts {
+        t.row(
+            key(hurst),
+            format!(
+                "d(mean gap)/d ln p~0 over p~0 = {:?} over that over p~0 = {:?}, minus 1, H = \
+                 {hurst} (per realization, then over realizations; Persson's logarithmic law: 0)",
+                &p[..half],
+                &p[half..]
+            ),
+            move |s: &AreaStats| {
+                s.gap_slope_changes
+                    .iter()
+                    .find(|&&(h, _)| h == hurst)
+                    .map(|&(_, change)| change)
+            },
+        )
+        .persson(0.0);
+    }
 }
 
 #[cfg(test)]

@@ -64,8 +64,9 @@ pub use self::ladder::{AreaJob, AreaResult, FinerGrid};
 use self::scaling::{ScalingJob, ScalingResult};
 pub use self::scene::{AreaScene, ContactAreaJob, ContactAreaOutput};
 use self::stats::{AreaStats, NEAR_FULL_CONTACT};
+use super::declared::DetailTable;
 use super::study::Study;
-use super::{Detail, Experiment, Keys, Table};
+use super::{Criteria, Experiment, Keys, Table};
 use crate::error::Result;
 use crate::plot::Figure;
 use crate::stats::{realizations, round_sig, Estimate};
@@ -83,8 +84,8 @@ fn hurst_key(hurst: f64) -> DetailKey {
     DetailKey::new("kappa").at(Tag::Hurst, hurst)
 }
 
-/// The keys of the other details ([`Experiment::keys`]): the slope on each grid (one key,
-/// measured on several grids), and the law's deviations and shape.
+/// The keys of the other details ([`Experiment::detail_table`]): the slope on each grid
+/// (one key, measured on several grids), and the law's deviations and shape.
 const KAPPA_ON_GRID: &str = "kappa_on_grid";
 const LAW_DEVIATION: &str = "law_deviation";
 const COMPLEMENT_DEVIATION: &str = "complement_deviation";
@@ -93,15 +94,6 @@ const C2_FIT: &str = "c2_fit";
 const C1_FIT: &str = "c1_fit";
 const CORRECTION_EXPONENT: &str = "correction_exponent";
 const KAPPA_PARTIAL_MEAN: &str = "kappa_partial_mean";
-const LAW_DETAILS: [&str; 7] = [
-    LAW_DEVIATION,
-    COMPLEMENT_DEVIATION,
-    KAPPA_SPREAD_H,
-    C2_FIT,
-    C1_FIT,
-    CORRECTION_EXPONENT,
-    KAPPA_PARTIAL_MEAN,
-];
 
 type Run<'a> = super::Run<'a, ContactArea>;
 
@@ -171,65 +163,51 @@ impl Experiment for ContactArea {
         (s.kappa, persson_kappa())
     }
 
-    fn keys(scene: &AreaScene) -> Keys {
-        let mut keys = Keys::default();
+    /// The slope on every grid and at every Hurst exponent, the law's deviation and shape,
+    /// and the solvers' scaling, the mean gap and the system size where the scene plans
+    /// them.
+    fn detail_table<'s>(
+        scene: &'s AreaScene,
+        criteria: &'s Criteria,
+    ) -> DetailTable<'s, AreaStats> {
+        let mut t = DetailTable::default();
+        let label = grid_label(scene);
         for &refine in &scene.refinements {
-            keys.on_grid(KAPPA_ON_GRID, scene.n * refine);
-        }
-        keys.details(scene.hursts.iter().map(|&h| hurst_key(h)));
-        keys.details(LAW_DETAILS);
-        if scene.scaling.is_some() {
-            keys.details([scaling::EXPONENT]);
-        }
-        if let Some(plan) = &scene.gap {
-            keys.details(plan.hursts.iter().map(|&h| gap::key(h)));
-        }
-        if let Some(plan) = &scene.system_size {
-            keys.details(plan.hursts.iter().map(|&h| system_size::key(h)));
-        }
-        study::keys(scene, &mut keys);
-        keys
-    }
-
-    /// The slope on every grid and at every Hurst exponent, and the law's deviation.
-    fn details(run: &Run, s: &AreaStats) -> Vec<Detail> {
-        let (criteria, scene, label) = (run.criteria, run.scene, grid_label(run.scene));
-        let kappa = |key: DetailKey, name: String, value| {
-            Detail::new(key, name, value)
-                .persson(persson_kappa())
-                .paper(criteria.paper_value)
-        };
-        let mut details: Vec<Detail> = s
-            .on_grid
-            .iter()
-            .map(|&(refine, k)| {
-                kappa(
-                    KAPPA_ON_GRID.into(),
-                    format!(
-                        "kappa on the {0}x{0} grid (lambda_s = {1} grid spacings)",
-                        scene.n * refine,
-                        scene.lambda_s * refine as f64
-                    ),
-                    k,
-                )
-                .on_grid(scene.n * refine)
-            })
-            .collect();
-        details.extend(s.hursts.iter().map(|h| {
-            kappa(
-                hurst_key(h.hurst),
-                format!("kappa, H = {} ({label})", h.hurst),
-                h.kappa,
+            let n = scene.n * refine;
+            t.row(
+                KAPPA_ON_GRID,
+                format!(
+                    "kappa on the {n}x{n} grid (lambda_s = {} grid spacings)",
+                    scene.lambda_s * refine as f64
+                ),
+                move |s: &AreaStats| {
+                    s.on_grid
+                        .iter()
+                        .find(|&&(r, _)| r == refine)
+                        .map(|&(_, k)| k)
+                },
             )
-        }));
-        details.push(Detail::new(
+            .persson(persson_kappa())
+            .paper(criteria.paper_value)
+            .on_grid(n);
+        }
+        for &h in &scene.hursts {
+            t.row(
+                hurst_key(h),
+                format!("kappa, H = {h} ({label})"),
+                move |s: &AreaStats| s.hursts.iter().find(|x| x.hurst == h).map(|x| x.kappa),
+            )
+            .persson(persson_kappa())
+            .paper(criteria.paper_value);
+        }
+        t.always(
             LAW_DEVIATION,
             format!(
                 "largest relative deviation from eq. (contactArea), |a_r - law| / a_r ({label})"
             ),
-            s.law.estimate(),
-        ));
-        details.push(Detail::new(
+            |s: &AreaStats| s.law.estimate(),
+        );
+        t.always(
             COMPLEMENT_DEVIATION,
             format!(
                 "largest relative deviation of 1 - a_r from eq. (contactArea)'s, a_r in [{}, {}] \
@@ -237,27 +215,25 @@ impl Experiment for ContactArea {
                 NEAR_FULL_CONTACT.max(scene.law_range.0),
                 scene.law_range.1
             ),
-            s.complement.estimate(),
-        ));
-        details.extend(shape_details(scene, s));
-        if let (Some(plan), Some(k)) = (&scene.scaling, s.iteration_exponent) {
-            details.push(scaling::detail(plan, k));
+            |s: &AreaStats| s.complement.estimate(),
+        );
+        shape_rows(&mut t, scene);
+        if let Some(plan) = &scene.scaling {
+            scaling::declare(&mut t, plan);
         }
         if let Some(plan) = &scene.gap {
-            details.extend(
-                s.gap_slope_changes
-                    .iter()
-                    .map(|&(h, change)| gap::detail(plan, h, change)),
-            );
+            gap::declare(&mut t, plan);
         }
         if let Some(plan) = &scene.system_size {
-            details.extend(
-                s.size_changes
-                    .iter()
-                    .map(|&(h, change)| system_size::detail(plan, scene, h, change)),
-            );
+            system_size::declare(&mut t, plan, scene);
         }
-        details
+        t
+    }
+
+    /// The studies: the readings and the fall always, the order of the grid error with a
+    /// finer grid.
+    fn declare_studies(scene: &AreaScene, keys: &mut Keys) {
+        study::keys(scene, keys);
     }
 
     /// The golden values: the slopes and the law's deviation.
@@ -317,57 +293,61 @@ impl Experiment for ContactArea {
     }
 }
 
-/// The details of the law's shape: the spread over `H`, `c1` and `c2`, the order of the
-/// leading correction, the mean slope over partial contact.
-fn shape_details(scene: &AreaScene, s: &AreaStats) -> Vec<Detail> {
-    let (shape, label) = (&s.shape, grid_label(scene));
+/// The details of the law's shape: the spread over `H` (its label names the load and the
+/// Hurst exponents measured apart the most), `c1` and `c2`, the order of the leading
+/// correction, the mean slope over partial contact.
+fn shape_rows(t: &mut DetailTable<'_, AreaStats>, scene: &AreaScene) {
+    let label = grid_label(scene);
     let law = crate::persson::ContactAreaLaw::PAPER;
-    let (p, hi, lo) = shape.spread.at;
     let [p0, p1, p2] = stats::CORRECTION_LOADS;
     let top = scene.reduced_pressures[scene.reduced_pressures.len() - 1];
-    vec![
-        Detail::new(
-            KAPPA_SPREAD_H,
-            format!(
-                "largest spread over H of a_r / p~0 at one load, every a_r in [{}, {}] \
-                 (p~0 = {p}: H = {hi} against H = {lo}; {label})",
-                scene.law_range.0, scene.law_range.1
-            ),
-            shape.spread.spread,
-        )
-        .persson(0.0),
-        Detail::new(
-            C2_FIT,
-            format!(
-                "c2 of eq. (contactArea) with c1 = {} for a_r pooled over H at p~0 = {top} \
-                 ({label})",
-                law.c1
-            ),
-            shape.c2,
-        )
-        .persson(1.0)
-        .paper(Some(law.c2)),
-        Detail::new(C1_FIT, format!("c1 = kappa / 2 ({label})"), shape.c1).paper(Some(law.c1)),
-        Detail::new(
-            CORRECTION_EXPONENT,
-            format!(
-                "exponent m of kappa(0) - kappa(p~0) ~ p~0^m from p~0 = {p0}, {p1}, {p2}, \
-                 kappa pooled over H (jackknife over realizations; {label})"
-            ),
-            shape.correction,
-        )
-        .paper(Some(2.0)),
-        Detail::new(
-            KAPPA_PARTIAL_MEAN,
-            format!(
-                "mean a_r / p~0 over H and the loads with a_r in [{}, {}] ({label})",
-                stats::PARTIAL_RANGE.0,
-                stats::PARTIAL_RANGE.1
-            ),
-            shape.partial_kappa,
-        )
-        .paper(Some(2.0)),
-    ]
+    let range = scene.law_range;
+    t.row_labelled(KAPPA_SPREAD_H, move |s: &AreaStats| {
+        let (p, hi, lo) = s.shape.spread.at;
+        let name = format!(
+            "largest spread over H of a_r / p~0 at one load, every a_r in [{}, {}] \
+             (p~0 = {p}: H = {hi} against H = {lo}; {label})",
+            range.0, range.1
+        );
+        Some((name, s.shape.spread.spread))
+    })
+    .persson(0.0);
+    t.always(
+        C2_FIT,
+        format!(
+            "c2 of eq. (contactArea) with c1 = {} for a_r pooled over H at p~0 = {top} \
+             ({label})",
+            law.c1
+        ),
+        |s: &AreaStats| s.shape.c2,
+    )
+    .persson(1.0)
+    .paper(Some(law.c2));
+    t.always(
+        C1_FIT,
+        format!("c1 = kappa / 2 ({label})"),
+        |s: &AreaStats| s.shape.c1,
+    )
+    .paper(Some(law.c1));
+    t.always(
+        CORRECTION_EXPONENT,
+        format!(
+            "exponent m of kappa(0) - kappa(p~0) ~ p~0^m from p~0 = {p0}, {p1}, {p2}, \
+             kappa pooled over H (jackknife over realizations; {label})"
+        ),
+        |s: &AreaStats| s.shape.correction,
+    )
+    .paper(Some(2.0));
+    t.always(
+        KAPPA_PARTIAL_MEAN,
+        format!(
+            "mean a_r / p~0 over H and the loads with a_r in [{}, {}] ({label})",
+            stats::PARTIAL_RANGE.0,
+            stats::PARTIAL_RANGE.1
+        ),
+        |s: &AreaStats| s.shape.partial_kappa,
+    )
+    .paper(Some(2.0));
 }
 
 /// How the headline statistics treat the grid.

@@ -13,13 +13,15 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::stats::AreaStats;
 use crate::engine::contact::Model;
 use crate::engine::solver::SolveOptions;
 use crate::engine::surface::{Surface, SurfaceModel};
 use crate::engine::sweep::Sweep;
 use crate::error::{check_open, check_positive, Error, Result};
+use crate::experiments::declared::DetailTable;
 use crate::experiments::scene::check_increasing;
-use crate::experiments::{Detail, JobContext, Work};
+use crate::experiments::{JobContext, Work};
 use crate::stats::{Estimate, LineFit};
 
 /// The key of the fitted exponent.
@@ -179,17 +181,17 @@ pub fn exponent(results: &[(&ScalingJob, &ScalingResult)]) -> Option<Estimate> {
     (!slopes.is_empty()).then(|| Estimate::mean_of(&slopes))
 }
 
-/// The exponent as a detail, naming the grids.
-pub fn detail(plan: &ScalingPlan, k: Estimate) -> Detail {
-    Detail::new(
+/// Declares the exponent as a detail, naming the grids (written where it was fitted).
+pub fn declare(t: &mut DetailTable<'_, AreaStats>, plan: &ScalingPlan) {
+    t.row(
         EXPONENT,
         format!(
             "exponent k of solver iterations ~ N^k, cold start to tol {:e}, N = {:?} \
              (lambda_l = N/2, lambda_s = {}, H = {}, p~0 = {})",
             plan.tol, plan.ns, plan.lambda_s, plan.hurst, plan.reduced_pressure
         ),
-        k,
-    )
+        |s: &AreaStats| s.iteration_exponent,
+    );
 }
 
 #[cfg(test)]

@@ -13,10 +13,12 @@ use crate::experiments::keys::{DetailKey, Tag};
 use serde::{Deserialize, Serialize};
 
 use super::ladder::{solve_ladder, AreaJob, AreaResult};
+use super::stats::AreaStats;
 use super::AreaScene;
 use crate::engine::surface::SurfaceModel;
 use crate::error::{check_positive, Error, Result};
-use crate::experiments::{Detail, JobContext, Work};
+use crate::experiments::declared::DetailTable;
+use crate::experiments::{JobContext, Work};
 use crate::stats::Estimate;
 
 /// The study as a scene states it (`[full.system_size]`).
@@ -146,25 +148,38 @@ pub fn largest_change(
         .max_by(|a, b| a.value.abs().total_cmp(&b.value.abs()))
 }
 
-/// The change at one Hurst exponent as a detail.
-pub fn detail(plan: &SizePlan, scene: &AreaScene, hurst: f64, change: Estimate) -> Detail {
-    Detail::new(
-        key(hurst),
-        format!(
-            "kappa(p~0) = a_r / p~0 on {0}x{0} over kappa(p~0) on {1}x{1} minus 1, both with \
+/// Declares the change at each of the plan's Hurst exponents as a detail (written where
+/// both systems have ladders).
+pub fn declare(t: &mut DetailTable<'_, AreaStats>, plan: &SizePlan, scene: &AreaScene) {
+    for &hurst in &plan.hursts {
+        t.row(
+            key(hurst),
+            label(plan, scene, hurst),
+            move |s: &AreaStats| {
+                s.size_changes
+                    .iter()
+                    .find(|&&(h, _)| h == hurst)
+                    .map(|&(_, change)| change)
+            },
+        )
+        .persson(0.0);
+    }
+}
+
+/// The label of the change at Hurst exponent `hurst`.
+fn label(plan: &SizePlan, scene: &AreaScene, hurst: f64) -> String {
+    format!(
+        "kappa(p~0) = a_r / p~0 on {0}x{0} over kappa(p~0) on {1}x{1} minus 1, both with \
              lambda_l = {2} and lambda_s = {3} (L / lambda_l = {4} against {5}), the largest \
              in magnitude over p~0 >= {6}, H = {hurst}",
-            scene.n * plan.factor,
-            scene.n,
-            scene.lambda_l,
-            scene.lambda_s,
-            (scene.n * plan.factor) as f64 / scene.lambda_l,
-            scene.n as f64 / scene.lambda_l,
-            plan.from_load
-        ),
-        change,
+        scene.n * plan.factor,
+        scene.n,
+        scene.lambda_l,
+        scene.lambda_s,
+        (scene.n * plan.factor) as f64 / scene.lambda_l,
+        scene.n as f64 / scene.lambda_l,
+        plan.from_load
     )
-    .persson(0.0)
 }
 
 /// The scene's own ladders at Hurst exponent `hurst` on its first grid.

@@ -6,13 +6,15 @@ use crate::experiments::keys::{DetailKey, Tag};
 use std::collections::BTreeMap;
 
 use super::figures::{asymptote_figure, asymptote_table, curve_figures, curve_table};
-use super::stats::{onset_key, FrozenStats, MODE_WINDOW, PANEL_LOADS};
+use super::stats::{onset_key, AfterResolution, FrozenStats, MODE_WINDOW, PANEL_LOADS};
 use super::{reference_sweeps, sweeps, ModeScene};
 use crate::engine::tolerance::ZETA_SLACK;
 use crate::error::{Error, Result};
-use crate::experiments::ensemble::by_load;
+use crate::experiments::climb::step_of;
+use crate::experiments::declared::DetailTable;
+use crate::experiments::ensemble::{by_load, load_range};
 use crate::experiments::study::{Cell, Study};
-use crate::experiments::{Criteria, Detail, Experiment, Jobs, Keys, Table};
+use crate::experiments::{Criteria, Experiment, Jobs, Keys, Table};
 use crate::plot::Figure;
 use crate::stats::{round_sig, Estimate};
 
@@ -39,7 +41,7 @@ fn asymptote_key(load: f64, zeta_t: f64) -> DetailKey {
         .at(Tag::ZetaT, zeta_t)
 }
 
-/// The keys of the other details ([`Experiment::keys`]).
+/// The keys of the other details ([`Experiment::detail_table`]).
 const ASYMPTOTE_LONG_MINUS_SHORT: &str = "asymptote_long_minus_short";
 const K1: &str = "k1";
 const K2: &str = "k2";
@@ -48,20 +50,9 @@ const E_END_LONG_MINUS_SHORT_CD: &str = "e_end_long_minus_short_cd";
 const PEAK_SHORT_PARTIAL: &str = "peak_short_partial";
 const FALLOFF_MID_CHORD_ZETA: &str = "falloff_mid_chord_zeta";
 const R2_X_MINUS_R2_AR: &str = "r2_x_minus_r2_ar";
-const OTHER_DETAILS: [&str; 8] = [
-    ASYMPTOTE_LONG_MINUS_SHORT,
-    K1,
-    K2,
-    CHANGE_FULL_CONTACT_MAX,
-    E_END_LONG_MINUS_SHORT_CD,
-    PEAK_SHORT_PARTIAL,
-    FALLOFF_MID_CHORD_ZETA,
-    R2_X_MINUS_R2_AR,
-];
 /// The details of a scene with a reference surface.
 const K1_MINUS_REFERENCE: &str = "k1_minus_reference";
 const K2_MINUS_REFERENCE: &str = "k2_minus_reference";
-const REFERENCE_DETAILS: [&str; 2] = [K1_MINUS_REFERENCE, K2_MINUS_REFERENCE];
 
 /// The study of the asymptote law's readings: its key and columns, `(key, label)`.
 const ASYMPTOTE_LAW: &str = "asymptote_law";
@@ -116,88 +107,56 @@ impl Experiment for ModeFrozen {
         (s.headline(), 0.0)
     }
 
-    fn keys(scene: &ModeScene) -> Keys {
-        let mut keys = Keys::default();
+    /// The change and the asymptote of every load and target (the asymptote's label names
+    /// the measured `x`, and Persson's value is the correction factor of the measured
+    /// contact area), the long-minus-short difference of the asymptotes, the fitted law,
+    /// the sweeps' shape, the law against the reference surface's and the onset of every
+    /// load.
+    fn detail_table<'s>(
+        scene: &'s ModeScene,
+        _criteria: &'s Criteria,
+    ) -> DetailTable<'s, FrozenStats> {
+        let mut t = DetailTable::default();
+        after_rows(&mut t, scene);
+        let last = scene.targets.len() - 1;
+        let (lowest, _) = load_range(&scene.contact_areas);
+        t.row(
+            ASYMPTOTE_LONG_MINUS_SHORT,
+            format!(
+                "asymptote of zeta_t = {} minus that of zeta_t = {} at a_r = {lowest} \
+                 (paper: negative, long wavelengths lose more)",
+                scene.targets[0], scene.targets[last]
+            ),
+            |s: &FrozenStats| s.long_minus_short,
+        )
+        .persson(0.0);
+        t.row(K1, k_label("K1"), |s: &FrozenStats| s.k().map(|k| k.0));
+        t.row(K2, k_label("K2"), |s: &FrozenStats| s.k().map(|k| k.1));
+        sweep_rows(&mut t, scene);
+        asymptote_rows(&mut t, scene);
         for &load in &scene.contact_areas {
-            for &zt in &scene.targets {
-                keys.details([change_key(load, zt), asymptote_key(load, zt)]);
-            }
-            keys.detail(onset_key(load));
+            t.row(
+                onset_key(load),
+                format!(
+                    "E_norm at zeta = {} zeta_t, mean over targets, then over realizations, \
+                     a_r = {load} at full resolution",
+                    scene.onset_ratio
+                ),
+                move |s: &FrozenStats| {
+                    s.onsets
+                        .iter()
+                        .find(|&&(l, _)| l == load)
+                        .map(|&(_, onset)| onset)
+                },
+            )
+            .persson(0.0);
         }
-        keys.details(OTHER_DETAILS);
-        if scene.reference.is_some() {
-            keys.details(REFERENCE_DETAILS);
-        }
-        keys.study(ASYMPTOTE_LAW, LAW_COLUMNS);
-        keys
+        t
     }
 
-    /// The change and the asymptote of every load and target, the long-minus-short
-    /// difference of the asymptotes, and the fitted law.
-    fn details(run: &Run, s: &FrozenStats) -> Vec<Detail> {
-        let scene = run.scene;
-        let steps = scene.steps();
-        let end = steps.len() - 1;
-        let mut details = Vec::new();
-        for a in &s.after {
-            let zt = scene.targets[a.target];
-            details.push(
-                Detail::new(
-                    change_key(a.load, zt),
-                    format!(
-                        "change of E_norm from zeta = {:.3} to {:.3} (zeta_t = {zt}, a_r = {} at \
-                         full resolution)",
-                        steps[a.from], steps[end], a.load
-                    ),
-                    a.change,
-                )
-                .persson(0.0),
-            );
-            details.push(
-                Detail::new(
-                    asymptote_key(a.load, zt),
-                    format!(
-                        "asymptote of E_norm, zeta -> infinity (zeta_t = {zt}, a_r = {}), at \
-                         x = -dln a_r/dln zeta = {}",
-                        a.load,
-                        a.x.text(1.0, 3, "")
-                    ),
-                    a.asymptote,
-                )
-                .persson(a.s),
-            );
-        }
-        if let Some(d) = s.long_minus_short {
-            let last = scene.targets.len() - 1;
-            details.push(
-                Detail::new(
-                    ASYMPTOTE_LONG_MINUS_SHORT,
-                    format!(
-                        "asymptote of zeta_t = {} minus that of zeta_t = {} at a_r = {} \
-                         (paper: negative, long wavelengths lose more)",
-                        scene.targets[0], scene.targets[last], s.lowest
-                    ),
-                    d,
-                )
-                .persson(0.0),
-            );
-        }
-        if let Some((k1, k2)) = s.k() {
-            details.push(Detail::new(
-                K1,
-                "K1 of the asymptote law K1 exp(-K2 x), x over the frozen window (the \
-                 claims read x at the mode's own magnification: study asymptote_law, row mode)",
-                k1,
-            ));
-            details.push(Detail::new(
-                K2,
-                "K2 of the asymptote law K1 exp(-K2 x), x over the frozen window (the \
-                 claims read x at the mode's own magnification: study asymptote_law, row mode)",
-                k2,
-            ));
-        }
-        details.extend(new_details(scene, s));
-        details
+    /// The readings of the asymptote law.
+    fn declare_studies(_scene: &ModeScene, keys: &mut Keys) {
+        keys.study(ASYMPTOTE_LAW, LAW_COLUMNS);
     }
 
     /// The golden values: every change, the headline, the long-minus-short difference and the
@@ -354,132 +313,129 @@ impl Experiment for ModeFrozen {
     }
 }
 
-/// The statistics read by the paper's claims beyond the changes and asymptotes: the
-/// largest change near full contact, the end-of-sweep long-minus-short difference of panels
-/// c and d, the peak of the shortest target, the curvature of the fall-off and the onset
-/// of every load.
-fn new_details(scene: &ModeScene, s: &FrozenStats) -> Vec<Detail> {
-    let mut details = sweep_details(scene, s);
-    details.extend(asymptote_details(scene, s));
-    for &(load, onset) in &s.onsets {
-        details.push(
-            Detail::new(
-                onset_key(load),
+/// The label of the fitted law's constant `name` (`K1` or `K2`).
+fn k_label(name: &str) -> String {
+    format!(
+        "{name} of the asymptote law K1 exp(-K2 x), x over the frozen window (the claims \
+         read x at the mode's own magnification: study asymptote_law, row mode)"
+    )
+}
+
+/// Target `t` at load `load`, if the run has it.
+fn after(s: &FrozenStats, load: f64, t: usize) -> Option<&AfterResolution> {
+    s.after.iter().find(|a| a.load == load && a.target == t)
+}
+
+/// The change of `E_norm` after resolution and its asymptote, of every load and target:
+/// the asymptote's label names the measured `x`, Persson's value is the correction factor
+/// `S` of the measured contact area at `zeta_t`.
+fn after_rows(t: &mut DetailTable<'_, FrozenStats>, scene: &ModeScene) {
+    let steps = scene.steps();
+    let end = steps.len() - 1;
+    for &load in &scene.contact_areas {
+        for (target, &zt) in scene.targets.iter().enumerate() {
+            let from = step_of(&steps, scene.frozen_from * zt);
+            t.row(
+                change_key(load, zt),
                 format!(
-                    "E_norm at zeta = {} zeta_t, mean over targets, then over realizations, \
-                     a_r = {load} at full resolution",
-                    scene.onset_ratio
+                    "change of E_norm from zeta = {:.3} to {:.3} (zeta_t = {zt}, a_r = {load} \
+                     at full resolution)",
+                    steps[from], steps[end]
                 ),
-                onset,
+                move |s: &FrozenStats| after(s, load, target).map(|a| a.change),
             )
-            .persson(0.0),
-        );
+            .persson(0.0);
+            t.row_labelled(asymptote_key(load, zt), move |s: &FrozenStats| {
+                let a = after(s, load, target)?;
+                let name = format!(
+                    "asymptote of E_norm, zeta -> infinity (zeta_t = {zt}, a_r = {load}), at \
+                     x = -dln a_r/dln zeta = {}",
+                    a.x.text(1.0, 3, "")
+                );
+                Some((name, a.asymptote))
+            })
+            .persson_from(move |s: &FrozenStats| after(s, load, target).map(|a| a.s));
+        }
     }
-    details
 }
 
 /// The sweeps' shape: the largest change near full contact, the end-of-sweep
 /// long-minus-short difference of panels c and d, the peak of the shortest target and the
 /// curvature of the fall-off.
-fn sweep_details(scene: &ModeScene, s: &FrozenStats) -> Vec<Detail> {
+fn sweep_rows(t: &mut DetailTable<'_, FrozenStats>, scene: &ModeScene) {
     let last = scene.targets.len() - 1;
-    let mut details = Vec::new();
-    if let Some(c) = s.change_full_contact_max {
-        details.push(
-            Detail::new(
-                CHANGE_FULL_CONTACT_MAX,
-                format!(
-                    "the change of E_norm after resolution of largest magnitude over the \
-                     targets at the highest load, a_r = {}",
-                    s.highest
-                ),
-                c,
-            )
-            .persson(0.0),
-        );
-    }
-    if let Some(d) = s.end_long_minus_short {
-        details.push(
-            Detail::new(
-                E_END_LONG_MINUS_SHORT_CD,
-                format!(
-                    "E_norm at zeta = {} of zeta_t = {} minus that of zeta_t = {}, per \
-                     realization, mean of the loads nearest a_r = {} and {}",
-                    scene.zeta_end,
-                    scene.targets[0],
-                    scene.targets[last],
-                    PANEL_LOADS[0],
-                    PANEL_LOADS[1]
-                ),
-                d,
-            )
-            .persson(0.0),
-        );
-    }
-    if let Some(p) = s.peak_short_partial {
-        details.push(Detail::new(
-            PEAK_SHORT_PARTIAL,
-            format!(
-                "largest ensemble E_norm over the sweep of zeta_t = {}, mean over the loads in \
-                 partial contact at zeta_t (jackknife error)",
-                scene.targets[last]
-            ),
-            p,
-        ));
-    }
-    if let Some(f) = s.falloff_mid_chord {
-        details.push(
-            Detail::new(
-                FALLOFF_MID_CHORD_ZETA,
-                format!(
-                    "E_norm of zeta_t = {} at the middle of zeta = {} zeta_t .. {} minus the \
-                     chord linear in zeta, over realizations and partial-contact loads",
-                    scene.targets[0], scene.frozen_from, scene.zeta_end
-                ),
-                f,
-            )
-            .persson(0.0),
-        );
-    }
-    details
+    let (_, highest) = load_range(&scene.contact_areas);
+    t.row(
+        CHANGE_FULL_CONTACT_MAX,
+        format!(
+            "the change of E_norm after resolution of largest magnitude over the \
+             targets at the highest load, a_r = {highest}"
+        ),
+        |s: &FrozenStats| s.change_full_contact_max,
+    )
+    .persson(0.0);
+    t.row(
+        E_END_LONG_MINUS_SHORT_CD,
+        format!(
+            "E_norm at zeta = {} of zeta_t = {} minus that of zeta_t = {}, per \
+             realization, mean of the loads nearest a_r = {} and {}",
+            scene.zeta_end, scene.targets[0], scene.targets[last], PANEL_LOADS[0], PANEL_LOADS[1]
+        ),
+        |s: &FrozenStats| s.end_long_minus_short,
+    )
+    .persson(0.0);
+    t.row(
+        PEAK_SHORT_PARTIAL,
+        format!(
+            "largest ensemble E_norm over the sweep of zeta_t = {}, mean over the loads in \
+             partial contact at zeta_t (jackknife error)",
+            scene.targets[last]
+        ),
+        |s: &FrozenStats| s.peak_short_partial,
+    );
+    t.row(
+        FALLOFF_MID_CHORD_ZETA,
+        format!(
+            "E_norm of zeta_t = {} at the middle of zeta = {} zeta_t .. {} minus the \
+             chord linear in zeta, over realizations and partial-contact loads",
+            scene.targets[0], scene.frozen_from, scene.zeta_end
+        ),
+        |s: &FrozenStats| s.falloff_mid_chord,
+    )
+    .persson(0.0);
 }
 
 /// The asymptote law: which variable explains `ln E_inf` better, and its coefficients
 /// against the reference surface's.
-fn asymptote_details(scene: &ModeScene, s: &FrozenStats) -> Vec<Detail> {
-    let mut details = Vec::new();
-    if let Some(r) = s.r2_x_minus_r2_ar {
-        details.push(Detail::new(
-            R2_X_MINUS_R2_AR,
-            "over the partial-contact points of the asymptote law (x at the mode's own \
-             magnification): r^2 of ln E_inf with x minus r^2 of ln E_inf with ln a_r(zeta_t), \
-             the shares of its variance a line in each explains (jackknife error over \
-             realizations)",
-            r,
-        ));
+fn asymptote_rows(t: &mut DetailTable<'_, FrozenStats>, scene: &ModeScene) {
+    t.row(
+        R2_X_MINUS_R2_AR,
+        "over the partial-contact points of the asymptote law (x at the mode's own \
+         magnification): r^2 of ln E_inf with x minus r^2 of ln E_inf with ln a_r(zeta_t), \
+         the shares of its variance a line in each explains (jackknife error over \
+         realizations)",
+        |s: &FrozenStats| s.r2_x_minus_r2_ar,
+    );
+    if let Some(reference) = &scene.reference {
+        let label = |name: &str| {
+            format!(
+                "{name} of the asymptote law (x at the mode's own magnification) at \
+                     H = {} minus {name} of the reference surface's law, H = {} ({} \
+                     realizations at a_r = {:?}), fitted on the same grid and sweep; \
+                     errors of independent surfaces combined",
+                scene.hurst,
+                reference.hurst,
+                reference.seeds.len(),
+                reference.contact_areas
+            )
+        };
+        t.row(K1_MINUS_REFERENCE, label("K1"), |s: &FrozenStats| {
+            s.k_mode_minus_reference().map(|d| d.0)
+        });
+        t.row(K2_MINUS_REFERENCE, label("K2"), |s: &FrozenStats| {
+            s.k_mode_minus_reference().map(|d| d.1)
+        });
     }
-    if let (Some((d1, d2)), Some(reference)) = (s.k_mode_minus_reference(), &scene.reference) {
-        for (key, name, d) in [
-            (K1_MINUS_REFERENCE, "K1", d1),
-            (K2_MINUS_REFERENCE, "K2", d2),
-        ] {
-            details.push(Detail::new(
-                key,
-                format!(
-                    "{name} of the asymptote law (x at the mode's own magnification) at \
-                         H = {} minus {name} of the reference surface's law, H = {} ({} \
-                         realizations at a_r = {:?}), fitted on the same grid and sweep; \
-                         errors of independent surfaces combined",
-                    scene.hurst,
-                    reference.hurst,
-                    reference.seeds.len(),
-                    reference.contact_areas
-                ),
-                d,
-            ));
-        }
-    }
-    details
 }
 
 #[cfg(test)]

@@ -9,8 +9,9 @@ use super::stats::{golden, mean_onset, Load, ModeEnsemble, PARTIAL};
 use super::{narrow_sweeps, sweeps, ModeScene};
 use crate::error::Result;
 use crate::experiments::climb::step_of;
+use crate::experiments::declared::DetailTable;
 use crate::experiments::ensemble::{by_load, group, load_range};
-use crate::experiments::{Detail, Experiment, Keys, Table};
+use crate::experiments::{Criteria, Experiment, Table};
 use crate::plot::Figure;
 use crate::stats::{round_sig, Estimate};
 
@@ -176,23 +177,34 @@ impl Experiment for ModeOnset {
         (s.headline, 0.0)
     }
 
-    fn keys(scene: &ModeScene) -> Keys {
-        let mut keys = Keys::default();
-        for &load in &scene.contact_areas {
-            keys.details(scene.targets.iter().map(|&zt| onset_at_key(load, zt)));
-        }
-        keys.detail(PEAK_OVER_ZETA_T);
-        if scene.narrow_band.is_some() {
-            keys.details([PEAK_NARROW_BAND, PEAK_BAND_SHIFT]);
-        }
-        keys
-    }
-
-    /// `E_norm` at the onset point of every load and target, and where the bands peak.
-    fn details(run: &Run, s: &OnsetStats) -> Vec<Detail> {
-        let scene = run.scene;
+    /// `E_norm` at the onset point of every load and target (its label names the contact
+    /// area measured there), and where the bands peak, with the narrow bands where the
+    /// scene runs them.
+    fn detail_table<'s>(
+        scene: &'s ModeScene,
+        _criteria: &'s Criteria,
+    ) -> DetailTable<'s, OnsetStats> {
+        let mut t = DetailTable::default();
         let steps = scene.steps();
-        let peak = Detail::new(
+        for &load in &scene.contact_areas {
+            for (target, &zt) in scene.targets.iter().enumerate() {
+                let zeta = steps[step_of(&steps, scene.onset_ratio * zt)];
+                t.row_labelled(onset_at_key(load, zt), move |s: &OnsetStats| {
+                    let o = s
+                        .onsets
+                        .iter()
+                        .find(|o| o.load == load && o.target == target)?;
+                    let name = format!(
+                        "E_norm at zeta = {zeta:.3} (zeta_t = {zt}), a_r = {load} at full \
+                         resolution ({:.3} measured at that zeta)",
+                        o.contact_area.value
+                    );
+                    Some((name, o.e_norm))
+                })
+                .persson(0.0);
+            }
+        }
+        t.always(
             PEAK_OVER_ZETA_T,
             format!(
                 "magnification of a band's largest E_norm over its zeta_t (mean over bands, \
@@ -200,50 +212,31 @@ impl Experiment for ModeOnset {
                  zeta = {})",
                 scene.zeta_end
             ),
-            s.peak,
+            |s: &OnsetStats| s.peak,
         )
         .persson(1.0);
-        s.onsets
-            .iter()
-            .map(|o| {
-                let zt = scene.targets[o.target];
-                Detail::new(
-                    onset_at_key(o.load, zt),
-                    format!(
-                        "E_norm at zeta = {:.3} (zeta_t = {zt}), a_r = {} at full resolution \
-                         ({:.3} measured at that zeta)",
-                        steps[o.step], o.load, o.contact_area.value
-                    ),
-                    o.e_norm,
-                )
-                .persson(0.0)
-            })
-            .chain(std::iter::once(peak))
-            .chain(s.narrow.into_iter().flat_map(|n| {
-                let band = n.band;
-                [
-                    Detail::new(
-                        PEAK_NARROW_BAND,
-                        format!(
-                            "as peak_over_zeta_t with bands of |q/q_t - 1| <= {band} (the same \
-                             realizations and loads, swept again)"
-                        ),
-                        n.peak,
-                    )
-                    .persson(1.0),
-                    Detail::new(
-                        PEAK_BAND_SHIFT,
-                        format!(
-                            "peak_over_zeta_t with bands of +-{} minus with bands of +-{band}, \
-                             band by band (the same solves)",
-                            scene.band
-                        ),
-                        n.shift,
-                    )
-                    .persson(0.0),
-                ]
-            }))
-            .collect()
+        if let Some(band) = scene.narrow_band {
+            t.row(
+                PEAK_NARROW_BAND,
+                format!(
+                    "as peak_over_zeta_t with bands of |q/q_t - 1| <= {band} (the same \
+                     realizations and loads, swept again)"
+                ),
+                |s: &OnsetStats| s.narrow.map(|n| n.peak),
+            )
+            .persson(1.0);
+            t.row(
+                PEAK_BAND_SHIFT,
+                format!(
+                    "peak_over_zeta_t with bands of +-{} minus with bands of +-{band}, \
+                     band by band (the same solves)",
+                    scene.band
+                ),
+                |s: &OnsetStats| s.narrow.map(|n| n.shift),
+            )
+            .persson(0.0);
+        }
+        t
     }
 
     /// The golden values: the headline and every onset.
