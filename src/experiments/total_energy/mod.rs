@@ -48,6 +48,7 @@
 //! * `resolutions.rs`: `S~` on finer grids, size-scaled (the paper's convergence check).
 
 mod figures;
+mod keys;
 pub mod resolutions;
 pub mod stats;
 

@@ -4,7 +4,11 @@
 //! Ensemble ratios are ratios of sums over realizations, load by load
 //! ([`crate::experiments::ensemble::LoadGroup::ratio`]).
 
-use crate::experiments::keys::{DetailKey, Tag};
+use super::keys::{
+    corrected_at_key, corrected_key, corrected_start_key, near_p01_key, original_key, s_tilde_key,
+    NEAR_P01_START, NEAR_P01_ZETAS,
+};
+use crate::experiments::keys::DetailKey;
 use std::collections::BTreeMap;
 
 use super::resolutions::ResolutionStats;
@@ -243,38 +247,6 @@ pub struct EnergyStats {
     pub windows: Vec<Vec<usize>>,
     /// The headline and the lowest load.
     pub headline: Headline,
-}
-
-/// The keys of a load's details: both theories' ratios at full resolution, the corrected
-/// one's at the lowest magnification, and `S~` over window `w`.
-fn original_key(a: f64) -> DetailKey {
-    DetailKey::new("original").at(Tag::ContactArea, a)
-}
-fn corrected_key(a: f64) -> DetailKey {
-    DetailKey::new("corrected").at(Tag::ContactArea, a)
-}
-fn corrected_start_key(a: f64) -> DetailKey {
-    DetailKey::new("corrected_start").at(Tag::ContactArea, a)
-}
-fn s_tilde_key(a: f64, w: usize) -> DetailKey {
-    DetailKey::new("s_tilde")
-        .at(Tag::ContactArea, a)
-        .at(Tag::Window, w as f64)
-}
-
-/// The key of the corrected ratio at the load nearest `p~0 = 0.1` at the lowest
-/// magnification, and at the step nearest each of [`NEAR_P01_ZETAS`] ([`near_p01_key`]).
-const NEAR_P01_START: &str = "corrected_start_p0.1";
-const NEAR_P01_ZETAS: [f64; 2] = [2.0, 4.0];
-fn near_p01_key(zeta: f64) -> DetailKey {
-    DetailKey::new("corrected")
-        .at(Tag::Pressure, 0.1)
-        .at(Tag::Zeta, zeta)
-}
-/// E_exa / E_c of a load at the step nearest zeta = 2 and 4 (the caption's "low
-/// magnification" beyond zeta = 1).
-fn corrected_at_key(a: f64, zeta: f64) -> DetailKey {
-    corrected_key(a).at(Tag::Zeta, zeta)
 }
 
 /// The step of `zetas` nearest `z` (on a log scale).
