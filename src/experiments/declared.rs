@@ -4,20 +4,37 @@
 //! ([`crate::experiments::Experiment::details`]) and what a claim may name
 //! ([`crate::experiments::Keys`]) derive from the one table, so they cannot drift apart: a
 //! row whose statistic a run lacks (a part of the scene left out, a fit that needs more
-//! points) is declared and not written.
+//! points) is declared and not written. A label that quotes a measured number is read
+//! with the value ([`DetailTable::labelled`]), and Persson's value at a measured quantity
+//! from the statistics too ([`Declared::persson_of`]); the key never depends on the run.
 
 use super::findings::Detail;
 use super::keys::{DetailKey, Keys};
 use crate::stats::Estimate;
 
+/// A row's value read from the statistics `S` (`None`: the run has none).
+type ReadValue<'s, S> = Box<dyn Fn(&S) -> Option<Estimate> + 's>;
+
+/// A row's label and value read together from the statistics `S`.
+type ReadLabelled<'s, S> = Box<dyn Fn(&S) -> Option<(String, Estimate)> + 's>;
+
 /// How a row reads its value from the statistics `S` (`None`: the run has none).
-type Read<'s, S> = Box<dyn Fn(&S) -> Option<Estimate> + 's>;
+enum Read<'s, S> {
+    /// The value alone: the label is the row's.
+    Value(ReadValue<'s, S>),
+    /// The label with the value: a label that quotes a measured number.
+    Labelled(ReadLabelled<'s, S>),
+}
+
+/// Persson's value read from the statistics `S`.
+type ReadPersson<'s, S> = Box<dyn Fn(&S) -> f64 + 's>;
 
 /// One declared detail: everything but the value, and how the value is read.
 struct Row<'s, S> {
     key: DetailKey,
     name: String,
     persson: Option<f64>,
+    persson_of: Option<ReadPersson<'s, S>>,
     paper: Option<f64>,
     grid: Option<usize>,
     read: Read<'s, S>,
@@ -37,10 +54,18 @@ impl<S> Default for DetailTable<'_, S> {
 /// The row just declared, to give it Persson's or the paper's value or a grid.
 pub struct Declared<'t, 's, S>(&'t mut Row<'s, S>);
 
-impl<S> Declared<'_, '_, S> {
+impl<'s, S> Declared<'_, 's, S> {
     /// With Persson's value.
     pub fn persson(self, v: f64) -> Self {
         self.0.persson = Some(v);
+        self
+    }
+
+    /// With Persson's value read from the statistics, where it is his prediction at a
+    /// measured quantity (as the correction factor at the theory's contact area at the
+    /// load a run found).
+    pub fn persson_of(self, read: impl Fn(&S) -> f64 + 's) -> Self {
+        self.0.persson_of = Some(Box::new(read));
         self
     }
 
@@ -66,13 +91,29 @@ impl<'s, S> DetailTable<'s, S> {
         name: impl Into<String>,
         read: impl Fn(&S) -> Option<Estimate> + 's,
     ) -> Declared<'_, 's, S> {
+        self.push(key.into(), name.into(), Read::Value(Box::new(read)))
+    }
+
+    /// Declares the detail `key` whose label quotes a measured number: `read` takes the
+    /// label with the value from the statistics (`None` where a run has none).
+    pub fn labelled(
+        &mut self,
+        key: impl Into<DetailKey>,
+        read: impl Fn(&S) -> Option<(String, Estimate)> + 's,
+    ) -> Declared<'_, 's, S> {
+        self.push(key.into(), String::new(), Read::Labelled(Box::new(read)))
+    }
+
+    /// Adds a row with no values of Persson, the paper or a grid yet.
+    fn push(&mut self, key: DetailKey, name: String, read: Read<'s, S>) -> Declared<'_, 's, S> {
         self.rows.push(Row {
-            key: key.into(),
-            name: name.into(),
+            key,
+            name,
             persson: None,
+            persson_of: None,
             paper: None,
             grid: None,
-            read: Box::new(read),
+            read,
         });
         let last = self.rows.len() - 1;
         Declared(&mut self.rows[last])
@@ -111,9 +152,12 @@ impl<'s, S> DetailTable<'s, S> {
         self.rows
             .iter()
             .filter_map(|r| {
-                let value = (r.read)(stats)?;
-                let mut d = Detail::new(r.key.clone(), r.name.clone(), value).paper(r.paper);
-                d.persson = r.persson;
+                let (name, value) = match &r.read {
+                    Read::Value(read) => (r.name.clone(), read(stats)?),
+                    Read::Labelled(read) => read(stats)?,
+                };
+                let mut d = Detail::new(r.key.clone(), name, value).paper(r.paper);
+                d.persson = r.persson_of.as_ref().map_or(r.persson, |p| Some(p(stats)));
                 d.grid = r.grid;
                 Some(d)
             })
@@ -163,5 +207,25 @@ mod tests {
         let without = Stats { fit: None, ..with };
         assert_eq!(t.details(&without).len(), 1);
         assert_eq!(t.keys().detail_names().len(), 2);
+    }
+
+    #[test]
+    fn a_label_quoting_a_measured_number_is_read_with_the_value() {
+        let mut t = DetailTable::default();
+        t.labelled("low", |s: &Stats| {
+            Some((format!("drift at {:.1} measured", s.low.value), s.low))
+        })
+        .persson_of(|s: &Stats| 2.0 * s.low.value);
+        t.labelled("fit", |s: &Stats| Some((String::from("fit"), s.fit?)))
+            .persson(1.0);
+        assert_eq!(t.keys().detail_names(), ["low", "fit"]);
+        let s = Stats {
+            low: Estimate::new(0.5, 0.1),
+            fit: None,
+        };
+        let d = t.details(&s);
+        assert_eq!(d.len(), 1);
+        assert_eq!(d[0].name, "drift at 0.5 measured");
+        assert_eq!((d[0].value, d[0].persson), (s.low, Some(1.0)));
     }
 }
