@@ -68,10 +68,11 @@ use self::range::{range_gains, RangeGain};
 use self::stats::ReentryStats;
 use self::tolerance::{ToleranceJob, TolerancePlan, ToleranceResult};
 use self::variants::{Variant, VariantJob, VariantResult, VariantStats};
+use super::declared::DetailTable;
 use super::ensemble::{by_load, check_contact_areas, seed_load_jobs, SeedLoad};
 use super::scene::{scene, PLANNED};
 use super::study::Study;
-use super::{Detail, Experiment, JobContext, Jobs, Keys, Table, Work};
+use super::{Criteria, Experiment, JobContext, Jobs, Keys, Table, Work};
 use crate::engine::scene::check_zeta;
 use crate::error::{check_positive, Error, Result};
 use crate::plot::Raster;
@@ -301,14 +302,41 @@ fn after_first_key(contact_area: f64) -> DetailKey {
     DetailKey::new("share_after_first").at(Tag::ContactArea, contact_area)
 }
 
-/// The keys of the details of one history ([`Experiment::keys`]): its shells, and the flux
-/// of the interval at the headline load.
+/// The keys of the details of one history ([`Experiment::detail_table`]): its shells, and
+/// the flux of the interval at the headline load.
 const SHELLS: &str = "shells";
 const FLUX_IN: &str = "flux_in";
 const FLUX_OUT: &str = "flux_out";
 const NET_OVER_GROSS: &str = "net_over_gross";
 // The detail of `flux_in_of_noncontact`: the stored key is kept for the committed results.
 const ZERO_BIN_REENTRY: &str = "zero_bin_reentry";
+
+/// Declares the shares at load `a` (Persson: 0): the re-entry share, the share that left
+/// after `zeta = 1` and came back, and the share out of contact at the first shell only.
+fn declare_shares(t: &mut DetailTable<'_, RunStats>, a: f64) {
+    let share = move |s: &RunStats| s.shares.iter().find(|h| h.load == a).copied();
+    t.row(
+        share_key(a),
+        format!("re-entry share at a_r = {a}"),
+        move |s| share(s).map(|h| h.share),
+    )
+    .persson(0.0);
+    t.row(
+        after_first_key(a),
+        format!("share that left after zeta = 1 and came back, a_r = {a}"),
+        move |s| share(s).map(|h| h.after_first),
+    )
+    .persson(0.0);
+    t.row(
+        out_at_first_key(a),
+        format!(
+            "share of the contact at a_r = {a} out of contact at zeta = 1 only (in contact at \
+             every later shell)"
+        ),
+        move |s| share(s).map(|h| h.out_at_first),
+    )
+    .persson(0.0);
+}
 
 /// The statistics of a run, with the headline's histories they came from and the
 /// tolerance study (where the scene plans one).
@@ -378,119 +406,67 @@ impl Experiment for Reentry {
         (s.shares[0].share, 0.0)
     }
 
-    fn keys(scene: &ReentryScene) -> Keys {
-        let mut keys = Keys::default();
+    /// The shares at every load, the shells, the flux of the interval at the headline
+    /// load, the gains over a smaller range and the variants' details.
+    fn detail_table<'s>(
+        scene: &'s ReentryScene,
+        _criteria: &'s Criteria,
+    ) -> DetailTable<'s, RunStats> {
+        let mut t = DetailTable::default();
         for &a in &scene.contact_areas {
-            keys.details([share_key(a), after_first_key(a), out_at_first_key(a)]);
+            declare_shares(&mut t, a);
         }
-        keys.details([SHELLS, FLUX_IN, FLUX_OUT, NET_OVER_GROSS, ZERO_BIN_REENTRY]);
-        if range::smaller_range(scene).is_some() {
-            keys.details(scene.contact_areas.iter().map(|&a| range::gain_key(a)));
-        }
+        t.always(
+            SHELLS,
+            "shells |q|^2 added one at a time from q_l to q_s (wave numbers of a history)",
+            |s: &RunStats| s.shells,
+        );
+        let flux_in = format!(
+            "flux into contact, zeta {} -> {} (fraction of A0)",
+            scene.flux_zeta,
+            scene.flux_zeta + scene.flux_dzeta
+        );
+        t.always(FLUX_IN, flux_in, |s: &RunStats| s.flux_in)
+            .persson(0.0);
+        t.always(
+            FLUX_OUT,
+            "flux out of contact (fraction of A0)",
+            |s: &RunStats| s.flux_out,
+        )
+        .persson(0.0);
+        t.always(
+            NET_OVER_GROSS,
+            "net flux / mean one-way flux",
+            |s: &RunStats| s.net_over_gross,
+        )
+        .persson(0.0);
+        // The detail of `flux_in_of_noncontact`: the stored key is kept for the committed
+        // results.
+        t.always(
+            ZERO_BIN_REENTRY,
+            "share of non-contact entering contact (transition out of p = 0)",
+            |s: &RunStats| s.flux_in_of_noncontact,
+        )
+        .persson(0.0);
+        range::declare(&mut t, scene);
+        let headline = variants::Headline {
+            loads: &scene.contact_areas,
+            zeta_max: scene.base().zeta_max(),
+        };
         for v in &scene.variants {
-            let headline = variants::Headline {
-                loads: &scene.contact_areas,
-                zeta_max: scene.base().zeta_max(),
-            };
-            let same_cutoffs = range::same_cutoffs_grid(scene, v).is_some();
-            keys.details(variants::detail_keys(v, headline, same_cutoffs));
+            let same_cutoffs = range::same_cutoffs_grid(scene, v).map(|g| g.n);
+            variants::declare(&mut t, v, headline, same_cutoffs);
         }
+        t
+    }
+
+    fn declare_studies(scene: &ReentryScene, keys: &mut Keys) {
         if scene.tolerance.is_some() {
             keys.study(tolerance::STUDY, &tolerance::columns());
         }
         if !scene.variants.is_empty() {
             keys.study(variants::STUDY, &variants::columns());
         }
-        keys
-    }
-
-    /// The shares at every load, and the flux of the interval at the headline load.
-    fn details(run: &Run, s: &RunStats) -> Vec<Detail> {
-        let scene = run.scene;
-        let mut details = Vec::new();
-        for share in &s.shares {
-            let target = share.load;
-            details.push(
-                Detail::new(
-                    share_key(target),
-                    format!("re-entry share at a_r = {target}"),
-                    share.share,
-                )
-                .persson(0.0),
-            );
-            details.push(
-                Detail::new(
-                    after_first_key(target),
-                    format!("share that left after zeta = 1 and came back, a_r = {target}"),
-                    share.after_first,
-                )
-                .persson(0.0),
-            );
-            details.push(
-                Detail::new(
-                    out_at_first_key(target),
-                    format!(
-                        "share of the contact at a_r = {target} out of contact at zeta = 1 \
-                         only (in contact at every later shell)"
-                    ),
-                    share.out_at_first,
-                )
-                .persson(0.0),
-            );
-        }
-        details.push(Detail::new(
-            SHELLS,
-            "shells |q|^2 added one at a time from q_l to q_s (wave numbers of a history)",
-            s.shells,
-        ));
-        let flux = [
-            (
-                FLUX_IN,
-                format!(
-                    "flux into contact, zeta {} -> {} (fraction of A0)",
-                    scene.flux_zeta,
-                    scene.flux_zeta + scene.flux_dzeta
-                ),
-                s.flux_in,
-            ),
-            (
-                FLUX_OUT,
-                "flux out of contact (fraction of A0)".to_string(),
-                s.flux_out,
-            ),
-            (
-                NET_OVER_GROSS,
-                "net flux / mean one-way flux".to_string(),
-                s.net_over_gross,
-            ),
-            // The detail of `flux_in_of_noncontact`: the stored key is kept for the
-            // committed results.
-            (
-                ZERO_BIN_REENTRY,
-                "share of non-contact entering contact (transition out of p = 0)".to_string(),
-                s.flux_in_of_noncontact,
-            ),
-        ];
-        details.extend(
-            flux.into_iter()
-                .map(|(key, name, e)| Detail::new(key, name, e).persson(0.0)),
-        );
-        let zeta_max = scene.base().zeta_max();
-        for g in &s.range_gain {
-            details.push(Detail::new(
-                range::gain_key(g.load),
-                format!(
-                    "re-entry share at a_r = {} over zeta 1 -> {zeta_max} minus over 1 -> {} \
-                     (same eps_c, independent realizations)",
-                    g.load, g.zeta_max
-                ),
-                g.gain,
-            ));
-        }
-        for v in &s.variants {
-            details.extend(variants::details(v, &s.shares, zeta_max));
-        }
-        details
     }
 
     /// The golden values: every share (the variants' too, with their shell statistics) and

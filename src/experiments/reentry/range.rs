@@ -12,7 +12,8 @@
 use super::stats::ReentryStats;
 use super::tolerance::ToleranceGrid;
 use super::variants::Variant;
-use super::{ReentryJob, ReentryOutput, ReentryScene};
+use super::{ReentryJob, ReentryOutput, ReentryScene, RunStats};
+use crate::experiments::declared::DetailTable;
 use crate::experiments::keys::{DetailKey, Tag};
 use crate::stats::Estimate;
 
@@ -41,6 +42,25 @@ pub fn smaller_range(scene: &ReentryScene) -> Option<&ToleranceGrid> {
             && g.lambda_l / g.lambda_s < zeta_max
             && plan.tols.contains(&scene.tol)
     })
+}
+
+/// Declares the gain at every headline load where the tolerance study has a grid of a
+/// smaller range ([`smaller_range`]); a load whose grid has no history has none.
+pub fn declare(t: &mut DetailTable<'_, RunStats>, scene: &ReentryScene) {
+    let Some(grid) = smaller_range(scene) else {
+        return;
+    };
+    let (zeta_max, smaller) = (scene.base().zeta_max(), grid.lambda_l / grid.lambda_s);
+    for &a in &scene.contact_areas {
+        t.row(
+            gain_key(a),
+            format!(
+                "re-entry share at a_r = {a} over zeta 1 -> {zeta_max} minus over 1 -> \
+                 {smaller} (same eps_c, independent realizations)"
+            ),
+            move |s: &RunStats| s.range_gain.iter().find(|g| g.load == a).map(|g| g.gain),
+        );
+    }
 }
 
 /// The share gains over the headline's range against the tolerance study's grids of a

@@ -276,48 +276,36 @@ pub const STATISTICS: [&str; 6] = [
 
 impl ShellStats {
     /// Each of [`STATISTICS`] with its description (at load `a` of a variant `what`, in
-    /// words) and its value, in that order.
-    pub fn named(&self, a: f64, what: &str) -> Vec<(&'static str, String, Estimate)> {
+    /// words), in that order.
+    pub fn labels(a: f64, what: &str) -> [(&'static str, String); 6] {
         let per_shell = "changes of contact state per added shell and point of contact";
-        let values = [
-            (
-                format!(
-                    "of the points entering contact, the share leaving again within {SOON} \
-                     shells, minus that of every point in contact"
-                ),
-                self.leave_soon_excess,
+        let texts = [
+            format!(
+                "of the points entering contact, the share leaving again within {SOON} \
+                 shells, minus that of every point in contact"
             ),
-            (
-                format!(
-                    "of the points entering contact, the share leaving again within {SOON} \
-                     shells"
-                ),
-                self.entered_leave_soon,
+            format!(
+                "of the points entering contact, the share leaving again within {SOON} \
+                 shells"
             ),
-            (
-                format!(
-                    "of the points in contact at a shell, the share leaving within {SOON} shells"
-                ),
-                self.contact_leave_soon,
-            ),
-            (
-                format!("{per_shell}, first octave of zeta minus last octave"),
-                self.changes_octave_drop,
-            ),
-            (
-                format!("{per_shell}, first octave of zeta (the first shell excluded)"),
-                self.changes_first_octave,
-            ),
-            (
-                format!("{per_shell}, last octave of zeta"),
-                self.changes_last_octave,
-            ),
+            format!("of the points in contact at a shell, the share leaving within {SOON} shells"),
+            format!("{per_shell}, first octave of zeta minus last octave"),
+            format!("{per_shell}, first octave of zeta (the first shell excluded)"),
+            format!("{per_shell}, last octave of zeta"),
         ];
-        STATISTICS
-            .into_iter()
-            .zip(values)
-            .map(|(stat, (text, e))| (stat, format!("{text}, a_r = {a}, {what}"), e))
-            .collect()
+        std::array::from_fn(|k| (STATISTICS[k], format!("{}, a_r = {a}, {what}", texts[k])))
+    }
+
+    /// The value of each of [`STATISTICS`], in that order.
+    pub fn values(&self) -> [Estimate; 6] {
+        [
+            self.leave_soon_excess,
+            self.entered_leave_soon,
+            self.contact_leave_soon,
+            self.changes_octave_drop,
+            self.changes_first_octave,
+            self.changes_last_octave,
+        ]
     }
 }
 

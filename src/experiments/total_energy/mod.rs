@@ -43,12 +43,13 @@
 //!
 //! * `mod.rs`: the scene, its jobs (the load, then the climb recording every theory's
 //!   energy) and the [`Experiment`] implementation;
-//! * `stats.rs`: the statistics of the sweeps, and the findings as data;
+//! * `stats.rs`: the statistics of the sweeps and the golden values;
+//! * `details.rs`: the details, declared once from the scene, read from the statistics;
 //! * `figures.rs`: the account, the tables and the figures;
 //! * `resolutions.rs`: `S~` on finer grids, size-scaled (the paper's convergence check).
 
+mod details;
 mod figures;
-mod keys;
 pub mod resolutions;
 pub mod stats;
 
@@ -60,10 +61,11 @@ use self::resolutions::{Resolution, ResolutionJob};
 use self::stats::{EnergyStats, Headline, Load};
 
 use super::climb::{check_steps_per_octave, climb, ladder, step_of, Recorder};
+use super::declared::DetailTable;
 use super::ensemble::{by_load, check_headline, load_range, seed_load_jobs, SeedLoad};
 use super::scene::{leaves_out_planned, scene, PLANNED};
 use super::study::Study;
-use super::{Detail, Experiment, JobContext, Jobs, Keys, Table, Work};
+use super::{Criteria, Experiment, JobContext, Jobs, Keys, Table, Work};
 use crate::engine::contact::{ContactSolution, Model};
 use crate::engine::solver::SolverKind;
 use crate::engine::surface::Surface;
@@ -423,21 +425,22 @@ impl Experiment for TotalEnergy {
         (s.headline.head.corrected, 1.0)
     }
 
-    fn keys(scene: &EnergyScene) -> Keys {
-        let mut keys = Keys::default();
-        keys.details(stats::detail_keys(scene));
-        keys.details(resolutions::detail_keys(&scene.resolutions));
+    /// Each load's details, those at the lowest magnifications, the headline's, those
+    /// over the loads ([`details`]), and the finer grids' ([`resolutions`]).
+    fn detail_table<'s>(
+        scene: &'s EnergyScene,
+        _criteria: &'s Criteria,
+    ) -> DetailTable<'s, EnergyStats> {
+        let mut t = DetailTable::default();
+        details::declare(&mut t, scene);
+        resolutions::declare(&mut t, &scene.resolutions);
+        t
+    }
+
+    fn declare_studies(scene: &EnergyScene, keys: &mut Keys) {
         if !scene.resolutions.is_empty() {
             keys.study(resolutions::STUDY, &resolutions::columns());
         }
-        keys
-    }
-
-    fn details(run: &Run, s: &EnergyStats) -> Vec<Detail> {
-        let mut details =
-            stats::details(run.scene, &loads(run, s), &s.zetas, &s.windows, &s.headline);
-        details.extend(resolutions::details(&s.resolutions));
-        details
     }
 
     fn golden(run: &Run, s: &EnergyStats) -> BTreeMap<String, f64> {

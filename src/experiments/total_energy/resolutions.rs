@@ -17,13 +17,14 @@
 use crate::experiments::keys::{DetailKey, Tag};
 use serde::{Deserialize, Serialize};
 
+use super::stats::EnergyStats;
 use super::{EnergyResult, EnergyScene};
 use crate::engine::tolerance::ZETA_SLACK;
 use crate::error::{check_key_name, check_seeds, Error, Result};
+use crate::experiments::declared::DetailTable;
 use crate::experiments::ensemble::{check_contact_areas, SeedLoad};
 use crate::experiments::other_grid::other_grid;
 use crate::experiments::study::{with_settings, Cell, Study};
-use crate::experiments::Detail;
 use crate::stats::Estimate;
 
 other_grid! {
@@ -237,18 +238,6 @@ fn shift_key(name: &str, a: f64) -> DetailKey {
     DetailKey::new(format!("{name}_s_tilde_shift")).at(Tag::ContactArea, a)
 }
 
-/// The keys of every detail [`details`] can write for `resolutions`.
-pub fn detail_keys(resolutions: &[Resolution]) -> Vec<DetailKey> {
-    resolutions
-        .iter()
-        .flat_map(|r| {
-            r.contact_areas
-                .iter()
-                .flat_map(|&a| [s_tilde_key(&r.name, a), shift_key(&r.name, a)])
-        })
-        .collect()
-}
-
 /// The study of the resolutions: its key and columns, `(key, label)`.
 pub const STUDY: &str = "resolutions";
 
@@ -264,35 +253,42 @@ pub fn columns() -> Vec<(&'static str, &'static str)> {
     )
 }
 
-/// The windows' `S~` of each resolution and load, and its shift from the headline grid's.
-pub fn details(stats: &[ResolutionStats]) -> Vec<Detail> {
-    let mut details = Vec::new();
-    for s in stats {
-        let (name, n) = (&s.resolution.name, s.resolution.n);
-        for l in &s.loads {
-            let a = l.contact_area;
-            details.extend([
-                Detail::new(
-                    s_tilde_key(name, a),
-                    format!(
-                        "S~ averaged over the increment windows, a_r = {a}, {n}^2 \
-                         (size-scaled), {} realizations",
-                        l.realizations
-                    ),
-                    l.s_tilde,
+/// The statistics of resolution `name` at load `a`, where it has realizations.
+fn load_of<'a>(s: &'a EnergyStats, name: &str, a: f64) -> Option<&'a ResolutionLoad> {
+    s.resolutions
+        .iter()
+        .find(|r| r.resolution.name == name)?
+        .loads
+        .iter()
+        .find(|l| l.contact_area == a)
+}
+
+/// Declares the windows' `S~` of each resolution and load, and its shift from the
+/// headline grid's; a load without realizations has neither.
+pub fn declare<'s>(t: &mut DetailTable<'s, EnergyStats>, resolutions: &'s [Resolution]) {
+    for r in resolutions {
+        let (name, n) = (r.name.as_str(), r.n);
+        for &a in &r.contact_areas {
+            // The label counts the realizations that ran.
+            t.row_labelled(s_tilde_key(name, a), move |s| {
+                let l = load_of(s, name, a)?;
+                let text = format!(
+                    "S~ averaged over the increment windows, a_r = {a}, {n}^2 \
+                     (size-scaled), {} realizations",
+                    l.realizations
+                );
+                Some((text, l.s_tilde))
+            });
+            t.row(
+                shift_key(name, a),
+                format!(
+                    "S~ averaged over the increment windows, a_r = {a}: {n}^2 minus the \
+                     headline's grid"
                 ),
-                Detail::new(
-                    shift_key(name, a),
-                    format!(
-                        "S~ averaged over the increment windows, a_r = {a}: {n}^2 minus the \
-                         headline's grid"
-                    ),
-                    Estimate::difference(l.s_tilde, l.headline),
-                ),
-            ]);
+                move |s| load_of(s, name, a).map(|l| Estimate::difference(l.s_tilde, l.headline)),
+            );
         }
     }
-    details
 }
 
 /// The table of the resolutions: one row per grid and load.
@@ -401,6 +397,29 @@ mod tests {
         }
     }
 
+    /// Statistics with the resolutions' `stats` and no headline sweeps.
+    fn with_resolutions(stats: Vec<ResolutionStats>) -> EnergyStats {
+        let none = Estimate::new(f64::NAN, f64::NAN);
+        let at = super::super::stats::AtFullResolution {
+            area: none,
+            original: none,
+            corrected: none,
+        };
+        EnergyStats {
+            sweeps: Vec::new(),
+            resolutions: stats,
+            zetas: Vec::new(),
+            windows: Vec::new(),
+            headline: super::super::stats::Headline {
+                head: at,
+                quarter: 0,
+                drift: none,
+                low: at,
+                low_runs: 0,
+            },
+        }
+    }
+
     #[test]
     fn the_shift_is_the_difference_of_the_windows_means() {
         let res = finer();
@@ -416,7 +435,14 @@ mod tests {
         assert_eq!(l.realizations, 2);
         assert!((l.s_tilde.value - 0.85).abs() < 1e-12);
         assert!((l.headline.value - 0.6).abs() < 1e-12);
-        let d = details(&s);
+        let mut t = DetailTable::default();
+        declare(&mut t, std::slice::from_ref(&res));
+        let d = t.details(&with_resolutions(s));
+        assert_eq!(
+            d[0].name,
+            "S~ averaged over the increment windows, a_r = 0.3, 128^2 (size-scaled), 2 \
+             realizations"
+        );
         let shift = d
             .iter()
             .find(|d| d.key == "n128_s_tilde_shift_ar0.3")

@@ -1,20 +1,14 @@
 //! The statistics of the total-energy experiment, as pure functions of the sweeps, and the
-//! findings drawn from them as data (details, checks, golden values).
+//! golden values drawn from them (the details are declared in `details.rs`).
 //!
 //! Ensemble ratios are ratios of sums over realizations, load by load
 //! ([`crate::experiments::ensemble::LoadGroup::ratio`]).
 
-use super::keys::{
-    corrected_at_key, corrected_key, corrected_start_key, near_p01_key, original_key, s_tilde_key,
-    NEAR_P01_START, NEAR_P01_ZETAS,
-};
-use crate::experiments::keys::DetailKey;
 use std::collections::BTreeMap;
 
 use super::resolutions::ResolutionStats;
-use super::{EnergyResult, EnergyScene};
-use crate::experiments::ensemble::{group, LoadGroup, SeedLoad};
-use crate::experiments::Detail;
+use super::EnergyResult;
+use crate::experiments::ensemble::{by_load, group, LoadGroup, SeedLoad};
 use crate::stats::{round_sig, Estimate};
 
 /// The realizations of one load.
@@ -249,307 +243,22 @@ pub struct EnergyStats {
     pub headline: Headline,
 }
 
-/// The step of `zetas` nearest `z` (on a log scale).
-fn nearest_step(zetas: &[f64], z: f64) -> Option<usize> {
-    (0..zetas.len()).min_by(|&a, &b| {
-        (zetas[a] / z)
-            .ln()
-            .abs()
-            .total_cmp(&(zetas[b] / z).ln().abs())
-    })
-}
-
-/// The keys of the headline's and the loads' other details.
-const CORRECTED_HEADLINE_DRIFT: &str = "corrected_headline_drift";
-const IMPROVEMENT_HEADLINE: &str = "improvement_headline";
-const DEVIATION_GROWTH_LOW_LOAD: &str = "deviation_growth_low_load";
-const OVERESTIMATE_HEADLINE: &str = "overestimate_headline";
-const SHORTFALL_HEADLINE: &str = "shortfall_headline";
-const CORRECTED_WORST_HIGH: &str = "corrected_worst_high";
-const NUMERATOR_CV_LOG_RATIO: &str = "numerator_cv_log_ratio";
-const AREA_CORRECTED_DEVIATION: &str = "area_corrected_deviation";
-const OTHER_DETAILS: [&str; 8] = [
-    CORRECTED_HEADLINE_DRIFT,
-    IMPROVEMENT_HEADLINE,
-    DEVIATION_GROWTH_LOW_LOAD,
-    OVERESTIMATE_HEADLINE,
-    SHORTFALL_HEADLINE,
-    CORRECTED_WORST_HIGH,
-    NUMERATOR_CV_LOG_RATIO,
-    AREA_CORRECTED_DEVIATION,
-];
-
-/// The keys of every detail [`details`] can write for `scene` (the resolutions' apart).
-pub fn detail_keys(scene: &EnergyScene) -> Vec<DetailKey> {
-    let mut keys = Vec::new();
-    for &a in &scene.contact_areas {
-        keys.extend([original_key(a), corrected_key(a), corrected_start_key(a)]);
-        keys.extend((0..scene.increments_at.len()).map(|w| s_tilde_key(a, w)));
-        keys.extend(NEAR_P01_ZETAS.map(|z| corrected_at_key(a, z)));
+impl EnergyStats {
+    /// The index of the last step of the sweeps (full resolution).
+    pub fn end(&self) -> usize {
+        self.zetas.len() - 1
     }
-    keys.push(NEAR_P01_START.into());
-    keys.extend(NEAR_P01_ZETAS.map(near_p01_key));
-    keys.extend(OTHER_DETAILS.map(DetailKey::from));
-    keys
-}
 
-/// The details of every load, then the headline's drift with magnification.
-pub fn details(
-    scene: &EnergyScene,
-    loads: &[Load],
-    zetas: &[f64],
-    windows: &[Vec<usize>],
-    h: &Headline,
-) -> Vec<Detail> {
-    let mut details: Vec<Detail> = loads
-        .iter()
-        .flat_map(|load| load_details(scene, load, zetas, windows))
-        .collect();
-    details.extend(low_magnification_details(loads, zetas));
-    details.extend(headline_details(scene, loads, zetas, h));
-    let headline = group(loads, scene.headline_contact_area);
-    details.extend(across_loads_details(loads, zetas.len() - 1, headline, h));
-    details
-}
+    /// The realizations of the loads `contact_areas` among the headline's sweeps, in that
+    /// order.
+    pub fn loads(&self, contact_areas: &[f64]) -> Vec<Load<'_>> {
+        by_load(contact_areas, &self.sweeps)
+    }
 
-/// `E_exa / E_c` at the lowest magnifications: at each load, at the steps nearest the
-/// first octaves; and at the load whose `p~0` is nearest 0.1 (the caption of fig.
-/// E_vs_zeta), at the first step and those octaves.
-fn low_magnification_details(loads: &[Load], zetas: &[f64]) -> Vec<Detail> {
-    let mut details = Vec::new();
-    for load in loads {
-        for z in NEAR_P01_ZETAS {
-            let Some(k) = nearest_step(zetas, z) else {
-                continue;
-            };
-            details.push(
-                Detail::new(
-                    corrected_at_key(load.contact_area, z),
-                    format!(
-                        "E_exa / E_c at zeta = {:.3}, a_r = {} at full resolution",
-                        zetas[k], load.contact_area
-                    ),
-                    ratio(load, k, Theory::Corrected),
-                )
-                .persson(1.0),
-            );
-        }
+    /// The realizations of load `contact_area` among the headline's sweeps.
+    pub fn load(&self, contact_area: f64) -> Load<'_> {
+        self.loads(&[contact_area]).remove(0)
     }
-    // The caption of fig. E_vs_zeta speaks of p~0 = 0.1: the load nearest to it, on any
-    // scene (the key does not depend on the scene's loads).
-    let p_tilde = |load: &Load| load.mean(|r| r.p0).value;
-    if let Some(near) = loads.iter().min_by(|a, b| {
-        (p_tilde(a) - 0.1)
-            .abs()
-            .total_cmp(&(p_tilde(b) - 0.1).abs())
-    }) {
-        details.push(
-            Detail::new(
-                NEAR_P01_START,
-                format!(
-                    "E_exa / E_c at the lowest magnification, zeta = {:.3}, at the load whose \
-                     p~0 at full resolution is nearest 0.1 (a_r = {}, p~0 = {:.4})",
-                    zetas[0],
-                    near.contact_area,
-                    p_tilde(near)
-                ),
-                ratio(near, 0, Theory::Corrected),
-            )
-            .persson(1.0),
-        );
-        // "Low magnification" read over the first octaves too: the step nearest zeta = 2
-        // and 4.
-        for z in NEAR_P01_ZETAS {
-            let Some(k) = nearest_step(zetas, z) else {
-                continue;
-            };
-            details.push(
-                Detail::new(
-                    near_p01_key(z),
-                    format!(
-                        "E_exa / E_c at zeta = {:.3}, at the load whose p~0 at full resolution \
-                         is nearest 0.1 (a_r = {})",
-                        zetas[k], near.contact_area
-                    ),
-                    ratio(near, k, Theory::Corrected),
-                )
-                .persson(1.0),
-            );
-        }
-    }
-    details
-}
-
-/// The corrected theory at the headline load: the drift of `E_exa / E_c` over the
-/// magnifications, how much closer it is than Persson's original, how its deviation
-/// grows at the lowest load, its overestimate and the measurement's shortfall.
-fn headline_details(
-    scene: &EnergyScene,
-    loads: &[Load],
-    zetas: &[f64],
-    h: &Headline,
-) -> Vec<Detail> {
-    let end = zetas.len() - 1;
-    let mut details = vec![
-        Detail::new(
-            CORRECTED_HEADLINE_DRIFT,
-            format!(
-                "change of E_exa / E_c at the headline load from zeta = {:.3} to {:.3}",
-                zetas[h.quarter], zetas[end]
-            ),
-            h.drift,
-        )
-        .persson(0.0),
-        Detail::new(
-            IMPROVEMENT_HEADLINE,
-            format!(
-                "|E_exa / E_P - 1| - |E_exa / E_c - 1| at the headline load (a_r = {:.3}): how \
-                 much closer the corrected theory is",
-                h.head.area.value
-            ),
-            h.improvement(),
-        ),
-        Detail::new(
-            DEVIATION_GROWTH_LOW_LOAD,
-            format!(
-                "|E_exa / E_c - 1| at the lowest load (a_r = {:.4}) less that at the headline \
-                 load",
-                h.low.area.value
-            ),
-            h.growth(),
-        ),
-    ];
-    let headline = group(loads, scene.headline_contact_area);
-    details.push(
-        Detail::new(
-            OVERESTIMATE_HEADLINE,
-            format!(
-                "E_c / E_exa - 1 at full resolution at the headline load (a_r = {:.3}): the \
-                 corrected theory's overestimate of the total energy",
-                h.head.area.value
-            ),
-            overestimate(headline, end),
-        )
-        .persson(0.0),
-    );
-    details.push(
-        Detail::new(
-            SHORTFALL_HEADLINE,
-            format!(
-                "1 - E_exa / E_c at full resolution at the headline load (a_r = {:.3}): the \
-                 measurement's shortfall against the corrected theory",
-                h.head.area.value
-            ),
-            Estimate::new(1.0 - h.head.corrected.value, h.head.corrected.std_error),
-        )
-        .persson(0.0),
-    );
-    details
-}
-
-/// Over the loads: the corrected theory's worst deviation at the high loads (at the last
-/// step, `end`), the noise of the measured energy's increments against the theory's at the
-/// `headline` load, and the measured contact area against the corrected theory's.
-fn across_loads_details(loads: &[Load], end: usize, headline: &Load, h: &Headline) -> Vec<Detail> {
-    let mut details = Vec::new();
-    if let Some(worst) = corrected_worst(loads, end) {
-        details.push(
-            Detail::new(
-                CORRECTED_WORST_HIGH,
-                format!(
-                    "E_exa / E_c - 1 at full resolution of largest magnitude over the loads \
-                     with a_r >= {HIGH_LOADS_FROM}"
-                ),
-                worst,
-            )
-            .persson(0.0),
-        );
-    }
-    details.push(Detail::new(
-        NUMERATOR_CV_LOG_RATIO,
-        format!(
-            "ln of CV(increments of E_exa) / CV(increments of E_P) over each window's \
-             single-shell steps, mean over windows and realizations at the headline load \
-             (a_r = {:.3})",
-            h.head.area.value
-        ),
-        numerator_cv_log_ratio(headline),
-    ));
-    if let Some(dev) = area_corrected_deviation(loads, end) {
-        details.push(
-            Detail::new(
-                AREA_CORRECTED_DEVIATION,
-                "|measured a_r / corrected theory's a_r - 1| at full resolution, largest over \
-                 the loads",
-                dev,
-            )
-            .persson(0.0),
-        );
-    }
-    details
-}
-
-/// The details of one load: both theories' ratios at full resolution, and `S~` averaged
-/// over each window of single-shell increments.
-fn load_details(
-    scene: &EnergyScene,
-    load: &Load,
-    zetas: &[f64],
-    windows: &[Vec<usize>],
-) -> Vec<Detail> {
-    let full = AtFullResolution::of(load, zetas.len() - 1);
-    let a = load.contact_area;
-    let mut details = vec![
-        Detail::new(
-            original_key(a),
-            format!(
-                "E_exa / E_P (S = 1) at full resolution, a_r = {a} ({:.4} measured)",
-                full.area.value
-            ),
-            full.original,
-        )
-        .persson(1.0),
-        Detail::new(
-            corrected_key(a),
-            format!(
-                "E_exa / E_c (S of eq. gamma) at full resolution, a_r = {a} ({:.4} measured)",
-                full.area.value
-            ),
-            full.corrected,
-        )
-        .persson(1.0),
-        Detail::new(
-            corrected_start_key(a),
-            format!(
-                "E_exa / E_c at the lowest magnification, zeta = {:.3}, a_r = {a} at full \
-                 resolution (p~0 = p0 / E* g_bar = {:.4}, g_bar at full resolution)",
-                zetas[0],
-                load.mean(|r| r.p0).value
-            ),
-            ratio(load, 0, Theory::Corrected),
-        )
-        .persson(1.0),
-    ];
-    for (w, window) in windows.iter().enumerate() {
-        let s_w = load.mean(|r| r.window_mean(&r.windows[w]));
-        let last = *window.last().expect("non-empty window");
-        let s_p = scene.correction.factor(original_area(load, last).value);
-        details.push(
-            Detail::new(
-                s_tilde_key(a, w),
-                format!(
-                    "S~ over {} single-shell increments from zeta = {:.3} to {:.3}, \
-                     a_r = {a} at full resolution (Persson: S(a_r) of eq. gamma)",
-                    window.len() - 1,
-                    zetas[window[0]],
-                    zetas[last],
-                ),
-                s_w,
-            )
-            .persson(s_p),
-        );
-    }
-    details
 }
 
 /// The golden values: both ratios at every load, the headline and its drift.

@@ -4,11 +4,12 @@
 
 use super::{Variant, VariantJob, VariantResult};
 use crate::experiments::contact_change::unpack_categories;
+use crate::experiments::declared::DetailTable;
 use crate::experiments::keys::{DetailKey, Tag};
-use crate::experiments::reentry::shells::{self, ShellStats};
+use crate::experiments::reentry::shells::ShellStats;
 use crate::experiments::reentry::stats::Share;
+use crate::experiments::reentry::RunStats;
 use crate::experiments::study::{with_settings, Cell, Study};
-use crate::experiments::Detail;
 use crate::plot::Raster;
 use crate::stats::Estimate;
 
@@ -243,115 +244,106 @@ impl Headline<'_> {
     }
 }
 
-/// The keys of the details a variant can have ([`details`]), beside `headline`, with a grid
-/// of the same cutoffs on another number of points or without.
-pub fn detail_keys(variant: &Variant, headline: Headline, same_cutoffs: bool) -> Vec<DetailKey> {
-    let name = &variant.name;
-    let mut keys = Vec::new();
+/// The statistics of variant `name`, where the run has them.
+fn stats_of<'a>(s: &'a RunStats, name: &str) -> Option<&'a VariantStats> {
+    s.variants.iter().find(|v| v.variant.name == name)
+}
+
+/// The statistics of variant `name` at load `a`, where it has realizations.
+fn at<'a>(s: &'a RunStats, name: &str, a: f64) -> Option<&'a VariantLoad> {
+    stats_of(s, name)?
+        .loads
+        .iter()
+        .find(|l| l.load == a && l.realizations > 0)
+}
+
+/// Declares the details of a variant, beside `headline`, with the `n` of a grid of the
+/// same cutoffs on another number of points or without: its shares; their shift from
+/// the headline's where it starts from the flat interface too over the same range on
+/// another scene ([`Headline::compares`]); their shift from the shares of the grid with
+/// the same cutoffs; where it starts later, the counts of the paper's 2048^2 figure; and
+/// where it records its shells, their statistics ([`ShellStats::labels`]). A load without
+/// realizations has none.
+pub fn declare<'s>(
+    t: &mut DetailTable<'s, RunStats>,
+    variant: &'s Variant,
+    headline: Headline,
+    same_cutoffs: Option<usize>,
+) {
+    let (name, what) = (variant.name.as_str(), &variant.what);
     for &a in &variant.contact_areas {
-        keys.push(key(name, SHARE, a));
-        if same_cutoffs {
-            keys.push(key(name, SIZE_SHIFT, a));
+        t.row(
+            key(name, SHARE, a),
+            format!("re-entry share at a_r = {a}, {what}"),
+            move |s: &RunStats| at(s, name, a).map(|l| l.share),
+        )
+        .persson(0.0);
+        if let Some(n) = same_cutoffs {
+            t.row(
+                key(name, SIZE_SHIFT, a),
+                format!(
+                    "re-entry share at a_r = {a}, {what}, minus that on {n}^2 with the \
+                     same lambda_l, lambda_s and tolerance (independent realizations)"
+                ),
+                move |s: &RunStats| {
+                    let l = at(s, name, a)?;
+                    let (_, shares) = stats_of(s, name)?.same_cutoffs.as_ref()?;
+                    let (_, other) = shares.iter().find(|(load, _)| *load == a)?;
+                    Some(Estimate::difference(l.share, *other))
+                },
+            );
         }
         if variant.zeta_from == 0.0 {
             if headline.compares(variant, a) {
-                keys.push(key(name, SHIFT, a));
-            }
-        } else {
-            keys.extend([
-                key(name, START, a),
-                key(name, REMAINED, a),
-                key(name, COLOURED, a),
-            ]);
-        }
-        if variant.record_shells {
-            keys.extend(shells::STATISTICS.iter().map(|stat| key(name, stat, a)));
-        }
-    }
-    keys
-}
-
-/// The statistics of a variant: its shares; their shift from the headline's where it
-/// starts from the flat interface too over the same range on another scene
-/// ([`Headline::compares`]); their shift from the shares of a grid with the same cutoffs
-/// on another number of points; where it starts later, the counts of the paper's 2048^2
-/// figure; and where it records its shells, their statistics ([`ShellStats::named`]).
-pub fn details(v: &VariantStats, headline: &[Share], zeta_max: f64) -> Vec<Detail> {
-    let loads: Vec<f64> = headline.iter().map(|h| h.load).collect();
-    let against = Headline {
-        loads: &loads,
-        zeta_max,
-    };
-    let (name, what) = (&v.variant.name, &v.variant.what);
-    let mut details = Vec::new();
-    for l in v.loads.iter().filter(|l| l.realizations > 0) {
-        let a = l.load;
-        details.push(
-            Detail::new(
-                key(name, SHARE, a),
-                format!("re-entry share at a_r = {a}, {what}"),
-                l.share,
-            )
-            .persson(0.0),
-        );
-        if let Some((n, shares)) = &v.same_cutoffs {
-            if let Some((_, other)) = shares.iter().find(|(load, _)| *load == a) {
-                details.push(Detail::new(
-                    key(name, SIZE_SHIFT, a),
-                    format!(
-                        "re-entry share at a_r = {a}, {what}, minus that on {n}^2 with the \
-                         same lambda_l, lambda_s and tolerance (independent realizations)"
-                    ),
-                    Estimate::difference(l.share, *other),
-                ));
-            }
-        }
-        if v.variant.zeta_from == 0.0 {
-            if let Some(h) = headline
-                .iter()
-                .find(|h| h.load == a && against.compares(&v.variant, a))
-            {
-                details.push(Detail::new(
+                t.row(
                     key(name, SHIFT, a),
                     format!("re-entry share at a_r = {a}, {what}, minus the headline's"),
-                    Estimate::difference(l.share, h.share),
-                ));
+                    move |s: &RunStats| {
+                        let l = at(s, name, a)?;
+                        let h = s.shares.iter().find(|h| h.load == a)?;
+                        Some(Estimate::difference(l.share, h.share))
+                    },
+                );
             }
         } else {
-            let from = v.variant.zeta_from;
-            details.extend([
-                Detail::new(
-                    key(name, START, a),
-                    format!("contact area at zeta = {from}, a_r = {a} at zeta_max, {what}"),
-                    l.a_r_start,
-                ),
-                Detail::new(
-                    key(name, REMAINED, a),
-                    format!(
-                        "share of the contact at zeta = {from} in contact at every step \
-                         (grey), a_r = {a}, {what}"
-                    ),
-                    l.remained_of_start,
-                ),
-                Detail::new(
-                    key(name, COLOURED, a),
-                    format!(
-                        "points that re-entered contact or non-contact (red, blue) over \
-                         points in contact throughout (grey), a_r = {a}, {what}"
-                    ),
-                    l.coloured_over_grey,
-                ),
-            ]);
+            declare_start(t, variant, a);
         }
-        if let Some(s) = &l.per_shell {
-            details.extend(
-                s.named(a, what)
-                    .into_iter()
-                    .map(|(stat, text, e)| Detail::new(key(name, stat, a), text, e)),
-            );
+        if variant.record_shells {
+            for (k, (stat, text)) in ShellStats::labels(a, what).into_iter().enumerate() {
+                t.row(key(name, stat, a), text, move |s: &RunStats| {
+                    Some(at(s, name, a)?.per_shell.as_ref()?.values()[k])
+                });
+            }
         }
     }
-    details
+}
+
+/// Declares the counts of the paper's 2048^2 figure at load `a` of a variant that starts
+/// later: the contact area at its start, the share of it that remained, and the
+/// re-entered over the always-in-contact.
+fn declare_start<'s>(t: &mut DetailTable<'s, RunStats>, variant: &'s Variant, a: f64) {
+    let (name, what, from) = (variant.name.as_str(), &variant.what, variant.zeta_from);
+    t.row(
+        key(name, START, a),
+        format!("contact area at zeta = {from}, a_r = {a} at zeta_max, {what}"),
+        move |s: &RunStats| at(s, name, a).map(|l| l.a_r_start),
+    );
+    t.row(
+        key(name, REMAINED, a),
+        format!(
+            "share of the contact at zeta = {from} in contact at every step \
+             (grey), a_r = {a}, {what}"
+        ),
+        move |s: &RunStats| at(s, name, a).map(|l| l.remained_of_start),
+    );
+    t.row(
+        key(name, COLOURED, a),
+        format!(
+            "points that re-entered contact or non-contact (red, blue) over \
+             points in contact throughout (grey), a_r = {a}, {what}"
+        ),
+        move |s: &RunStats| at(s, name, a).map(|l| l.coloured_over_grey),
+    );
 }
 
 #[cfg(test)]
@@ -388,12 +380,15 @@ mod tests {
         ] {
             assert!(!headline.compares(&other, 0.14), "{other:?}");
         }
-        let keys = detail_keys(&v, headline, true);
-        assert!(keys.contains(&"h03_share_shift_ar0.14".into()));
-        assert!(!keys.contains(&"h03_share_shift_ar0.88".into()));
-        assert!(keys.contains(&"h03_size_shift_ar0.88".into()));
-        assert!(!detail_keys(&v, headline, false)
-            .iter()
-            .any(|k| k.stem().contains("size_shift")));
+        let keys = |same_cutoffs| {
+            let mut t = DetailTable::default();
+            declare(&mut t, &v, headline, same_cutoffs);
+            t.keys().detail_keys().cloned().collect::<Vec<DetailKey>>()
+        };
+        let with = keys(Some(512));
+        assert!(with.contains(&"h03_share_shift_ar0.14".into()));
+        assert!(!with.contains(&"h03_share_shift_ar0.88".into()));
+        assert!(with.contains(&"h03_size_shift_ar0.88".into()));
+        assert!(!keys(None).iter().any(|k| k.stem().contains("size_shift")));
     }
 }

@@ -28,7 +28,7 @@
 mod findings;
 
 pub use findings::{
-    columns, detail_keys, details, loads, raster, stats, study, Headline, SameCutoffs, VariantLoad,
+    columns, declare, loads, raster, stats, study, Headline, SameCutoffs, VariantLoad,
     VariantStats, STUDY,
 };
 
