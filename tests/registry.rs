@@ -6,7 +6,8 @@ use serde::{Deserialize, Serialize};
 
 use persson_check::engine::solver::SolverKind;
 use persson_check::error::Result;
-use persson_check::experiments::{Detail, Experiment, Guard, JobContext, Jobs, Run, Work};
+use persson_check::experiments::declared::DetailTable;
+use persson_check::experiments::{Criteria, Experiment, Guard, JobContext, Jobs, Run, Work};
 use persson_check::stats::{decide, Claim, Estimate};
 use persson_check::validation::{Registry, RunOptions, Scale, Source, Verdict};
 
@@ -71,9 +72,12 @@ impl Experiment for Coin {
         (s.mean, 0.5)
     }
 
-    fn details(_run: &Run<Self>, s: &CoinStats) -> Vec<Detail> {
-        let count = Estimate::new(s.count as f64, 0.0);
-        vec![Detail::new("count", "realizations", count)]
+    fn detail_table<'s>(_scene: &'s CoinScene, _c: &'s Criteria) -> DetailTable<'s, CoinStats> {
+        let mut t = DetailTable::default();
+        t.always("count", "realizations", |s: &CoinStats| {
+            Estimate::new(s.count as f64, 0.0)
+        });
+        t
     }
 
     fn guards(run: &Run<Self>, s: &CoinStats) -> Vec<Guard> {

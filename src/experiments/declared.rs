@@ -1,12 +1,12 @@
 //! The details an experiment declares for a scene, once ([`DetailTable`]): each row is a
 //! detail's key (with its grid), its label, Persson's and the paper's values, and how its
-//! value is read from the run's statistics. Both what a run writes
-//! ([`crate::experiments::Experiment::details`]) and what a claim may name
-//! ([`crate::experiments::Keys`]) derive from the one table, so they cannot drift apart: a
-//! row whose statistic a run lacks (a part of the scene left out, a fit that needs more
-//! points) is declared and not written. A row whose label (or Persson's value) holds a
-//! measured number reads it from the statistics with its value
-//! ([`DetailTable::row_labelled`], [`Declared::persson_from`]); its key stays the scene's.
+//! value is read from the run's statistics. Both what a run writes (its conclusion's
+//! details) and what a claim may name ([`crate::experiments::keys_of`]) derive from the one
+//! table, so they cannot drift apart: a row whose statistic a run lacks (a part of the
+//! scene left out, a fit that needs more points) is declared and not written. A row whose
+//! label (or Persson's value) holds a measured number reads it from the statistics with its
+//! value ([`DetailTable::row_labelled`], [`Declared::persson_from`]); its key stays the
+//! scene's.
 
 use super::findings::Detail;
 use super::keys::{DetailKey, Keys};
@@ -39,6 +39,12 @@ impl<S> Default for DetailTable<'_, S> {
     fn default() -> Self {
         Self { rows: Vec::new() }
     }
+}
+
+/// The value paired with `x` in a statistic kept per load, exponent or grid (`None`: that
+/// member is not in the run), as a row of a family reads its own.
+pub fn value_at<X: PartialEq + Copy, V: Copy>(entries: &[(X, V)], x: X) -> Option<V> {
+    entries.iter().find(|&&(y, _)| y == x).map(|&(_, v)| v)
 }
 
 /// The row just declared, to give it Persson's or the paper's value or a grid.

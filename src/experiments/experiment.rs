@@ -11,7 +11,7 @@ use serde::de::DeserializeOwned;
 use serde::Serialize;
 
 use super::declared::DetailTable;
-use super::findings::{Conclusion, Criteria, Detail, Guard, Table};
+use super::findings::{Conclusion, Criteria, Guard, Table};
 use super::keys::Keys;
 use super::study::Study;
 use crate::error::Result;
@@ -151,8 +151,8 @@ pub struct Run<'a, E: Experiment + ?Sized> {
 /// 1. **statistics** ([`Experiment::stats`]): the numbers, from pure functions of the
 ///    results, unit-tested on their own;
 /// 2. **findings as data**: the headline with Persson's value ([`Experiment::headline`]),
-///    secondary statistics ([`Experiment::details`]), implementation guards that never
-///    enter a verdict ([`Experiment::guards`]), and golden values
+///    secondary statistics declared once ([`Experiment::detail_table`]), implementation
+///    guards that never enter a verdict ([`Experiment::guards`]), and golden values
 ///    ([`Experiment::golden`]); the paper's statements are the definition's claims,
 ///    judged by [`crate::validation::claims`];
 /// 3. **a thin builder** of what a reader sees: the account, tables and figures.
@@ -182,10 +182,10 @@ pub trait Experiment {
 
     /// The secondary statistics a run of `scene` can have, declared once
     /// ([`DetailTable`]): each detail's key, label, Persson's and the paper's values, and
-    /// how its value is read from the statistics. What a run writes
-    /// ([`Experiment::details`]) and what a claim may name ([`Experiment::keys`]) both
-    /// derive from it. `criteria` gives the paper's values (the default where only the
-    /// keys are wanted).
+    /// how its value is read from the statistics. What a run writes (the rows it has values
+    /// for) and what a claim may name ([`keys_of`]) both derive from it, and nothing
+    /// else declares a detail. `criteria` gives the paper's values (the default where only
+    /// the keys are wanted).
     fn detail_table<'s>(
         _scene: &'s Self::Scene,
         _criteria: &'s Criteria,
@@ -196,22 +196,6 @@ pub trait Experiment {
     /// The studies a run of `scene` can have, with their columns, as [`Experiment::studies`]
     /// writes them.
     fn declare_studies(_scene: &Self::Scene, _keys: &mut Keys) {}
-
-    /// The measures a run of `scene` gives the claims ([`Keys`]): the rows of
-    /// [`Experiment::detail_table`] and the studies of [`Experiment::declare_studies`]. A
-    /// claim that names another is refused when its definition loads.
-    fn keys(scene: &Self::Scene) -> Keys {
-        let criteria = Criteria::default();
-        let mut keys = Self::detail_table(scene, &criteria).keys();
-        Self::declare_studies(scene, &mut keys);
-        keys
-    }
-
-    /// Secondary statistics: the rows of [`Experiment::detail_table`] the run has values
-    /// for.
-    fn details(run: &Run<Self>, stats: &Self::Stats) -> Vec<Detail> {
-        Self::detail_table(run.scene, run.criteria).details(stats)
-    }
 
     /// Implementation guards (a conservation law, a counting identity): shown, never part
     /// of a verdict.
@@ -272,12 +256,13 @@ pub trait Experiment {
         };
         let stats = Self::stats(&run)?;
         let (measured, persson) = Self::headline(&stats);
+        let details = Self::detail_table(scene, criteria).details(&stats);
         let max_residual = results
             .iter()
             .map(|(_, r)| Self::Scene::residual(r))
             .fold(0.0, f64::max);
         Ok(Conclusion {
-            details: Self::details(&run, &stats),
+            details,
             guards: Self::guards(&run, &stats),
             golden: Self::golden(&run, &stats),
             studies: Self::studies(&run, &stats),
@@ -289,4 +274,15 @@ pub trait Experiment {
             ..Conclusion::new(measured, persson, max_residual)
         })
     }
+}
+
+/// The measures a run of `scene` gives the claims ([`Keys`]): the rows of
+/// [`Experiment::detail_table`] and the studies of [`Experiment::declare_studies`]. A claim
+/// that names another is refused when its definition loads. A free function, not a trait
+/// method, so that no experiment can declare its keys a second time.
+pub fn keys_of<E: Experiment>(scene: &E::Scene) -> Keys {
+    let criteria = Criteria::default();
+    let mut keys = E::detail_table(scene, &criteria).keys();
+    E::declare_studies(scene, &mut keys);
+    keys
 }

@@ -65,7 +65,7 @@ mod findings;
 #[cfg(test)]
 mod shipped;
 
-pub use self::experiment::{Experiment, JobContext, JobOf, Jobs, ResultOf, Run, Work};
+pub use self::experiment::{keys_of, Experiment, JobContext, JobOf, Jobs, ResultOf, Run, Work};
 pub use self::findings::{figure, Conclusion, Criteria, Detail, Guard, Table, UNDECIDED};
 pub use self::keys::{DetailKey, Keys};
 #[cfg(test)]

@@ -11,7 +11,7 @@ use super::measures::{Measure, PendingPart};
 use super::source::Source;
 use super::store;
 use crate::error::Result;
-use crate::experiments::{Experiment, Jobs, Keys};
+use crate::experiments::{keys_of, Experiment, Jobs, Keys};
 
 /// One job as the pending parts see it: its part ([`Jobs::part`]), its result file, and
 /// the plan's estimate of it, seconds on one core.
@@ -49,13 +49,13 @@ pub(crate) fn pending_parts<E: Experiment>(
             p.core_hours_left += u.cost / 3600.0;
         }
     }
-    let with = measure_names(&E::keys(scene));
+    let with = measure_names(&keys_of::<E>(scene));
     let mut pending = Vec::new();
     for (name, mut p) in parts.into_iter().filter(|(_, p)| p.done < p.jobs) {
         let mut def = source.parse::<E::Scene>()?;
         def.scene_mut(scale)
             .leave_out(&BTreeSet::from([name.to_string()]));
-        let without = measure_names(&E::keys(def.scene(scale)));
+        let without = measure_names(&keys_of::<E>(def.scene(scale)));
         p.measures = with
             .iter()
             .filter(|m| !without.contains(*m))

@@ -27,7 +27,7 @@ use super::store::{
 };
 use crate::engine::solver::SolverKind;
 use crate::error::{Error, Result};
-use crate::experiments::{Experiment, JobContext, JobOf, Jobs, Keys, ResultOf, Work};
+use crate::experiments::{keys_of, Experiment, JobContext, JobOf, Jobs, Keys, ResultOf, Work};
 
 /// How to run validations.
 #[derive(Debug, Clone)]
@@ -443,11 +443,11 @@ pub fn check_experiment<E: Experiment>(source: &Source) -> Result<()> {
 }
 
 /// The measures that experiment `E` declares for `source`'s scene at `scale` (its detail
-/// keys and studies, [`Experiment::keys`]), once the definition is checked at that scale.
+/// keys and studies, [`crate::experiments::keys_of`]), once the definition is checked at that scale.
 pub fn declared_keys<E: Experiment>(source: &Source, scale: Scale) -> Result<Keys> {
     let def = source.parse::<E::Scene>()?;
     let (scene, _) = checked_scene::<E>(source, &def, scale)?;
-    Ok(E::keys(scene))
+    Ok(keys_of::<E>(scene))
 }
 
 /// The scene of `def` at `scale` with its jobs, once its ranges are checked, the claims
@@ -478,7 +478,7 @@ fn checked_scene<'a, E: Experiment>(
     E::validate(scene).map_err(|e| Error::bad_file(&source.path, format!("[{scale}] {e}")))?;
     claims::check_declared(
         &def.claims,
-        &E::keys(scene),
+        &keys_of::<E>(scene),
         &serde_json::to_value(scene).expect("scenes serialise"),
         scale == Scale::Reduced,
         scene.solver().is_some(),

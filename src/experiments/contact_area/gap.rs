@@ -21,7 +21,7 @@ use crate::engine::solver::SolveOptions;
 use crate::engine::surface::{Surface, SurfaceModel};
 use crate::engine::sweep::Sweep;
 use crate::error::{check_positive, Error, Result};
-use crate::experiments::declared::DetailTable;
+use crate::experiments::declared::{value_at, DetailTable};
 use crate::experiments::scene::check_increasing;
 use crate::experiments::{JobContext, Work};
 use crate::stats::{Estimate, LineFit};
@@ -189,12 +189,7 @@ pub fn declare(t: &mut DetailTable<'_, AreaStats>, plan: &GapPlan) {
                 &p[..half],
                 &p[half..]
             ),
-            move |s: &AreaStats| {
-                s.gap_slope_changes
-                    .iter()
-                    .find(|&&(h, _)| h == hurst)
-                    .map(|&(_, change)| change)
-            },
+            move |s: &AreaStats| value_at(&s.gap_slope_changes, hurst),
         )
         .persson(0.0);
     }

@@ -64,7 +64,7 @@ pub use self::ladder::{AreaJob, AreaResult, FinerGrid};
 use self::scaling::{ScalingJob, ScalingResult};
 pub use self::scene::{AreaScene, ContactAreaJob, ContactAreaOutput};
 use self::stats::{AreaStats, NEAR_FULL_CONTACT};
-use super::declared::DetailTable;
+use super::declared::{value_at, DetailTable};
 use super::study::Study;
 use super::{Criteria, Experiment, Keys, Table};
 use crate::error::Result;
@@ -180,12 +180,7 @@ impl Experiment for ContactArea {
                     "kappa on the {n}x{n} grid (lambda_s = {} grid spacings)",
                     scene.lambda_s * refine as f64
                 ),
-                move |s: &AreaStats| {
-                    s.on_grid
-                        .iter()
-                        .find(|&&(r, _)| r == refine)
-                        .map(|&(_, k)| k)
-                },
+                move |s: &AreaStats| value_at(&s.on_grid, refine),
             )
             .persson(persson_kappa())
             .paper(criteria.paper_value)

@@ -17,7 +17,7 @@ use super::stats::AreaStats;
 use super::AreaScene;
 use crate::engine::surface::SurfaceModel;
 use crate::error::{check_positive, Error, Result};
-use crate::experiments::declared::DetailTable;
+use crate::experiments::declared::{value_at, DetailTable};
 use crate::experiments::{JobContext, Work};
 use crate::stats::Estimate;
 
@@ -155,12 +155,7 @@ pub fn declare(t: &mut DetailTable<'_, AreaStats>, plan: &SizePlan, scene: &Area
         t.row(
             key(hurst),
             label(plan, scene, hurst),
-            move |s: &AreaStats| {
-                s.size_changes
-                    .iter()
-                    .find(|&&(h, _)| h == hurst)
-                    .map(|&(_, change)| change)
-            },
+            move |s: &AreaStats| value_at(&s.size_changes, hurst),
         )
         .persson(0.0);
     }

@@ -55,9 +55,10 @@ use self::study::reading::{self, PaperFlux};
 use self::study::sensitivity::{self, SensitivityPlan, SensitivityRow, StudyJob, StudyResult};
 use self::study::waterfall::{self, WaterfallPlan, WaterfallResult};
 use super::contact_change::{categories, pack_categories, ENTERED, LEFT};
+use super::declared::DetailTable;
 use super::scene::{leaves_out_planned, step_scene, Step, PLANNED};
 use super::study::Study;
-use super::{Detail, Experiment, Guard, JobContext, Jobs, Keys, Work};
+use super::{Criteria, Experiment, Guard, JobContext, Jobs, Keys, Work};
 use crate::error::{Error, Result};
 use crate::plot::{Figure, Raster, Waterfall};
 use crate::stats::Estimate;
@@ -291,32 +292,19 @@ impl Experiment for Flux {
         (s.steps.ratio, 0.0)
     }
 
-    fn keys(scene: &FluxScene) -> Keys {
-        let mut keys = Keys::default();
-        keys.details(stats::DETAILS);
-        if scene.waterfall.is_some() {
-            keys.details(waterfall::DETAILS);
-        }
+    /// The steps' details, then the waterfall's over its seeds (where the scene draws
+    /// one): `table`.
+    fn detail_table<'s>(
+        scene: &'s FluxScene,
+        _criteria: &'s Criteria,
+    ) -> DetailTable<'s, FluxStats> {
+        table(scene)
+    }
+
+    fn declare_studies(scene: &FluxScene, keys: &mut Keys) {
         if scene.sensitivity.is_some() {
             keys.study(sensitivity::KEY, sensitivity::COLUMNS);
         }
-        keys
-    }
-
-    /// The steps' details, then the waterfall's over its seeds (where the scene draws
-    /// one).
-    fn details(run: &Run, s: &FluxStats) -> Vec<Detail> {
-        let mut details = stats::details(&s.steps);
-        let waterfalls: Vec<&WaterfallResult> = run
-            .results
-            .iter()
-            .filter_map(|(_, r)| match r {
-                FluxOutput::Waterfall(w) => Some(w),
-                _ => None,
-            })
-            .collect();
-        details.extend(waterfall::details(&waterfalls));
-        details
     }
 
     fn guards(run: &Run, s: &FluxStats) -> Vec<Guard> {
@@ -379,6 +367,17 @@ impl Experiment for Flux {
             })
             .collect()
     }
+}
+
+/// The details a run of `scene` can have, in the order a run writes them: the steps', then
+/// the waterfall's where the scene draws one (its labels read from the run's statistics).
+fn table(scene: &FluxScene) -> DetailTable<'_, FluxStats> {
+    let mut t = DetailTable::default();
+    stats::rows(&mut t);
+    if let Some(plan) = &scene.waterfall {
+        waterfall::rows(&mut t, plan);
+    }
+    t
 }
 
 /// The study's row of the headline's own step, where there is one: a step row with the

@@ -1,16 +1,18 @@
 //! The statistics of the one-step flux: the headline from the steps of every realization
-//! (means over realizations), then its findings (details, the guard, golden values); and
-//! the rows of the sensitivity study.
+//! (means over realizations), then its findings (details, the guard, golden values); the
+//! rows of the sensitivity study, and the waterfall's statistics.
 
 use std::collections::BTreeMap;
 
 use super::study::sensitivity::{SensitivityRow, StudyJob, StudyResult};
+use super::study::waterfall::{WaterfallResult, WaterfallStats};
 use super::{net_flow_residual, FluxJob, FluxOutput, FluxResult, FluxScene};
 use crate::experiments::contact_change::net_over_gross;
-use crate::experiments::{Detail, Guard};
+use crate::experiments::declared::DetailTable;
+use crate::experiments::Guard;
 use crate::stats::{round_sig, Decision, Estimate};
 
-/// The keys of the details ([`crate::experiments::Experiment::keys`]).
+/// The keys of the details ([`crate::experiments::Experiment::detail_table`]).
 const FLUX_IN: &str = "flux_in";
 const FLUX_OUT: &str = "flux_out";
 const NET_OVER_GROSS: &str = "net_over_gross";
@@ -18,16 +20,6 @@ const NET_FLOW: &str = "net_flow";
 const NET_FLOW_RESIDUAL: &str = "net_flow_residual";
 const CONTACT_AREA_BEFORE: &str = "contact_area_before";
 const CONTACT_AREA_AFTER: &str = "contact_area_after";
-/// Every key of [`details`].
-pub const DETAILS: [&str; 7] = [
-    FLUX_IN,
-    FLUX_OUT,
-    NET_OVER_GROSS,
-    NET_FLOW,
-    NET_FLOW_RESIDUAL,
-    CONTACT_AREA_BEFORE,
-    CONTACT_AREA_AFTER,
-];
 
 /// The statistics of the steps, means over realizations.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -92,37 +84,41 @@ pub fn identity_guard(n: usize, s: &StepStats) -> Guard {
 }
 
 /// The fluxes, the net flux, the net-flow identity, and the contact area before and after.
-pub fn details(s: &StepStats) -> Vec<Detail> {
-    vec![
-        Detail::new(
-            FLUX_IN,
-            "fraction of the nominal area entering contact",
-            s.flux_in,
-        ),
-        Detail::new(
-            FLUX_OUT,
-            "fraction of the nominal area leaving contact",
-            s.flux_out,
-        ),
-        Detail::new(
-            NET_OVER_GROSS,
-            "net flux over the mean one-way flux, |out - in| / ((out + in) / 2)",
-            s.net,
-        ),
-        Detail::new(
-            NET_FLOW,
-            "net flow to non-contact, flux_out - flux_in, fraction of the nominal area",
-            s.net_flow,
-        ),
-        Detail::new(
-            NET_FLOW_RESIDUAL,
-            "net-flow identity at fixed load: (flux_out - flux_in) + (a_r after - a_r before), \
-             zero up to rounding",
-            s.net_flow_residual,
-        ),
-        Detail::new(CONTACT_AREA_BEFORE, "a_r at zeta", s.a_before),
-        Detail::new(CONTACT_AREA_AFTER, "a_r at zeta + dzeta", s.a_after),
-    ]
+pub fn rows(t: &mut DetailTable<'_, FluxStats>) {
+    t.always(
+        FLUX_IN,
+        "fraction of the nominal area entering contact",
+        |s: &FluxStats| s.steps.flux_in,
+    );
+    t.always(
+        FLUX_OUT,
+        "fraction of the nominal area leaving contact",
+        |s: &FluxStats| s.steps.flux_out,
+    );
+    t.always(
+        NET_OVER_GROSS,
+        "net flux over the mean one-way flux, |out - in| / ((out + in) / 2)",
+        |s: &FluxStats| s.steps.net,
+    );
+    t.always(
+        NET_FLOW,
+        "net flow to non-contact, flux_out - flux_in, fraction of the nominal area",
+        |s: &FluxStats| s.steps.net_flow,
+    );
+    t.always(
+        NET_FLOW_RESIDUAL,
+        "net-flow identity at fixed load: (flux_out - flux_in) + (a_r after - a_r before), \
+         zero up to rounding",
+        |s: &FluxStats| s.steps.net_flow_residual,
+    );
+    t.always(CONTACT_AREA_BEFORE, "a_r at zeta", |s: &FluxStats| {
+        s.steps.a_before
+    });
+    t.always(
+        CONTACT_AREA_AFTER,
+        "a_r at zeta + dzeta",
+        |s: &FluxStats| s.steps.a_after,
+    );
 }
 
 /// The golden values: the headline ratio and both fluxes.
@@ -146,6 +142,8 @@ pub struct FluxStats {
     pub results: Vec<(u64, FluxResult)>,
     /// The rows of the sensitivity study (none without one).
     pub rows: Vec<SensitivityRow>,
+    /// The waterfall's statistics over its realizations (none without a waterfall).
+    pub waterfall: Option<WaterfallStats>,
 }
 
 impl FluxStats {
@@ -165,12 +163,20 @@ impl FluxStats {
                 _ => None,
             })
             .collect();
+        let waterfalls: Vec<&WaterfallResult> = outputs
+            .iter()
+            .filter_map(|(_, r)| match r {
+                FluxOutput::Waterfall(w) => Some(w),
+                _ => None,
+            })
+            .collect();
         Self {
             steps: StepStats::of(&results),
             rows: scene.sensitivity.as_ref().map_or_else(Vec::new, |plan| {
                 plan.conclude(scene.relative_step(), &study)
             }),
             results,
+            waterfall: WaterfallStats::of(&waterfalls),
         }
     }
 }

@@ -11,7 +11,7 @@ use super::{reference_sweeps, sweeps, ModeScene};
 use crate::engine::tolerance::ZETA_SLACK;
 use crate::error::{Error, Result};
 use crate::experiments::climb::step_of;
-use crate::experiments::declared::DetailTable;
+use crate::experiments::declared::{value_at, DetailTable};
 use crate::experiments::ensemble::{by_load, load_range};
 use crate::experiments::study::{Cell, Study};
 use crate::experiments::{Criteria, Experiment, Jobs, Keys, Table};
@@ -142,12 +142,7 @@ impl Experiment for ModeFrozen {
                      a_r = {load} at full resolution",
                     scene.onset_ratio
                 ),
-                move |s: &FrozenStats| {
-                    s.onsets
-                        .iter()
-                        .find(|&&(l, _)| l == load)
-                        .map(|&(_, onset)| onset)
-                },
+                move |s: &FrozenStats| value_at(&s.onsets, load),
             )
             .persson(0.0);
         }

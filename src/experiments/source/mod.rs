@@ -48,9 +48,10 @@ use serde::{Deserialize, Serialize};
 
 use self::stats::SourceStats;
 use super::contact_change::{above, across, ENTERED, NEITHER};
+use super::declared::DetailTable;
 use super::scene::{Base, Step};
 use super::study::Study;
-use super::{Detail, Experiment, JobContext, Jobs, Keys, Table, Work};
+use super::{Criteria, Experiment, JobContext, Jobs, Keys, Table, Work};
 use crate::engine::solver::SolverKind;
 use crate::error::{Error, Result};
 use crate::plot::Figure;
@@ -316,7 +317,7 @@ fn non_contact_key(step: &SourceStep) -> String {
     format!("non_contact_{}", step.key())
 }
 
-/// The keys of the headline row's other details ([`Experiment::keys`]).
+/// The keys of the headline row's other details ([`Experiment::detail_table`]).
 const OF_CONTACT: &str = "of_contact";
 const OF_NOMINAL: &str = "of_nominal";
 const CONTACT_AREA_BEFORE: &str = "contact_area_before";
@@ -340,62 +341,49 @@ impl Experiment for BoundarySource {
         (s.headline(), 0.0)
     }
 
-    fn keys(scene: &SourceScene) -> Keys {
-        let mut keys = Keys::default();
-        keys.details(scene.steps.iter().map(non_contact_key));
-        keys.details([
-            OF_CONTACT,
-            OF_NOMINAL,
-            CONTACT_AREA_BEFORE,
-            CONTACT_AREA_AFTER,
-        ]);
-        keys.study(study::STUDY, &study::COLUMNS);
-        keys
-    }
-
     /// Every row's share of the non-contact entering contact, and the headline row's
     /// other shares and contact areas.
-    fn details(_run: &Run, s: &SourceStats) -> Vec<Detail> {
-        let mut details: Vec<Detail> = s
-            .rows
-            .iter()
-            .map(|r| {
-                Detail::new(
-                    non_contact_key(&r.step),
-                    format!(
-                        "share of the non-contact at zeta in contact after the step ({})",
-                        r.step.label()
-                    ),
-                    r.readings[0].of_non_contact,
-                )
-                .persson(0.0)
-            })
-            .collect();
-        let first = &s.rows[0];
-        let zero = first.readings[0];
-        details.extend([
-            Detail::new(
-                OF_CONTACT,
-                "points entering contact, share of the contact at zeta (first row)",
-                zero.of_contact,
-            ),
-            Detail::new(
-                OF_NOMINAL,
-                "points entering contact, share of the nominal area A0 (first row)",
-                zero.of_nominal,
-            ),
-            Detail::new(
-                CONTACT_AREA_BEFORE,
-                "a_r at zeta (first row)",
-                first.contact_before,
-            ),
-            Detail::new(
-                CONTACT_AREA_AFTER,
-                "a_r at zeta + dzeta (first row)",
-                first.contact_after,
-            ),
-        ]);
-        details
+    fn detail_table<'s>(
+        scene: &'s SourceScene,
+        _criteria: &'s Criteria,
+    ) -> DetailTable<'s, SourceStats> {
+        let mut t = DetailTable::default();
+        for step in &scene.steps {
+            t.row(
+                non_contact_key(step),
+                format!(
+                    "share of the non-contact at zeta in contact after the step ({})",
+                    step.label()
+                ),
+                move |s: &SourceStats| s.row(step).map(|r| r.readings[0].of_non_contact),
+            )
+            .persson(0.0);
+        }
+        t.always(
+            OF_CONTACT,
+            "points entering contact, share of the contact at zeta (first row)",
+            |s: &SourceStats| s.rows[0].readings[0].of_contact,
+        );
+        t.always(
+            OF_NOMINAL,
+            "points entering contact, share of the nominal area A0 (first row)",
+            |s: &SourceStats| s.rows[0].readings[0].of_nominal,
+        );
+        t.always(
+            CONTACT_AREA_BEFORE,
+            "a_r at zeta (first row)",
+            |s: &SourceStats| s.rows[0].contact_before,
+        );
+        t.always(
+            CONTACT_AREA_AFTER,
+            "a_r at zeta + dzeta (first row)",
+            |s: &SourceStats| s.rows[0].contact_after,
+        );
+        t
+    }
+
+    fn declare_studies(_scene: &SourceScene, keys: &mut Keys) {
+        keys.study(study::STUDY, &study::COLUMNS);
     }
 
     /// Every row's share of the non-contact entering contact and share of the widest bin

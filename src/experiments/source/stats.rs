@@ -123,6 +123,11 @@ impl SourceStats {
         Ok(Self { rows })
     }
 
+    /// The statistics of the scene's row `step`, if the run has it.
+    pub fn row(&self, step: &SourceStep) -> Option<&RowStats> {
+        self.rows.iter().find(|r| r.step == *step)
+    }
+
     /// The headline: the share of the non-contact entering contact (width 0) in the first
     /// row.
     pub fn headline(&self) -> Estimate {

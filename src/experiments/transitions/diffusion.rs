@@ -11,13 +11,14 @@ use super::stats::{
 };
 use super::{distances, others, own, TransitionResult, TransitionScene};
 use crate::error::Result;
-use crate::experiments::{Detail, Experiment, Keys, Table};
+use crate::experiments::declared::DetailTable;
+use crate::experiments::{Criteria, Experiment, Table};
 use crate::persson::moments;
 use crate::persson::Correction;
 use crate::plot::{Figure, Series, Style};
 use crate::stats::{round_sig, Estimate};
 
-/// The keys of the details ([`Experiment::keys`]).
+/// The keys of the details ([`Experiment::detail_table`]).
 const D_RATIO_HIGH: &str = "d_ratio_high";
 const S_CORRECTED: &str = "s_corrected";
 const APPROX_DELTA_P_ERROR: &str = "approx_delta_p_error";
@@ -30,20 +31,6 @@ const MIRROR_MOMENT_ERROR: &str = "mirror_moment_error";
 const HIGH_CLOSER_TO_ORIGINAL: &str = "d_ratio_high_closer_to_original";
 const LOST_UNSUITED: &str = "lost_unsuited_bins";
 const APPROX_DELTA_P_LIMITS: &str = "approx_delta_p_error_limits";
-const DETAILS: [&str; 12] = [
-    D_RATIO_HIGH,
-    S_CORRECTED,
-    APPROX_DELTA_P_ERROR,
-    SMALL_P_EXPONENT,
-    FIT_TV_UNSUITED_MINUS_SUITED,
-    FIT_TV_LOWEST_MINUS_TOP_UNSUITED,
-    BIN_SPREAD_OVER_HALF_WIDTH,
-    BIN_BROADENING_SHARE,
-    MIRROR_MOMENT_ERROR,
-    HIGH_CLOSER_TO_ORIGINAL,
-    LOST_UNSUITED,
-    APPROX_DELTA_P_LIMITS,
-];
 
 /// The other scene's headline (with an other scene).
 const OTHER_D_RATIO_LOW: &str = "other_scene_d_ratio_low";
@@ -51,7 +38,6 @@ const OTHER_D_RATIO_LOW: &str = "other_scene_d_ratio_low";
 const DISTANCE_LOW: &str = "contact_line_distance_low";
 const DISTANCE_HIGH: &str = "contact_line_distance_high";
 const DISTANCE_HIGH_MINUS_LOW: &str = "contact_line_distance_high_minus_low";
-const DISTANCE_DETAILS: [&str; 3] = [DISTANCE_LOW, DISTANCE_HIGH, DISTANCE_HIGH_MINUS_LOW];
 
 /// The diffusion validation, assumption (a).
 pub struct Diffusion;
@@ -167,25 +153,14 @@ impl Experiment for Diffusion {
         (s.low, 1.0)
     }
 
-    fn keys(scene: &TransitionScene) -> Keys {
-        let mut keys = Keys::default();
-        keys.details(DETAILS);
-        if scene.other_scene.is_some() {
-            keys.detail(OTHER_D_RATIO_LOW);
-        }
-        if scene.contact_line_distances {
-            keys.details(DISTANCE_DETAILS);
-        }
-        keys
-    }
-
-    /// The high-pressure ratio and the corrected theory's `S(a_r)` beside it.
-    fn details(run: &Run, s: &DiffusionStats) -> Vec<Detail> {
-        let mut details = broadening_details(run, s);
-        details.extend(transition_shape_details(s));
-        details.extend(other_scene_detail(run, s));
-        details.extend(distance_details(run, s));
-        details
+    /// The high-pressure ratio and the corrected theory's `S(a_r)` beside it, the shape of
+    /// the transitions, the other scene's ratio and the walkers' distances to the contact
+    /// line (`table`).
+    fn detail_table<'s>(
+        scene: &'s TransitionScene,
+        _criteria: &'s Criteria,
+    ) -> DetailTable<'s, DiffusionStats> {
+        table(scene)
     }
 
     fn golden(_run: &Run, s: &DiffusionStats) -> BTreeMap<String, f64> {
@@ -224,156 +199,168 @@ impl Experiment for Diffusion {
     }
 }
 
-/// The broadening against the two theories at high pressure, the walkers it leaves
-/// unsuited, and eq. (approxDeltaPress) against the exact inversion of eq. (2ndMoment).
-fn broadening_details(run: &Run, s: &DiffusionStats) -> Vec<Detail> {
-    vec![
-        Detail::new(
-            D_RATIO_HIGH,
-            format!("D_n / D_P at p >= {} p0/a_r", run.scene.high_pressure),
-            s.high,
-        )
-        .persson(1.0),
-        Detail::new(
-            S_CORRECTED,
-            "corrected theory's S(a_r) (eq. gamma)",
-            Estimate::new(s.s_corrected, f64::NAN),
-        )
-        .persson(s.s_corrected),
-        Detail::new(
-            HIGH_CLOSER_TO_ORIGINAL,
-            format!(
-                "D_n / D_P at p >= {} p0/a_r minus the midpoint of the original theory's 1 \
-                 and the corrected theory's S(a_r) = {:.3}: above 0 where the broadening \
-                 is closer to the original theory",
-                run.scene.high_pressure, s.s_corrected
-            ),
-            Estimate::new(s.high.value - 0.5 * (1.0 + s.s_corrected), s.high.std_error),
-        ),
-        Detail::new(
-            LOST_UNSUITED,
-            "share of the walkers in the analysed bins whose mean lies below the \
-             broadening that left contact over the step",
-            s.lost_unsuited,
-        ),
-        Detail::new(
-            APPROX_DELTA_P_LIMITS,
-            "relative error of eq. (approxDeltaPress) against the exact inversion of eq. \
-             (2ndMoment) in its limits, the larger at Dp_n / p' = 1e-6 and 1e8 (exact: no \
-             error bar)",
-            Estimate::new(moments::estimate_error_in_the_limits(), 0.0),
-        ),
-        Detail::new(
-            APPROX_DELTA_P_ERROR,
-            "largest relative error of eq. (approxDeltaPress) against the exact inversion \
-             of eq. (2ndMoment), Dp_n / p' from 1e-3 to 1e3 (exact: no error bar)",
-            Estimate::new(moments::estimate_largest_error(ERROR_POINTS), 0.0),
-        ),
-    ]
+/// The details a run of `scene` can have, in the order a run writes them: which rows, their
+/// keys and how their values are read come from the scene alone. Two labels and Persson's
+/// value of `S(a_r)` name a measured number (the corrected theory's `S(a_r)` at the
+/// measured `a_r`, the other scene's measured `a_r`): they are read with the value.
+fn table(scene: &TransitionScene) -> DetailTable<'_, DiffusionStats> {
+    let mut t = DetailTable::default();
+    broadening_rows(&mut t, scene);
+    transition_shape_rows(&mut t);
+    other_scene_row(&mut t, scene);
+    distance_rows(&mut t, scene);
+    t
+}
+
+/// The broadening against the two theories at high pressure (Persson's value of the
+/// corrected theory's `S(a_r)`: at the measured `a_r`), the walkers it leaves unsuited, and
+/// eq. (approxDeltaPress) against the exact inversion of eq. (2ndMoment).
+fn broadening_rows(t: &mut DetailTable<'_, DiffusionStats>, scene: &TransitionScene) {
+    let high = scene.high_pressure;
+    t.always(
+        D_RATIO_HIGH,
+        format!("D_n / D_P at p >= {high} p0/a_r"),
+        |s: &DiffusionStats| s.high,
+    )
+    .persson(1.0);
+    t.always(
+        S_CORRECTED,
+        "corrected theory's S(a_r) (eq. gamma)",
+        |s: &DiffusionStats| Estimate::new(s.s_corrected, f64::NAN),
+    )
+    .persson_from(|s: &DiffusionStats| Some(s.s_corrected));
+    t.row_labelled(HIGH_CLOSER_TO_ORIGINAL, move |s: &DiffusionStats| {
+        let name = format!(
+            "D_n / D_P at p >= {high} p0/a_r minus the midpoint of the original theory's 1 \
+             and the corrected theory's S(a_r) = {:.3}: above 0 where the broadening is \
+             closer to the original theory",
+            s.s_corrected
+        );
+        let v = Estimate::new(s.high.value - 0.5 * (1.0 + s.s_corrected), s.high.std_error);
+        Some((name, v))
+    });
+    t.always(
+        LOST_UNSUITED,
+        "share of the walkers in the analysed bins whose mean lies below the broadening \
+         that left contact over the step",
+        |s: &DiffusionStats| s.lost_unsuited,
+    );
+    t.always(
+        APPROX_DELTA_P_LIMITS,
+        "relative error of eq. (approxDeltaPress) against the exact inversion of eq. \
+         (2ndMoment) in its limits, the larger at Dp_n / p' = 1e-6 and 1e8 (exact: no error \
+         bar)",
+        |_: &DiffusionStats| Estimate::new(moments::estimate_error_in_the_limits(), 0.0),
+    );
+    t.always(
+        APPROX_DELTA_P_ERROR,
+        "largest relative error of eq. (approxDeltaPress) against the exact inversion of eq. \
+         (2ndMoment), Dp_n / p' from 1e-3 to 1e3 (exact: no error bar)",
+        |_: &DiffusionStats| Estimate::new(moments::estimate_largest_error(ERROR_POINTS), 0.0),
+    );
 }
 
 /// The shape of the transitions: the small-pressure exponent of `Pr(p)`, the distance of
 /// each bin's transitions from eq. (transitionFinal), the bins' own width against the
 /// broadening, and the quadrature of eq. (transitionFinal)'s moments.
-fn transition_shape_details(s: &DiffusionStats) -> Vec<Detail> {
-    vec![
-        Detail::new(
-            SMALL_P_EXPONENT,
-            format!(
-                "exponent alpha of Pr(p) ~ p^alpha at zeta, fitted over the bins below \
-                 {SMALL_PRESSURE} p0/a_r (Persson's eq. pressureDistOri: 1)"
-            ),
-            s.small_p_exponent,
-        )
-        .persson(1.0),
-        Detail::new(
-            FIT_TV_UNSUITED_MINUS_SUITED,
-            "mean total-variation distance between a bin's transitions and the mirror \
-             Gaussian with its moments (eq. transitionFinal), bins with mean below the \
-             broadening minus bins above",
-            s.fit_unsuited_minus_suited,
+fn transition_shape_rows(t: &mut DetailTable<'_, DiffusionStats>) {
+    t.always(
+        SMALL_P_EXPONENT,
+        format!(
+            "exponent alpha of Pr(p) ~ p^alpha at zeta, fitted over the bins below \
+             {SMALL_PRESSURE} p0/a_r (Persson's eq. pressureDistOri: 1)"
         ),
-        Detail::new(
-            FIT_TV_LOWEST_MINUS_TOP_UNSUITED,
-            "that total-variation distance in the lowest bin with mean below the \
-             broadening minus that in the highest",
-            s.fit_lowest_minus_top_unsuited,
-        ),
-        Detail::new(
-            BIN_SPREAD_OVER_HALF_WIDTH,
-            "spread dp_n of the old pressures in a bin over the bin's half width, mean \
-             over analysed bins (a flat density: 1/sqrt3)",
-            s.bin_spread_over_half_width,
-        ),
-        Detail::new(
-            BIN_BROADENING_SHARE,
-            "dp_n^2 / Dp_n^2, the share of the broadening the bin's own width makes up \
-             (the relative change of D_n its correction makes), mean over suited bins",
-            s.bin_broadening_share,
-        ),
-        Detail::new(
-            MIRROR_MOMENT_ERROR,
-            "largest relative error of the quadrature of the first two moments of eq. \
-             (transitionFinal) against p' and eq. (2ndMoment), Dp_n / p' from 1e-3 to \
-             1e3 (exact: no error bar)",
-            Estimate::new(moments::mirror_moment_largest_error(ERROR_POINTS), 0.0),
-        ),
-    ]
+        |s: &DiffusionStats| s.small_p_exponent,
+    )
+    .persson(1.0);
+    t.always(
+        FIT_TV_UNSUITED_MINUS_SUITED,
+        "mean total-variation distance between a bin's transitions and the mirror Gaussian \
+         with its moments (eq. transitionFinal), bins with mean below the broadening minus \
+         bins above",
+        |s: &DiffusionStats| s.fit_unsuited_minus_suited,
+    );
+    t.always(
+        FIT_TV_LOWEST_MINUS_TOP_UNSUITED,
+        "that total-variation distance in the lowest bin with mean below the broadening \
+         minus that in the highest",
+        |s: &DiffusionStats| s.fit_lowest_minus_top_unsuited,
+    );
+    t.always(
+        BIN_SPREAD_OVER_HALF_WIDTH,
+        "spread dp_n of the old pressures in a bin over the bin's half width, mean over \
+         analysed bins (a flat density: 1/sqrt3)",
+        |s: &DiffusionStats| s.bin_spread_over_half_width,
+    );
+    t.always(
+        BIN_BROADENING_SHARE,
+        "dp_n^2 / Dp_n^2, the share of the broadening the bin's own width makes up (the \
+         relative change of D_n its correction makes), mean over suited bins",
+        |s: &DiffusionStats| s.bin_broadening_share,
+    );
+    t.always(
+        MIRROR_MOMENT_ERROR,
+        "largest relative error of the quadrature of the first two moments of eq. \
+         (transitionFinal) against p' and eq. (2ndMoment), Dp_n / p' from 1e-3 to 1e3 \
+         (exact: no error bar)",
+        |_: &DiffusionStats| Estimate::new(moments::mirror_moment_largest_error(ERROR_POINTS), 0.0),
+    );
 }
 
-/// The ratio at low pressure in the other scene, where the scene has one.
-fn other_scene_detail(run: &Run, s: &DiffusionStats) -> Option<Detail> {
-    let (Some((low, a_r)), Some(other)) = (s.other, &run.scene.other_scene) else {
-        return None;
+/// The ratio at low pressure in the other scene, where the scene has one, its label quoting
+/// the other scene's measured contact area.
+fn other_scene_row(t: &mut DetailTable<'_, DiffusionStats>, scene: &TransitionScene) {
+    let Some(other) = &scene.other_scene else {
+        return;
     };
-    Some(
-        Detail::new(
-            OTHER_D_RATIO_LOW,
-            format!(
-                "D_n / D_P at p < {} p0/a_r in the other scene: H = {}, a_r = {} at zeta {} \
-                 -> {} (measured a_r {})",
-                run.scene.low_pressure,
-                other.hurst,
-                other.contact_area,
-                other.zeta,
-                other.zeta + other.dzeta,
-                a_r.text(1.0, 4, "")
-            ),
-            low,
-        )
-        .persson(1.0),
-    )
+    let (low, (hurst, a, zeta, dzeta)) = (
+        scene.low_pressure,
+        (other.hurst, other.contact_area, other.zeta, other.dzeta),
+    );
+    t.row_labelled(OTHER_D_RATIO_LOW, move |s: &DiffusionStats| {
+        let (ratio, a_r) = s.other?;
+        let name = format!(
+            "D_n / D_P at p < {low} p0/a_r in the other scene: H = {hurst}, a_r = {a} at zeta \
+             {zeta} -> {} (measured a_r {})",
+            zeta + dzeta,
+            a_r.text(1.0, 4, ""),
+        );
+        Some((name, ratio))
+    })
+    .persson(1.0);
 }
 
 /// How far the walkers at low and at high pressure lie from the nearest point out of
-/// contact, where measured.
-fn distance_details(run: &Run, s: &DiffusionStats) -> Vec<Detail> {
-    let Some([low, high, difference]) = s.distances else {
-        return Vec::new();
-    };
-    let (lo, hi) = (run.scene.low_pressure, run.scene.high_pressure);
+/// contact, where the scene measures it.
+fn distance_rows(t: &mut DetailTable<'_, DiffusionStats>, scene: &TransitionScene) {
+    if !scene.contact_line_distances {
+        return;
+    }
+    let (lo, hi) = (scene.low_pressure, scene.high_pressure);
     let walkers = |which: &str| {
         format!(
             "mean distance to the nearest point out of contact at zeta = {}, grid \
              spacings, of the walkers {which} (per realization, then over realizations)",
-            run.scene.zeta
+            scene.zeta
         )
     };
-    vec![
-        Detail::new(DISTANCE_LOW, walkers(&format!("at p < {lo} p0/a_r")), low),
-        Detail::new(
-            DISTANCE_HIGH,
-            walkers(&format!("at p >= {hi} p0/a_r")),
-            high,
-        ),
-        Detail::new(
-            DISTANCE_HIGH_MINUS_LOW,
-            walkers(&format!(
-                "at p >= {hi} p0/a_r minus that of those at p < {lo} p0/a_r"
-            )),
-            difference,
-        ),
-    ]
+    t.row(
+        DISTANCE_LOW,
+        walkers(&format!("at p < {lo} p0/a_r")),
+        |s: &DiffusionStats| s.distances.map(|d| d[0]),
+    );
+    t.row(
+        DISTANCE_HIGH,
+        walkers(&format!("at p >= {hi} p0/a_r")),
+        |s: &DiffusionStats| s.distances.map(|d| d[1]),
+    );
+    t.row(
+        DISTANCE_HIGH_MINUS_LOW,
+        walkers(&format!(
+            "at p >= {hi} p0/a_r minus that of those at p < {lo} p0/a_r"
+        )),
+        |s: &DiffusionStats| s.distances.map(|d| d[2]),
+    );
 }
 
 /// `D_n / D_P` by pressure bin, suited and unsuited, against both theories.

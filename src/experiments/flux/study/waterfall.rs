@@ -27,8 +27,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::engine::solver::SolverKind;
 use crate::error::{check_open, Error, Result};
+use crate::experiments::declared::DetailTable;
+use crate::experiments::flux::stats::FluxStats;
 use crate::experiments::flux::FluxScene;
-use crate::experiments::Detail;
 use crate::plot::{CutPanel, Waterfall};
 use crate::stats::{pearson, Estimate};
 
@@ -38,8 +39,6 @@ pub const SHAPE_CHANGE: &str = "waterfall_shape_change";
 pub const REENTERED_LAST: &str = "waterfall_reentered_last";
 /// The key of the share of rows that hold a re-entered point.
 pub const ROWS_WITH_REENTRY: &str = "waterfall_rows_with_reentry";
-/// The details of a waterfall.
-pub const DETAILS: [&str; 3] = [SHAPE_CHANGE, REENTERED_LAST, ROWS_WITH_REENTRY];
 /// Blocks of consecutive rows over which the share of rows with re-entry is averaged.
 pub const ROW_BLOCKS: usize = 16;
 
@@ -236,81 +235,99 @@ pub fn reentered_last(r: &WaterfallResult) -> Option<f64> {
     Some(marked as f64 / last.reentered.len().max(1) as f64)
 }
 
-/// The waterfall's details ([`DETAILS`]) over its realizations (the figure's first):
-/// means with their standard errors over the realizations, or, for one, the figure's own
-/// values without error bars (the rows' share with its error over blocks of rows). None
-/// without a waterfall.
-pub fn details(results: &[&WaterfallResult]) -> Vec<Detail> {
-    let Some(first) = results.first() else {
-        return Vec::new();
-    };
-    let n = results.len();
-    let zetas = |k: usize| first.cuts.iter().rev().nth(k).map_or(f64::NAN, |c| c.zeta);
-    let over = |f: &dyn Fn(&WaterfallResult) -> Option<f64>| {
-        if n == 1 {
-            Estimate::new(f(first).unwrap_or(f64::NAN), f64::NAN)
-        } else {
-            Estimate::mean_of(&results.iter().filter_map(|r| f(r)).collect::<Vec<_>>())
-        }
-    };
-    let realizations = if n == 1 {
-        format!("row {}, one realization", first.row)
-    } else {
-        format!("each realization's busiest row, {n} realizations")
-    };
-    let mut details = vec![
-        Detail::new(
-            SHAPE_CHANGE,
-            format!(
-                "1 - Pearson correlation of the displacement along the waterfall's cut, \
-                 zeta = {} against {} ({realizations})",
-                zetas(1),
-                zetas(0),
-            ),
-            over(&shape_change),
-        ),
-        Detail::new(
-            REENTERED_LAST,
-            format!(
-                "share of the cut's points re-entered at zeta = {} (in contact, out in a \
-                 panel above)",
-                zetas(0)
-            ),
-            over(&reentered_last),
-        ),
-    ];
-    // Results stored before the rows were counted have none.
-    let rows = if n == 1 {
-        rows_with_reentry(&first.row_reentries)
-    } else {
-        let shares: Vec<f64> = results
-            .iter()
-            .filter_map(|r| rows_with_reentry(&r.row_reentries).map(|e| e.value))
-            .collect();
-        (shares.len() == n).then(|| Estimate::mean_of(&shares))
-    };
-    if let Some(e) = rows {
-        let error = if n == 1 {
-            format!("error over {ROW_BLOCKS} blocks of rows, one realization")
-        } else {
-            format!("error over {n} realizations")
+/// The waterfall's statistics over its realizations (the figure's first): means with
+/// their standard errors over the realizations, or, for one, the figure's own values
+/// without error bars (the rows' share with its error over blocks of rows).
+#[derive(Debug, Clone, PartialEq)]
+pub struct WaterfallStats {
+    /// Realizations.
+    pub realizations: usize,
+    /// The grid row of the figure's cut.
+    pub row: usize,
+    /// The shape change of the cut between the last two panels ([`shape_change`]).
+    pub shape_change: Estimate,
+    /// The share of the cut's points re-entered in the last panel ([`reentered_last`]).
+    pub reentered_last: Estimate,
+    /// The share of the grid rows holding a re-entered point ([`rows_with_reentry`]);
+    /// none where a result stored before the rows were counted has none.
+    pub rows_with_reentry: Option<Estimate>,
+}
+
+impl WaterfallStats {
+    /// The statistics of the waterfall's results, the figure's first (none without one).
+    pub fn of(results: &[&WaterfallResult]) -> Option<Self> {
+        let first = results.first()?;
+        let n = results.len();
+        let over = |f: &dyn Fn(&WaterfallResult) -> Option<f64>| {
+            if n == 1 {
+                Estimate::new(f(first).unwrap_or(f64::NAN), f64::NAN)
+            } else {
+                Estimate::mean_of(&results.iter().filter_map(|r| f(r)).collect::<Vec<_>>())
+            }
         };
-        details.push(Detail::new(
-            ROWS_WITH_REENTRY,
-            format!(
-                "share of the grid rows holding a point re-entered in some panel (in \
-                 contact, out in a panel above), zeta = {}; {error}",
-                first
-                    .cuts
-                    .iter()
-                    .map(|c| c.zeta.to_string())
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ),
-            e,
-        ));
+        let rows_with_reentry = if n == 1 {
+            rows_with_reentry(&first.row_reentries)
+        } else {
+            let shares: Vec<f64> = results
+                .iter()
+                .filter_map(|r| rows_with_reentry(&r.row_reentries).map(|e| e.value))
+                .collect();
+            (shares.len() == n).then(|| Estimate::mean_of(&shares))
+        };
+        Some(Self {
+            realizations: n,
+            row: first.row,
+            shape_change: over(&shape_change),
+            reentered_last: over(&reentered_last),
+            rows_with_reentry,
+        })
     }
-    details
+}
+
+/// The waterfall's details over its realizations, from the scene's `plan` (written where
+/// the run has the waterfall's results). Two labels name the run's realizations and one the
+/// figure's row, so they are read with the values.
+pub fn rows(t: &mut DetailTable<'_, FluxStats>, plan: &WaterfallPlan) {
+    let zetas = |k: usize| plan.zetas.iter().rev().nth(k).copied().unwrap_or(f64::NAN);
+    let (before, last) = (zetas(1), zetas(0));
+    t.row_labelled(SHAPE_CHANGE, move |s: &FluxStats| {
+        let w = s.waterfall.as_ref()?;
+        let realizations = match w.realizations {
+            1 => format!("row {}, one realization", w.row),
+            n => format!("each realization's busiest row, {n} realizations"),
+        };
+        let name = format!(
+            "1 - Pearson correlation of the displacement along the waterfall's cut, zeta = \
+             {before} against {last} ({realizations})",
+        );
+        Some((name, w.shape_change))
+    });
+    t.row(
+        REENTERED_LAST,
+        format!(
+            "share of the cut's points re-entered at zeta = {last} (in contact, out in a panel \
+             above)"
+        ),
+        |s: &FluxStats| Some(s.waterfall.as_ref()?.reentered_last),
+    );
+    let panels = plan
+        .zetas
+        .iter()
+        .map(|z| z.to_string())
+        .collect::<Vec<_>>()
+        .join(", ");
+    t.row_labelled(ROWS_WITH_REENTRY, move |s: &FluxStats| {
+        let w = s.waterfall.as_ref()?;
+        let error = match w.realizations {
+            1 => format!("error over {ROW_BLOCKS} blocks of rows, one realization"),
+            n => format!("error over {n} realizations"),
+        };
+        let name = format!(
+            "share of the grid rows holding a point re-entered in some panel (in contact, \
+             out in a panel above), zeta = {panels}; {error}"
+        );
+        Some((name, w.rows_with_reentry?))
+    });
 }
 
 /// The figure of a result.
@@ -423,19 +440,89 @@ mod tests {
         // r(u, reversed u) = -0.6 for this profile: 1 - r = 1.6.
         assert!((shape_change(&flipped).unwrap() - 1.6).abs() < 1e-12);
         assert_eq!(shape_change(&r(vec![cut(8.0, u, vec![false; 4])])), None);
-        let d = details(&[&kept]);
-        assert_eq!(d.len(), DETAILS.len());
-        assert!(d[0].value.std_error.is_nan());
-        assert_eq!(d[2].value.value, 0.5);
+        let one = WaterfallStats::of(&[&kept]).unwrap();
+        assert_eq!((one.realizations, one.row), (1, 0));
+        assert!(one.shape_change.std_error.is_nan());
+        assert_eq!(one.rows_with_reentry.unwrap().value, 0.5);
         // Two realizations: means over them, with error bars.
-        let two = details(&[&kept, &flipped]);
-        assert!((two[0].value.value - 0.8).abs() < 1e-12, "{:?}", two[0]);
-        assert!(two[0].value.std_error > 0.0);
-        // A result stored before the rows were counted.
+        let two = WaterfallStats::of(&[&kept, &flipped]).unwrap();
+        assert!((two.shape_change.value - 0.8).abs() < 1e-12, "{two:?}");
+        assert!(two.shape_change.std_error > 0.0);
+        // A result stored before the rows were counted; no result at all.
         let old = WaterfallResult {
             row_reentries: Vec::new(),
             ..kept
         };
-        assert_eq!(details(&[&old]).len(), DETAILS.len() - 1);
+        assert_eq!(WaterfallStats::of(&[&old]).unwrap().rows_with_reentry, None);
+        assert_eq!(WaterfallStats::of(&[]), None);
+    }
+
+    #[test]
+    fn the_labels_name_the_plans_panels_and_the_runs_realizations() {
+        use crate::experiments::flux::stats::StepStats;
+        let plan = WaterfallPlan {
+            seed: 1,
+            more_seeds: Vec::new(),
+            zetas: vec![4.0, 8.5],
+            contact_area: 0.1,
+            solver: SolverKind::Cg,
+        };
+        let u = vec![0.0, 1.0, 3.0, 2.0];
+        let result = WaterfallResult {
+            row: 3,
+            p0: 0.1,
+            cuts: vec![
+                cut(4.0, u.clone(), vec![false; 4]),
+                cut(8.5, u, vec![false, true, false, false]),
+            ],
+            row_reentries: vec![0, 0, 0, 1],
+        };
+        let stats = |results: &[&WaterfallResult]| FluxStats {
+            steps: StepStats::of(&[]),
+            results: Vec::new(),
+            rows: Vec::new(),
+            waterfall: WaterfallStats::of(results),
+        };
+        let details = |plan: &WaterfallPlan, s: &FluxStats| {
+            let mut t = DetailTable::default();
+            rows(&mut t, plan);
+            t.details(s)
+        };
+        // One realization: the figure's row and the error over blocks of rows.
+        let one = stats(&[&result]);
+        let d = details(&plan, &one);
+        assert_eq!(d.len(), 3);
+        assert_eq!(
+            d[0].name,
+            "1 - Pearson correlation of the displacement along the waterfall's cut, zeta = \
+             4 against 8.5 (row 3, one realization)"
+        );
+        assert_eq!(
+            d[1].name,
+            "share of the cut's points re-entered at zeta = 8.5 (in contact, out in a panel \
+             above)"
+        );
+        assert_eq!(
+            d[2].name,
+            "share of the grid rows holding a point re-entered in some panel (in contact, \
+             out in a panel above), zeta = 4, 8.5; error over 16 blocks of rows, one \
+             realization"
+        );
+        assert_eq!(d[1].value.value, 0.25);
+        // Two: the realizations, each its busiest row.
+        let more = WaterfallPlan {
+            more_seeds: vec![2],
+            ..plan.clone()
+        };
+        let d = details(&more, &stats(&[&result, &result]));
+        assert!(d[0]
+            .name
+            .ends_with("(each realization's busiest row, 2 realizations)"));
+        assert!(d[2].name.ends_with("; error over 2 realizations"));
+        // Without a waterfall's result: declared, not written.
+        let mut t = DetailTable::default();
+        rows(&mut t, &plan);
+        assert_eq!(t.keys().detail_names().len(), 3);
+        assert!(t.details(&stats(&[])).is_empty());
     }
 }

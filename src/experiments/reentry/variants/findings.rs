@@ -4,7 +4,7 @@
 
 use super::{Variant, VariantJob, VariantResult};
 use crate::experiments::contact_change::unpack_categories;
-use crate::experiments::declared::DetailTable;
+use crate::experiments::declared::{value_at, DetailTable};
 use crate::experiments::keys::{DetailKey, Tag};
 use crate::experiments::reentry::shells::ShellStats;
 use crate::experiments::reentry::stats::Share;
@@ -288,8 +288,8 @@ pub fn declare<'s>(
                 move |s: &RunStats| {
                     let l = at(s, name, a)?;
                     let (_, shares) = stats_of(s, name)?.same_cutoffs.as_ref()?;
-                    let (_, other) = shares.iter().find(|(load, _)| *load == a)?;
-                    Some(Estimate::difference(l.share, *other))
+                    let other = value_at(shares, a)?;
+                    Some(Estimate::difference(l.share, other))
                 },
             );
         }
