@@ -375,7 +375,7 @@ fn table(scene: &FluxScene) -> DetailTable<'_, FluxStats> {
     let mut t = DetailTable::default();
     stats::rows(&mut t);
     if let Some(plan) = &scene.waterfall {
-        waterfall::rows(&mut t, plan);
+        waterfall::rows(&mut t, plan, |s: &FluxStats| s.waterfall.as_ref());
     }
     t
 }

@@ -433,7 +433,7 @@ impl Experiment for TotalEnergy {
     ) -> DetailTable<'s, EnergyStats> {
         let mut t = DetailTable::default();
         details::declare(&mut t, scene);
-        resolutions::declare(&mut t, &scene.resolutions);
+        resolutions::declare(&mut t, &scene.resolutions, |s: &EnergyStats| &s.resolutions);
         t
     }
 

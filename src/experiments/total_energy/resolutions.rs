@@ -17,7 +17,6 @@
 use crate::experiments::keys::{DetailKey, Tag};
 use serde::{Deserialize, Serialize};
 
-use super::stats::EnergyStats;
 use super::{EnergyResult, EnergyScene};
 use crate::engine::tolerance::ZETA_SLACK;
 use crate::error::{check_key_name, check_seeds, Error, Result};
@@ -254,9 +253,8 @@ pub fn columns() -> Vec<(&'static str, &'static str)> {
 }
 
 /// The statistics of resolution `name` at load `a`, where it has realizations.
-fn load_of<'a>(s: &'a EnergyStats, name: &str, a: f64) -> Option<&'a ResolutionLoad> {
-    s.resolutions
-        .iter()
+fn load_of<'a>(s: &'a [ResolutionStats], name: &str, a: f64) -> Option<&'a ResolutionLoad> {
+    s.iter()
         .find(|r| r.resolution.name == name)?
         .loads
         .iter()
@@ -264,14 +262,19 @@ fn load_of<'a>(s: &'a EnergyStats, name: &str, a: f64) -> Option<&'a ResolutionL
 }
 
 /// Declares the windows' `S~` of each resolution and load, and its shift from the
-/// headline grid's; a load without realizations has neither.
-pub fn declare<'s>(t: &mut DetailTable<'s, EnergyStats>, resolutions: &'s [Resolution]) {
+/// headline grid's; a load without realizations has neither. `of` finds the resolutions'
+/// statistics among the experiment's `S`.
+pub fn declare<'s, S: 's>(
+    t: &mut DetailTable<'s, S>,
+    resolutions: &'s [Resolution],
+    of: fn(&S) -> &[ResolutionStats],
+) {
     for r in resolutions {
         let (name, n) = (r.name.as_str(), r.n);
         for &a in &r.contact_areas {
             // The label counts the realizations that ran.
-            t.row_labelled(s_tilde_key(name, a), move |s| {
-                let l = load_of(s, name, a)?;
+            t.row_labelled(s_tilde_key(name, a), move |s: &S| {
+                let l = load_of(of(s), name, a)?;
                 let text = format!(
                     "S~ averaged over the increment windows, a_r = {a}, {n}^2 \
                      (size-scaled), {} realizations",
@@ -285,7 +288,9 @@ pub fn declare<'s>(t: &mut DetailTable<'s, EnergyStats>, resolutions: &'s [Resol
                     "S~ averaged over the increment windows, a_r = {a}: {n}^2 minus the \
                      headline's grid"
                 ),
-                move |s| load_of(s, name, a).map(|l| Estimate::difference(l.s_tilde, l.headline)),
+                move |s: &S| {
+                    load_of(of(s), name, a).map(|l| Estimate::difference(l.s_tilde, l.headline))
+                },
             );
         }
     }
@@ -397,29 +402,6 @@ mod tests {
         }
     }
 
-    /// Statistics with the resolutions' `stats` and no headline sweeps.
-    fn with_resolutions(stats: Vec<ResolutionStats>) -> EnergyStats {
-        let none = Estimate::new(f64::NAN, f64::NAN);
-        let at = super::super::stats::AtFullResolution {
-            area: none,
-            original: none,
-            corrected: none,
-        };
-        EnergyStats {
-            sweeps: Vec::new(),
-            resolutions: stats,
-            zetas: Vec::new(),
-            windows: Vec::new(),
-            headline: super::super::stats::Headline {
-                head: at,
-                quarter: 0,
-                drift: none,
-                low: at,
-                low_runs: 0,
-            },
-        }
-    }
-
     #[test]
     fn the_shift_is_the_difference_of_the_windows_means() {
         let res = finer();
@@ -436,8 +418,9 @@ mod tests {
         assert!((l.s_tilde.value - 0.85).abs() < 1e-12);
         assert!((l.headline.value - 0.6).abs() < 1e-12);
         let mut t = DetailTable::default();
-        declare(&mut t, std::slice::from_ref(&res));
-        let d = t.details(&with_resolutions(s));
+        // The resolutions' statistics stand for the experiment's.
+        declare(&mut t, std::slice::from_ref(&res), Vec::as_slice);
+        let d = t.details(&s);
         assert_eq!(
             d[0].name,
             "S~ averaged over the increment windows, a_r = 0.3, 128^2 (size-scaled), 2 \

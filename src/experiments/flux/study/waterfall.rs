@@ -28,7 +28,6 @@ use serde::{Deserialize, Serialize};
 use crate::engine::solver::SolverKind;
 use crate::error::{check_open, Error, Result};
 use crate::experiments::declared::DetailTable;
-use crate::experiments::flux::stats::FluxStats;
 use crate::experiments::flux::FluxScene;
 use crate::plot::{CutPanel, Waterfall};
 use crate::stats::{pearson, Estimate};
@@ -286,12 +285,17 @@ impl WaterfallStats {
 
 /// The waterfall's details over its realizations, from the scene's `plan` (written where
 /// the run has the waterfall's results). Two labels name the run's realizations and one the
-/// figure's row, so they are read with the values.
-pub fn rows(t: &mut DetailTable<'_, FluxStats>, plan: &WaterfallPlan) {
+/// figure's row, so they are read with the values. `of` finds the waterfall's statistics
+/// among the experiment's `S`.
+pub fn rows<'s, S: 's>(
+    t: &mut DetailTable<'s, S>,
+    plan: &WaterfallPlan,
+    of: fn(&S) -> Option<&WaterfallStats>,
+) {
     let zetas = |k: usize| plan.zetas.iter().rev().nth(k).copied().unwrap_or(f64::NAN);
     let (before, last) = (zetas(1), zetas(0));
-    t.row_labelled(SHAPE_CHANGE, move |s: &FluxStats| {
-        let w = s.waterfall.as_ref()?;
+    t.row_labelled(SHAPE_CHANGE, move |s: &S| {
+        let w = of(s)?;
         let realizations = match w.realizations {
             1 => format!("row {}, one realization", w.row),
             n => format!("each realization's busiest row, {n} realizations"),
@@ -308,7 +312,7 @@ pub fn rows(t: &mut DetailTable<'_, FluxStats>, plan: &WaterfallPlan) {
             "share of the cut's points re-entered at zeta = {last} (in contact, out in a panel \
              above)"
         ),
-        |s: &FluxStats| Some(s.waterfall.as_ref()?.reentered_last),
+        move |s: &S| Some(of(s)?.reentered_last),
     );
     let panels = plan
         .zetas
@@ -316,8 +320,8 @@ pub fn rows(t: &mut DetailTable<'_, FluxStats>, plan: &WaterfallPlan) {
         .map(|z| z.to_string())
         .collect::<Vec<_>>()
         .join(", ");
-    t.row_labelled(ROWS_WITH_REENTRY, move |s: &FluxStats| {
-        let w = s.waterfall.as_ref()?;
+    t.row_labelled(ROWS_WITH_REENTRY, move |s: &S| {
+        let w = of(s)?;
         let error = match w.realizations {
             1 => format!("error over {ROW_BLOCKS} blocks of rows, one realization"),
             n => format!("error over {n} realizations"),
@@ -459,7 +463,6 @@ mod tests {
 
     #[test]
     fn the_labels_name_the_plans_panels_and_the_runs_realizations() {
-        use crate::experiments::flux::stats::StepStats;
         let plan = WaterfallPlan {
             seed: 1,
             more_seeds: Vec::new(),
@@ -477,15 +480,11 @@ mod tests {
             ],
             row_reentries: vec![0, 0, 0, 1],
         };
-        let stats = |results: &[&WaterfallResult]| FluxStats {
-            steps: StepStats::of(&[]),
-            results: Vec::new(),
-            rows: Vec::new(),
-            waterfall: WaterfallStats::of(results),
-        };
-        let details = |plan: &WaterfallPlan, s: &FluxStats| {
+        // The waterfall's statistics stand for the experiment's.
+        let stats = |results: &[&WaterfallResult]| WaterfallStats::of(results);
+        let details = |plan: &WaterfallPlan, s: &Option<WaterfallStats>| {
             let mut t = DetailTable::default();
-            rows(&mut t, plan);
+            rows(&mut t, plan, Option::as_ref);
             t.details(s)
         };
         // One realization: the figure's row and the error over blocks of rows.
@@ -521,7 +520,7 @@ mod tests {
         assert!(d[2].name.ends_with("; error over 2 realizations"));
         // Without a waterfall's result: declared, not written.
         let mut t = DetailTable::default();
-        rows(&mut t, &plan);
+        rows(&mut t, &plan, Option::as_ref);
         assert_eq!(t.keys().detail_names().len(), 3);
         assert!(t.details(&stats(&[])).is_empty());
     }
