@@ -426,7 +426,7 @@ impl Experiment for TotalEnergy {
     }
 
     /// Each load's details, those at the lowest magnifications, the headline's, those
-    /// over the loads ([`details`]), and the finer grids' ([`resolutions`]).
+    /// over the loads (the `details` module), and the finer grids' ([`resolutions`]).
     fn detail_table<'s>(
         scene: &'s EnergyScene,
         _criteria: &'s Criteria,
