@@ -7,7 +7,9 @@
 //!
 //! * `history/<prediction>/<solver>/256`: the first [`SHELLS`] shells of the 256^2
 //!   history, from the flat interface, one climb per timed iteration; the first climb of
-//!   each logs its iterations and FFTs a shell to stderr.
+//!   each logs its iterations and FFTs a shell to stderr;
+//! * `history/shell/cg@3e-4/256`: the same climb by CG at [`FAST_TOL`], the tolerance at
+//!   which the whole 1024^2 history keeps today's share (docs/measured.md).
 //!
 //! A whole paper-scale history is too long for criterion's samples. With `HISTORY_AB` set,
 //! the bench runs instead an interleaved A/B of whole or truncated histories, the
@@ -23,7 +25,10 @@
 //!
 //! (`shells=0`: the whole history; `seed=` as well; predictions are `shell`, `response`
 //! and `extrapolate:W`; `tols=1e-4,1e-3` runs each prediction at each tolerance, the load
-//! found at the first, and compares every run with the default prediction at the first.)
+//! found at the first, and compares every run with the default prediction at the first.
+//! `runs=gfmd@1e-4,cg@3e-4` instead names solver and tolerance pairs, the load found at
+//! the first pair's tolerance, and compares every run with the first pair's default
+//! prediction: today's method against another solver at another tolerance.)
 
 use std::hint::black_box;
 use std::time::{Duration, Instant};
@@ -45,6 +50,8 @@ const LAMBDA_S: f64 = 8.0;
 const A_R: f64 = 0.14;
 /// The residual tolerance of the histories.
 const TOL: f64 = 1e-4;
+/// The looser tolerance of the CG climb set beside today's GFMD one.
+const FAST_TOL: f64 = 3e-4;
 /// Shells of the criterion benchmark's climb.
 const SHELLS: usize = 60;
 
@@ -197,6 +204,15 @@ fn parse_prediction(s: &str) -> Prediction {
     }
 }
 
+/// A pair of `runs=`: `solver@tol`.
+fn parse_run(s: &str) -> (SolverKind, f64) {
+    let (solver, tol) = s.split_once('@').expect("a run is solver@tol");
+    (
+        SolverKind::from_name(solver).expect("a solver name"),
+        tol.parse().expect("a tolerance"),
+    )
+}
+
 fn name(p: Prediction) -> String {
     match p {
         Prediction::Shell => "shell".into(),
@@ -211,6 +227,7 @@ fn interleaved(spec: &str) {
     let (mut shells, mut rounds, mut seed) = (400, 2, 1);
     let (mut a_r, mut tols) = (A_R, vec![TOL]);
     let mut solvers = vec![SolverKind::Gfmd];
+    let mut runs: Vec<(SolverKind, f64)> = Vec::new();
     let mut predictions = vec![Prediction::Shell, Prediction::Response];
     for item in spec.split_whitespace() {
         let (key, value) = item.split_once('=').expect("key=value");
@@ -228,9 +245,21 @@ fn interleaved(spec: &str) {
                     .collect();
             }
             "predictions" => predictions = value.split(',').map(parse_prediction).collect(),
+            "runs" => runs = value.split(',').map(parse_run).collect(),
             _ => panic!("unknown key {key:?}"),
         }
     }
+    // Each group's runs are compared with its first pair's default prediction: one group
+    // per solver over the tolerances, or the named pairs as one group.
+    let groups: Vec<Vec<(SolverKind, f64)>> = if runs.is_empty() {
+        solvers
+            .iter()
+            .map(|&k| tols.iter().map(|&t| (k, t)).collect())
+            .collect()
+    } else {
+        tols = runs.iter().map(|r| r.1).collect();
+        vec![runs]
+    };
     let tol = tols[0];
     let scene = Scene::new(n, seed, a_r, tol);
     eprintln!(
@@ -245,23 +274,24 @@ fn interleaved(spec: &str) {
     );
     println!("round\tsolver\tprediction\ttol\tit/shell\tfft/shell\tcpu s/shell\twall s/shell\tshare\tit ratio\tfft ratio\tcpu ratio\tshare diff\tdiffering points\titerations d1/q1/median/d9/max");
     for round in 0..rounds {
-        for &kind in &solvers {
-            let mut order: Vec<(Prediction, f64)> = tols
+        for group in &groups {
+            let first = group[0];
+            let mut order: Vec<(SolverKind, Prediction, f64)> = group
                 .iter()
-                .flat_map(|&t| predictions.iter().map(move |&p| (p, t)))
+                .flat_map(|&(k, t)| predictions.iter().map(move |&p| (k, p, t)))
                 .collect();
             if round % 2 == 1 {
                 order.reverse();
             }
-            let runs: Vec<((Prediction, f64), Run)> = order
+            let runs: Vec<((SolverKind, Prediction, f64), Run)> = order
                 .into_iter()
-                .map(|p| (p, climb(&scene, kind, p, shells)))
+                .map(|(k, p, t)| ((k, p, t), climb(&scene, k, (p, t), shells)))
                 .collect();
             let base = runs
                 .iter()
-                .find(|((p, t), _)| p.is_shell() && *t == tol)
+                .find(|((k, p, t), _)| p.is_shell() && (*k, *t) == first)
                 .map(|(_, r)| r);
-            for ((p, t), r) in &runs {
+            for ((kind, p, t), r) in &runs {
                 let per = |x: f64| x / r.shells as f64;
                 let vs = base.map_or(String::from("\t\t\t\t"), |b| {
                     let differ = r
@@ -308,26 +338,33 @@ fn history(c: &mut Criterion) {
         .measurement_time(Duration::from_secs(20));
     let n = 256;
     let scene = std::cell::OnceCell::new();
-    for prediction in [Prediction::Shell, Prediction::Response] {
-        for kind in [SolverKind::Gfmd, SolverKind::Cg] {
-            let id = BenchmarkId::new(format!("{}/{}", name(prediction), kind.name()), n);
-            let logged = std::cell::Cell::new(false);
-            group.bench_function(id, |b| {
-                let scene = scene.get_or_init(|| Scene::new(n, 1, A_R, TOL));
-                if !logged.replace(true) {
-                    let r = climb(scene, kind, (prediction, TOL), SHELLS);
-                    eprintln!(
-                        "history/{}/{}/{n}: {} shells, {:.2} iterations and {:.2} FFTs a shell",
-                        name(prediction),
-                        kind.name(),
-                        r.shells,
-                        r.iterations as f64 / r.shells as f64,
-                        r.transforms as f64 / r.shells as f64
-                    );
-                }
-                b.iter(|| black_box(climb(scene, kind, (prediction, TOL), SHELLS)));
-            });
-        }
+    let mut runs: Vec<(Prediction, SolverKind, f64)> = [Prediction::Shell, Prediction::Response]
+        .into_iter()
+        .flat_map(|p| [SolverKind::Gfmd, SolverKind::Cg].map(|k| (p, k, TOL)))
+        .collect();
+    runs.push((Prediction::Shell, SolverKind::Cg, FAST_TOL));
+    for (prediction, kind, tol) in runs {
+        let solver = if tol == TOL {
+            kind.name().to_string()
+        } else {
+            format!("{}@{tol:e}", kind.name())
+        };
+        let id = BenchmarkId::new(format!("{}/{solver}", name(prediction)), n);
+        let logged = std::cell::Cell::new(false);
+        group.bench_function(id, |b| {
+            let scene = scene.get_or_init(|| Scene::new(n, 1, A_R, TOL));
+            if !logged.replace(true) {
+                let r = climb(scene, kind, (prediction, tol), SHELLS);
+                eprintln!(
+                    "history/{}/{solver}/{n}: {} shells, {:.2} iterations and {:.2} FFTs a shell",
+                    name(prediction),
+                    r.shells,
+                    r.iterations as f64 / r.shells as f64,
+                    r.transforms as f64 / r.shells as f64
+                );
+            }
+            b.iter(|| black_box(climb(scene, kind, (prediction, tol), SHELLS)));
+        });
     }
     group.finish();
 }

@@ -24,6 +24,13 @@ scene by default); the claims beyond it are listed with their cost.
 
     python3 scripts/power_plan.py                   # print the plan as Markdown
     python3 scripts/power_plan.py --write docs/power-plan.md --apply
+    python3 scripts/power_plan.py --remaining --write docs/undecided.md
+
+`--remaining` registers nothing: on the outcomes as they are, it prices what would decide
+each claim still not established, by the same criterion, including the fitted constants,
+whose points are the partial-contact loads times the targets: the loads the fit would need
+and the jobs one more load adds (their measured cost where the jobs ran). A claim whose
+list has planned realizations not yet merged is listed as waiting for them.
 
 `--apply` writes the planned realizations into the definitions' `more_seeds`, numbered on
 from the largest seed of the list. Run it once, before any planned job runs, and commit the
@@ -163,6 +170,136 @@ def stored_cost_per_realization(binary, root, name, path, out):
     return None
 
 
+def fit_row(o, spec, c, width):
+    """A fitted constant's need in points and loads, from the study that fitted it."""
+    study, row, _ = spec["measure"].split(":", 1)[1].split("/")
+    table = next(t for t in o["studies"] if t["key"] == study)
+    cells = next(r for r in table["rows"] if r["key"] == row)["cells"]
+    column = [k["key"] for k in table["columns"]].index("points")
+    points = int(cells[column])
+    se = (c.get("measured") or {}).get("std_error")
+    need = needed(points, se, width) if se else None
+    return points, se, need
+
+
+def load_cost(binary, root, name, out):
+    """Core-hours of one load of a scene: its jobs' cost (measured where they ran) over
+    its loads, every realization and solver included."""
+    p = subprocess.run(
+        [binary, "validate", name, "--full", "--plan", "--out", out],
+        capture_output=True,
+        text=True,
+        cwd=root,
+    )
+    with open(os.path.join(root, "validations", name + ".toml"), "rb") as f:
+        loads = tomllib.load(f)["full"]["contact_areas"]
+    # A reference surface's sweeps (another scene's loads) are not this fit's.
+    jobs = [
+        j for j in json.loads(p.stdout)["jobs"]
+        if isinstance(j["job"], dict) and j["job"].get("contact_area") in loads
+    ]
+    total = sum(j.get("measured_s") or j["cost"] for j in jobs) / 3600
+    return total / len(loads), len(loads)
+
+
+def remaining(args, root, binary, out, specs, texts):
+    """The page of what would decide each claim not established now (registers nothing)."""
+    lines = [
+        "# What the undecided claims would cost",
+        "",
+        "Written by `scripts/power_plan.py --remaining` from the paper-scale outcomes",
+        "(`results/full`) as committed with this page. It registers nothing: the registered",
+        "plan is [power-plan.md](power-plan.md), and runs beyond it would be a new",
+        "registration, committed before its jobs. The criterion is the plan's: the fewest",
+        "realizations (for a fitted constant, points of the fit) whose interval is at most half",
+        "as wide as the rule's band, from the error bar alone, never the value. The cost is",
+        "the cost model's (`validate --full --plan`) for the jobs one more realization adds,",
+        "both solvers included.",
+        "",
+        "A fitted constant's points are the partial-contact loads times the targets; its",
+        "standard error is the scatter about the law over sqrt(points), so the points it needs",
+        "scale as the square of the error. More loads would add points, but points of",
+        "neighbouring loads share their realizations and their contact geometry: the fit's",
+        "error, which takes the points as independent, would then understate the error. The",
+        "cost of the loads is therefore a lower bound, and no fitted constant is planned.",
+        "",
+        "| claim | list | now | needed | core-hours | status |",
+        "|---|---|---|---|---|---|",
+    ]
+    rows = []
+    for f in sorted(glob.glob(os.path.join(out, "*.json"))):
+        o = json.load(open(f))
+        if "claims" not in o:
+            continue
+        resolution = o["rule"]["resolution"]
+        for c in o["claims"]:
+            if c.get("kind", "evidence") != "evidence" or c["result"] != "not_established":
+                continue
+            name = o["name"]
+            spec = specs[(name, c["key"])]
+            width, _ = band(c, resolution)
+            claim = f"`{name}.{c['key']}`"
+            if spec.get("error") == "fit":
+                points, se, need = fit_row(o, spec, c, width)
+                per_load, loads = load_cost(binary, root, name, out)
+                targets = points // loads if loads else 0
+                more = math.ceil((need - points) / targets) if need and targets else None
+                cost = None if more is None else more * per_load
+                rows.append((cost, f"| {claim} | points (loads x targets) | {points} | {need} "
+                             f"| {'' if cost is None else f'{cost:.1f}'} | fitted constant: "
+                             f"{more} more loads of {targets} points at {per_load:.2f} "
+                             "core-hours a load; not planned, as loads that dense would "
+                             "not give independent points |"))
+                continue
+            estimate = c.get("difference") or c.get("measured")
+            n = c.get("realizations")
+            se = estimate["std_error"] if estimate else None
+            paths = spec.get("realizations", ["seeds"])
+            # A list the definitions do not spell out (a finer grid's) counts the outcome's.
+            found = [(len(x[1]) if (x := seeds_line(texts[name], p)) else n or 0, p)
+                     for p in paths]
+            listed, path = min(found)
+            if listed > (n or 0):
+                rows.append((0.0, f"| {claim} | {path} | {n} | {listed} | | planned at "
+                             f"`{spec.get('planned', '?')}`: {listed - n} realizations not "
+                             f"merged yet |"))
+                continue
+            need = needed(n, se, width) if se and se == se else None
+            if need is None:
+                rows.append((None, f"| {claim} | {path} | {n} | | | no error bar |"))
+                continue
+            if need <= n:
+                rows.append((0.0, f"| {claim} | {path} | {n} | {need} | 0 | its interval is "
+                             "already that narrow and its value lies at the rule's edge: no "
+                             "realizations decide it |"))
+                continue
+            if seeds_line(texts[name], path):
+                base = plan_cost(binary, {name: texts[name]}, [name], out)
+                one = plan_cost(binary, {name: with_more_seeds(texts[name], path, 1)}, [name], out)
+                unit = one - base
+            else:
+                unit = stored_cost_per_realization(binary, root, name, path, out)
+            cost = None if unit is None else unit * (need - n)
+            within = cost is not None and cost <= args.budget
+            if spec.get("planned"):
+                status = (f"ran as planned at `{spec['planned']}`; its error bar is wider "
+                          "than the plan's estimate, and a second look at the same claim is "
+                          "not in the plan")
+            else:
+                status = (f"{'within' if within else 'over'} the budget of "
+                          f"{args.budget:g} core-hours")
+            rows.append((cost, f"| {claim} | {path} | {n} | {need} "
+                         f"| {'' if cost is None else f'{cost:.1f}'} | {status} |"))
+    rows.sort(key=lambda r: (r[0] is None, r[0] or 0.0))
+    lines += [r[1] for r in rows]
+    text = "\n".join(lines) + "\n"
+    if args.write:
+        with open(args.write, "w") as f:
+            f.write(text)
+    else:
+        sys.stdout.write(text)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--root", default=os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -170,6 +307,8 @@ def main():
     ap.add_argument("--budget", type=float, default=BUDGET_CORE_HOURS)
     ap.add_argument("--write", help="write the Markdown plan here")
     ap.add_argument("--apply", action="store_true", help="write more_seeds into the definitions")
+    ap.add_argument("--remaining", action="store_true",
+                    help="price what would decide each claim not established now; registers nothing")
     args = ap.parse_args()
     root = args.root
     binary = os.path.join(root, args.bin) if not os.path.isabs(args.bin) else args.bin
@@ -182,6 +321,9 @@ def main():
         texts[d["name"]] = open(f).read()
         for c in d.get("claims", []):
             specs[(d["name"], c["key"])] = c
+    if args.remaining:
+        remaining(args, root, binary, out, specs, texts)
+        return
 
     rows = []
     for f in sorted(glob.glob(os.path.join(out, "*.json"))):

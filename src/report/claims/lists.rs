@@ -86,7 +86,9 @@ pub(super) fn count_table(s: &mut String, outcomes: &[&Outcome]) {
 }
 
 /// The lists: contradicted, not established, reproduced by assumption, counted apart.
-pub(super) fn lists(s: &mut String, outcomes: &[&Outcome]) {
+/// `costs`, a page beside this one that prices each undecided claim, is named under the
+/// undecided ones.
+pub(super) fn lists(s: &mut String, outcomes: &[&Outcome], costs: Option<&str>) {
     let all = listed(outcomes);
     let pick = |keep: &dyn Fn(&ClaimOutcome) -> bool| -> Vec<(&str, &ClaimOutcome)> {
         all.iter().filter(|(_, c)| keep(c)).copied().collect()
@@ -102,6 +104,13 @@ pub(super) fn lists(s: &mut String, outcomes: &[&Outcome]) {
     );
     let open = evidence(ClaimResult::NotEstablished);
     let _ = writeln!(s, "### Not established ({})\n", open.len());
+    if let Some(page) = costs.filter(|_| !open.is_empty()) {
+        let _ = writeln!(
+            s,
+            "\"Would decide\" assumes the value stays where it is. What each would cost in core-hours, \
+             from its error bar alone, and which runs are planned: [{page}]({page}).\n"
+        );
+    }
     table(
         s,
         &open,

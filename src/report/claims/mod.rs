@@ -39,6 +39,10 @@ pub const MARKERS: (&str, &str) = ("<!-- paper-claims -->", "<!-- /paper-claims 
 /// The file stem of the chart of the claims ([`chart`]).
 pub const CHART: &str = "claims";
 
+/// The page beside the claims page that prices each undecided claim
+/// (`scripts/power_plan.py --remaining`).
+pub const COSTS: &str = "undecided.md";
+
 /// The scorecard's section: the page for one scale.
 pub fn section(s: &mut String, outcomes: &[&Outcome]) {
     if every_claim(outcomes).is_empty() {
@@ -53,7 +57,7 @@ pub fn section(s: &mut String, outcomes: &[&Outcome]) {
     );
     count_table(s, outcomes);
     s.push('\n');
-    lists(s, outcomes);
+    lists(s, outcomes, None);
     let _ = writeln!(s, "### Each claim\n");
     for (v, c) in listed(outcomes) {
         block(s, v, c, None, None);
@@ -101,7 +105,7 @@ pub fn page(
              A claim measured without an error bar (one realization) has no row.\n"
         );
     }
-    lists(&mut s, &full);
+    lists(&mut s, &full, Some(COSTS));
     let _ = writeln!(s, "### Each claim\n");
     for (v, c) in listed(&full) {
         let other = reduced
