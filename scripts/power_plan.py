@@ -245,7 +245,7 @@ def remaining(args, root, binary, out, specs, texts):
                 targets = points // loads if loads else 0
                 more = math.ceil((need - points) / targets) if need and targets else None
                 cost = None if more is None else more * per_load
-                rows.append((cost, f"| {claim} | points (loads x targets) | {points} | {need} "
+                rows.append((cost, "fitted", f"| {claim} | points (loads x targets) | {points} | {need} "
                              f"| {'' if cost is None else f'{cost:.1f}'} | fitted constant: "
                              f"{more} more loads of {targets} points at {per_load:.2f} "
                              "core-hours a load; not planned, as loads that dense would "
@@ -260,16 +260,16 @@ def remaining(args, root, binary, out, specs, texts):
                      for p in paths]
             listed, path = min(found)
             if listed > (n or 0):
-                rows.append((0.0, f"| {claim} | {path} | {n} | {listed} | | planned at "
+                rows.append((0.0, "waiting", f"| {claim} | {path} | {n} | {listed} | | planned at "
                              f"`{spec.get('planned', '?')}`: {listed - n} realizations not "
                              f"merged yet |"))
                 continue
             need = needed(n, se, width) if se and se == se else None
             if need is None:
-                rows.append((None, f"| {claim} | {path} | {n} | | | no error bar |"))
+                rows.append((None, "no error", f"| {claim} | {path} | {n} | | | no error bar |"))
                 continue
             if need <= n:
-                rows.append((0.0, f"| {claim} | {path} | {n} | {need} | 0 | its interval is "
+                rows.append((0.0, "edge", f"| {claim} | {path} | {n} | {need} | 0 | its interval is "
                              "already that narrow and its value lies at the rule's edge: no "
                              "realizations decide it |"))
                 continue
@@ -281,6 +281,7 @@ def remaining(args, root, binary, out, specs, texts):
                 unit = stored_cost_per_realization(binary, root, name, path, out)
             cost = None if unit is None else unit * (need - n)
             within = cost is not None and cost <= args.budget
+            kind = "ran" if spec.get("planned") else ("within" if within else "over")
             if spec.get("planned"):
                 status = (f"ran as planned at `{spec['planned']}`; its error bar is wider "
                           "than the plan's estimate, and a second look at the same claim is "
@@ -288,10 +289,24 @@ def remaining(args, root, binary, out, specs, texts):
             else:
                 status = (f"{'within' if within else 'over'} the budget of "
                           f"{args.budget:g} core-hours")
-            rows.append((cost, f"| {claim} | {path} | {n} | {need} "
+            rows.append((cost, kind, f"| {claim} | {path} | {n} | {need} "
                          f"| {'' if cost is None else f'{cost:.1f}'} | {status} |"))
     rows.sort(key=lambda r: (r[0] is None, r[0] or 0.0))
-    lines += [r[1] for r in rows]
+    count = lambda k: sum(1 for r in rows if r[1] == k)
+    over = [r[0] for r in rows if r[1] == "over"]
+    summary = [
+        f"**{len(rows)} not established.** {count('waiting')} wait for the registered plan's "
+        f"runs; {count('ran')} ran as planned and stayed undecided; {count('edge')} lie at "
+        f"the rule's edge, where no realizations decide; {count('fitted')} are fitted "
+        f"constants; {count('over')} need more than {args.budget:g} core-hours"
+        + (f" ({min(over):.1f} to {max(over):.0f})" if over else "")
+        + f"; {count('within')} are within the budget and not planned. Were every planned "
+        f"claim decided, {len(rows) - count('waiting')} would stay not established.",
+        "",
+    ]
+    at = lines.index("| claim | list | now | needed | core-hours | status |")
+    lines[at:at] = summary
+    lines += [r[2] for r in rows]
     text = "\n".join(lines) + "\n"
     if args.write:
         with open(args.write, "w") as f:
