@@ -337,3 +337,46 @@ fn the_committed_claims_table_is_the_committed_outcomes_table() {
          with `persson-check claims --write docs/claims.md`"
     );
 }
+
+/// `docs/undecided.md` prices exactly the evidence claims that the committed full-scale
+/// outcomes leave not established: a merge that decides or undecides a claim without
+/// writing the page again (`scripts/power_plan.py --remaining`) fails here.
+#[test]
+fn the_priced_undecided_claims_are_the_committed_undecided_claims() {
+    use persson_check::report::read_outcomes;
+    use persson_check::validation::claims::{ClaimKind, ClaimResult};
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut undecided: Vec<String> = read_outcomes(&root.join("results/full"))
+        .unwrap()
+        .into_iter()
+        .flat_map(|l| {
+            let name = l.outcome.name.clone();
+            l.outcome
+                .claims
+                .into_iter()
+                .filter(|c| {
+                    c.kind == ClaimKind::Evidence && c.result == ClaimResult::NotEstablished
+                })
+                .map(move |c| format!("{name}.{}", c.key))
+        })
+        .collect();
+    let page = include_str!("../docs/undecided.md");
+    let mut priced: Vec<String> = page
+        .lines()
+        .filter_map(|l| l.strip_prefix("| `"))
+        .filter_map(|l| l.split_once('`').map(|(id, _)| id.to_string()))
+        .collect();
+    undecided.sort();
+    priced.sort();
+    assert!(!priced.is_empty());
+    assert_eq!(
+        priced, undecided,
+        "docs/undecided.md is not priced on results/full: write it again with \
+         `scripts/power_plan.py --remaining --write docs/undecided.md`"
+    );
+    let count = format!("**{} not established.**", undecided.len());
+    assert!(
+        page.contains(&count),
+        "docs/undecided.md does not open with {count}"
+    );
+}
