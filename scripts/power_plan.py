@@ -170,6 +170,17 @@ def stored_cost_per_realization(binary, root, name, path, out):
     return None
 
 
+def undecided(out):
+    """(outcome, claim, resolution) of every evidence claim not established under `out`."""
+    for f in sorted(glob.glob(os.path.join(out, "*.json"))):
+        o = json.load(open(f))
+        if "claims" not in o:
+            continue
+        for c in o["claims"]:
+            if c.get("kind", "evidence") == "evidence" and c["result"] == "not_established":
+                yield o, c, o["rule"]["resolution"]
+
+
 def fit_row(o, spec, c, width):
     """A fitted constant's need in points and loads, from the study that fitted it."""
     study, row, _ = spec["measure"].split(":", 1)[1].split("/")
@@ -227,70 +238,63 @@ def remaining(args, root, binary, out, specs, texts):
         "|---|---|---|---|---|---|",
     ]
     rows = []
-    for f in sorted(glob.glob(os.path.join(out, "*.json"))):
-        o = json.load(open(f))
-        if "claims" not in o:
+    for o, c, resolution in undecided(out):
+        name = o["name"]
+        spec = specs[(name, c["key"])]
+        width, _ = band(c, resolution)
+        claim = f"`{name}.{c['key']}`"
+        if spec.get("error") == "fit":
+            points, se, need = fit_row(o, spec, c, width)
+            per_load, loads = load_cost(binary, root, name, out)
+            targets = points // loads if loads else 0
+            more = math.ceil((need - points) / targets) if need and targets else None
+            cost = None if more is None else more * per_load
+            rows.append((cost, "fitted", f"| {claim} | points (loads x targets) | {points} | {need} "
+                         f"| {'' if cost is None else f'{cost:.1f}'} | fitted constant: "
+                         f"{more} more loads of {targets} points at {per_load:.2f} "
+                         "core-hours a load; not planned, as loads that dense would "
+                         "not give independent points |"))
             continue
-        resolution = o["rule"]["resolution"]
-        for c in o["claims"]:
-            if c.get("kind", "evidence") != "evidence" or c["result"] != "not_established":
-                continue
-            name = o["name"]
-            spec = specs[(name, c["key"])]
-            width, _ = band(c, resolution)
-            claim = f"`{name}.{c['key']}`"
-            if spec.get("error") == "fit":
-                points, se, need = fit_row(o, spec, c, width)
-                per_load, loads = load_cost(binary, root, name, out)
-                targets = points // loads if loads else 0
-                more = math.ceil((need - points) / targets) if need and targets else None
-                cost = None if more is None else more * per_load
-                rows.append((cost, "fitted", f"| {claim} | points (loads x targets) | {points} | {need} "
-                             f"| {'' if cost is None else f'{cost:.1f}'} | fitted constant: "
-                             f"{more} more loads of {targets} points at {per_load:.2f} "
-                             "core-hours a load; not planned, as loads that dense would "
-                             "not give independent points |"))
-                continue
-            estimate = c.get("difference") or c.get("measured")
-            n = c.get("realizations")
-            se = estimate["std_error"] if estimate else None
-            paths = spec.get("realizations", ["seeds"])
-            # A list the definitions do not spell out (a finer grid's) counts the outcome's.
-            found = [(len(x[1]) if (x := seeds_line(texts[name], p)) else n or 0, p)
-                     for p in paths]
-            listed, path = min(found)
-            if listed > (n or 0):
-                rows.append((0.0, "waiting", f"| {claim} | {path} | {n} | {listed} | | planned at "
-                             f"`{spec.get('planned', '?')}`: {listed - n} realizations not "
-                             f"merged yet |"))
-                continue
-            need = needed(n, se, width) if se and se == se else None
-            if need is None:
-                rows.append((None, "no error", f"| {claim} | {path} | {n} | | | no error bar |"))
-                continue
-            if need <= n:
-                rows.append((0.0, "edge", f"| {claim} | {path} | {n} | {need} | 0 | its interval is "
-                             "already that narrow and its value lies at the rule's edge: no "
-                             "realizations decide it |"))
-                continue
-            if seeds_line(texts[name], path):
-                base = plan_cost(binary, {name: texts[name]}, [name], out)
-                one = plan_cost(binary, {name: with_more_seeds(texts[name], path, 1)}, [name], out)
-                unit = one - base
-            else:
-                unit = stored_cost_per_realization(binary, root, name, path, out)
-            cost = None if unit is None else unit * (need - n)
-            within = cost is not None and cost <= args.budget
-            kind = "ran" if spec.get("planned") else ("within" if within else "over")
-            if spec.get("planned"):
-                status = (f"ran as planned at `{spec['planned']}`; its error bar is wider "
-                          "than the plan's estimate, and a second look at the same claim is "
-                          "not in the plan")
-            else:
-                status = (f"{'within' if within else 'over'} the budget of "
-                          f"{args.budget:g} core-hours")
-            rows.append((cost, kind, f"| {claim} | {path} | {n} | {need} "
-                         f"| {'' if cost is None else f'{cost:.1f}'} | {status} |"))
+        estimate = c.get("difference") or c.get("measured")
+        n = c.get("realizations")
+        se = estimate["std_error"] if estimate else None
+        paths = spec.get("realizations", ["seeds"])
+        # A list the definitions do not spell out (a finer grid's) counts the outcome's.
+        found = [(len(x[1]) if (x := seeds_line(texts[name], p)) else n or 0, p)
+                 for p in paths]
+        listed, path = min(found)
+        if listed > (n or 0):
+            rows.append((0.0, "waiting", f"| {claim} | {path} | {n} | {listed} | | planned at "
+                         f"`{spec.get('planned', '?')}`: {listed - n} realizations not "
+                         f"merged yet |"))
+            continue
+        need = needed(n, se, width) if se and se == se else None
+        if need is None:
+            rows.append((None, "no error", f"| {claim} | {path} | {n} | | | no error bar |"))
+            continue
+        if need <= n:
+            rows.append((0.0, "edge", f"| {claim} | {path} | {n} | {need} | 0 | its interval is "
+                         "already that narrow and its value lies at the rule's edge: no "
+                         "realizations decide it |"))
+            continue
+        if seeds_line(texts[name], path):
+            base = plan_cost(binary, {name: texts[name]}, [name], out)
+            one = plan_cost(binary, {name: with_more_seeds(texts[name], path, 1)}, [name], out)
+            unit = one - base
+        else:
+            unit = stored_cost_per_realization(binary, root, name, path, out)
+        cost = None if unit is None else unit * (need - n)
+        within = cost is not None and cost <= args.budget
+        kind = "ran" if spec.get("planned") else ("within" if within else "over")
+        if spec.get("planned"):
+            status = (f"ran as planned at `{spec['planned']}`; its error bar is wider "
+                      "than the plan's estimate, and a second look at the same claim is "
+                      "not in the plan")
+        else:
+            status = (f"{'within' if within else 'over'} the budget of "
+                      f"{args.budget:g} core-hours")
+        rows.append((cost, kind, f"| {claim} | {path} | {n} | {need} "
+                     f"| {'' if cost is None else f'{cost:.1f}'} | {status} |"))
     rows.sort(key=lambda r: (r[0] is None, r[0] or 0.0))
     count = lambda k: sum(1 for r in rows if r[1] == k)
     over = [r[0] for r in rows if r[1] == "over"]
@@ -341,43 +345,36 @@ def main():
         return
 
     rows = []
-    for f in sorted(glob.glob(os.path.join(out, "*.json"))):
-        o = json.load(open(f))
-        if "claims" not in o:
-            continue
-        resolution = o["rule"]["resolution"]
-        for c in o["claims"]:
-            if c.get("kind", "evidence") != "evidence" or c["result"] != "not_established":
-                continue
-            spec = specs[(o["name"], c["key"])]
-            width, what = band(c, resolution)
-            estimate = c.get("difference") or c.get("measured")
-            n = c.get("realizations")
-            se = estimate["std_error"] if estimate else None
-            paths = spec.get("realizations", ["seeds"])
-            row = dict(validation=o["name"], key=c["key"], n=n, se=se, width=width,
-                       what=what, paths=paths, need=None, path=None, cost=None, note="")
-            if spec.get("error") == "fit":
-                row["note"] = ("fitted constant: its error is the scatter about the law, "
-                               "which more realizations do not shrink; more loads or "
-                               "targets would, none planned")
-                rows.append(row)
-                continue
-            counts = []
-            for p in paths:
-                found = seeds_line(texts[o["name"]], p)
-                if found:
-                    counts.append((len(found[1]), p))
-                else:
-                    counts.append((n or 0, p))
-            now, path = min(counts)
-            row["path"], row["n"] = path, now
-            if se is None or se != se:
-                row["need"] = max(4, now + 1)
-                row["note"] = "one realization, no error bar: the fewest with the normal interval"
-            else:
-                row["need"] = needed(now, se * math.sqrt(now / (n or now)), width)
+    for o, c, resolution in undecided(out):
+        spec = specs[(o["name"], c["key"])]
+        width, what = band(c, resolution)
+        estimate = c.get("difference") or c.get("measured")
+        n = c.get("realizations")
+        se = estimate["std_error"] if estimate else None
+        paths = spec.get("realizations", ["seeds"])
+        row = dict(validation=o["name"], key=c["key"], n=n, se=se, width=width,
+                   what=what, paths=paths, need=None, path=None, cost=None, note="")
+        if spec.get("error") == "fit":
+            row["note"] = ("fitted constant: its error is the scatter about the law, "
+                           "which more realizations do not shrink; more loads or "
+                           "targets would, none planned")
             rows.append(row)
+            continue
+        counts = []
+        for p in paths:
+            found = seeds_line(texts[o["name"]], p)
+            if found:
+                counts.append((len(found[1]), p))
+            else:
+                counts.append((n or 0, p))
+        now, path = min(counts)
+        row["path"], row["n"] = path, now
+        if se is None or se != se:
+            row["need"] = max(4, now + 1)
+            row["note"] = "one realization, no error bar: the fewest with the normal interval"
+        else:
+            row["need"] = needed(now, se * math.sqrt(now / (n or now)), width)
+        rows.append(row)
 
     # One more planned realization of each list: its cost.
     unit_cost = {}
