@@ -14,7 +14,14 @@
 //! 5. a solve stopped by its monitor at iteration `k` (cancelled, or over its time) ends
 //!    in [`Error::Stopped`] at `k`, and leaves the solver sound: its next warm solve
 //!    converges to the cold answer, bit for bit as a solver that was never stopped
-//!    ([`stopped_then_warm`]).
+//!    ([`stopped_then_warm`]);
+//! 6. the units do not matter ([`units_do_not_matter`], after ContactMechanics'
+//!    unit-neutrality test): the scene of 2 with the modulus `E*` scaled by `a` and every
+//!    length (grid spacing and heights) by `b`, at the load `a p0`, is the same problem, whose
+//!    pressure is `a p` and displacement `b u`. With powers of two for `a`, `b` and `a / b`
+//!    (even powers, so that no square root of a ratio of them is rounded) every operation
+//!    of a solve scales exactly: the scaled solve takes the same iterations to the same
+//!    bits. With other factors the two agree to what the tolerance implies.
 //!
 //! The scenes are the smallest that resolve each property, so that the check costs a few
 //! seconds in release; the solver tests (`solvers`, `hard_scenes`) go further.
@@ -23,6 +30,7 @@ use std::ops::ControlFlow;
 
 use persson_check::engine::contact::{ContactProblem, ContactSolution, Model};
 use persson_check::engine::field;
+use persson_check::engine::grid::Grid;
 use persson_check::engine::reference::{Hertz, Westergaard};
 use persson_check::engine::solver::{
     Progress, SolveOptions, Solver, SolverKind, Start, StopReason,
@@ -263,12 +271,57 @@ fn hertz_on_the_free_boundary(kind: SolverKind) {
     assert_hertz(kind, &model, &s, &hertz, (a, force));
 }
 
+/// The scene of [`warm_from_the_solution`] solved cold in grid units and again with the
+/// modulus scaled by `a` and the lengths by `b` (see the module docs, 6).
+fn units_do_not_matter(kind: SolverKind) {
+    let surface = Surface::generate(&SurfaceModel::new(64, 0.8, 32.0, 4.0, 3)).unwrap();
+    let grid = surface.grid().clone();
+    let h = surface.heights_at(f64::INFINITY, &Model::new(grid.clone(), 1.0).unwrap().fft);
+    let solve = |a: f64, b: f64| {
+        let model = Model::new(Grid::new(grid.n(), b).unwrap(), a).unwrap();
+        let h: Vec<f64> = h.iter().map(|h| b * h).collect();
+        let problem = ContactProblem::new(&model, &h, a * 0.1).unwrap();
+        let scene = format!("random surface, E* x {a}, lengths x {b}");
+        let mut s = converged(
+            &scene,
+            kind,
+            kind.build().as_mut(),
+            &problem,
+            Start::Cold,
+            TOL,
+        );
+        s.pressure.iter_mut().for_each(|p| *p /= a);
+        s.displacement.iter_mut().for_each(|u| *u /= b);
+        s.p0 /= a;
+        s
+    };
+    let name = kind.name();
+    let unit = solve(1.0, 1.0);
+    let exact = solve(16.0, 0.25);
+    assert_eq!(
+        (
+            exact.stats.iterations,
+            field_bits(&exact.pressure),
+            field_bits(&exact.displacement)
+        ),
+        (
+            unit.stats.iterations,
+            field_bits(&unit.pressure),
+            field_bits(&unit.displacement)
+        ),
+        "{name}: E* x 16 and lengths x 1/4 change the solve (iterations, pressure and displacement bits)"
+    );
+    let scaled = solve(3.7, 0.013);
+    assert_agree("random surface, other units", &unit, &scaled, TOL);
+}
+
 /// Every property of the module docs, for one solver.
 fn check_solver(kind: SolverKind) {
     warm_from_the_solution(kind);
     stopped_then_warm(kind);
     westergaard(kind);
     hertz_on_the_free_boundary(kind);
+    units_do_not_matter(kind);
 }
 
 #[test]
