@@ -101,6 +101,30 @@
 //! once per transform. Memory traffic is what the sweeps cost on large grids. Fusing the
 //! update into the recomputation of `u` saves about four passes over a field per
 //! iteration, with the same iterations.
+//!
+//! # Requirements
+//!
+//! * The model's compliance `K^-1` (steps 2 and 6) and, with preconditioning, its
+//!   stiffness `K`, both convolutions on the grid ([`crate::engine::contact::Model`]),
+//!   symmetric and positive definite on mean-free fields: the complementary energy is then
+//!   convex and its minimum under `p >= 0`, `mean(p) = p0` unique. The rigid mode `q = 0`
+//!   is carried by the load constraint (step 5), not by the kernel.
+//! * A positive load `p0`, and the wall over the whole periodic grid or over a free
+//!   boundary's window (the pressure stays 0 off the window).
+//! * A tolerance above the residual's rounding floor ("Stopping" above): below it the
+//!   solve stops at [`STAGNATION`] and fails with the smallest residual it reached.
+//! * A warm start from a solution on the problem's grid
+//!   ([`crate::engine::solver::workspace`] checks it).
+//!
+//! # References
+//!
+//! * I. A. Polonsky and L. M. Keer, Wear 231, 206 (1999): the constrained conjugate
+//!   gradients, the entering points and the reset of conjugacy.
+//! * J. Rey, G. Anciaux and J.-F. Molinari, Comput. Mech. 60, 69 (2017): the form tamaas
+//!   implements (`PolonskyKeerRey`).
+//! * E. A. H. Vollebregt, J. Comput. Phys. 257, 333 (2014): the preconditioner.
+//! * C. Michelot, J. Optim. Theory Appl. 50, 195 (1986): the projection that restores the
+//!   load when the rescaling cycles.
 
 use rayon::prelude::*;
 use rustfft::num_complex::Complex64;

@@ -36,6 +36,29 @@
 //! dynamics goes on. A residual that reaches no new low for `stall_window` steps cannot
 //! improve (a tolerance below its rounding floor): the solve fails as
 //! [`Termination::Stalled`] with the residual reached.
+//!
+//! # Requirements
+//!
+//! * The model's stiffness `K` (the elastic force) and inverse masses `M^-1`
+//!   ([`crate::engine::contact::Model::inverse_mass`]), both diagonal in reciprocal space;
+//!   a free boundary's padded kernel gives both as a periodic one does.
+//! * A positive load `p0`: it drives the rigid mode into the wall. A state whose contact
+//!   set empties fails as [`crate::Error::LostContact`].
+//! * A tolerance above the residual's rounding floor: below it the solve fails as
+//!   [`Termination::Stalled`] with the residual it reached.
+//! * A warm start from a solution on the problem's grid
+//!   ([`crate::engine::solver::workspace`] checks it).
+//!
+//! # References
+//!
+//! * E. Bitzek, P. Koskinen, F. Gähler, M. Moseler and P. Gumbsch, Phys. Rev. Lett. 97,
+//!   170201 (2006): FIRE.
+//! * J. Guénolé et al., Comput. Mater. Sci. 175, 109584 (2020): FIRE 2.0, the step back
+//!   at a restart ([`control`]).
+//! * Y. Zhou, M. Moseler and M. H. Müser, Phys. Rev. B 99, 144103 (2019): FIRE on
+//!   mass-weighted GFMD.
+//! * D. P. Bertsekas, SIAM J. Control Optim. 20, 221 (1982): the two-metric projection
+//!   (the points the wall holds).
 
 use crate::engine::contact::{ContactProblem, ContactSolution};
 use crate::engine::fft::FusedPass;

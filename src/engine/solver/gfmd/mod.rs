@@ -58,6 +58,30 @@
 //! [`Residual`](crate::engine::contact::Residual) of `(p, y)` is evaluated; it decides
 //! convergence. If it fails, the dynamics goes on from
 //! there.
+//!
+//! # Requirements
+//!
+//! * The model's stiffness `K` (the elastic force) and inverse masses `M^-1`
+//!   ([`crate::engine::contact::Model::inverse_mass`]), both diagonal in reciprocal space;
+//!   a free boundary's padded kernel gives both as a periodic one does.
+//! * A positive load `p0`: it drives the rigid mode into the wall. A state whose contact
+//!   set empties fails as [`crate::Error::LostContact`].
+//! * A tolerance above the residual's rounding floor: below it the solve fails as
+//!   [`Termination::Stalled`] with the residual it reached.
+//! * A warm start from a solution on the problem's grid
+//!   ([`crate::engine::solver::workspace`] checks it).
+//!
+//! # References
+//!
+//! * C. Campana and M. H. Müser, Phys. Rev. B 74, 075420 (2006): GFMD.
+//! * N. Prodanov, W. B. Dapp and M. H. Müser, Tribol. Lett. 53, 433 (2014): GFMD for
+//!   rough contact, the method of the paper.
+//! * Y. Zhou, M. Moseler and M. H. Müser, Phys. Rev. B 99, 144103 (2019): mass weighting.
+//! * Y. Nesterov, Soviet Math. Dokl. 27, 372 (1983); W. Su, S. Boyd and E. J. Candès,
+//!   J. Mach. Learn. Res. 17, 1 (2016): the momentum schedule as damped dynamics.
+//! * B. O'Donoghue and E. Candès, Found. Comput. Math. 15, 715 (2015): adaptive restart.
+//! * D. P. Bertsekas, SIAM J. Control Optim. 20, 221 (1982): the two-metric projection
+//!   (the points the wall holds).
 
 use crate::engine::contact::ContactProblem;
 use crate::engine::contact::ContactSolution;
