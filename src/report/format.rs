@@ -1,6 +1,7 @@
 //! Markdown and number formatting for the scorecard.
 
 use std::borrow::Borrow;
+use std::fmt::Write as _;
 use std::path::{Component, Path, PathBuf};
 
 /// Escapes text for Markdown (table cells and paragraphs): characters that start emphasis,
@@ -202,6 +203,50 @@ pub fn link(base: &Path, target: &Path) -> String {
         .replace(')', "%29")
 }
 
+/// `value` as indented JSON (two spaces, as `serde_json::to_string_pretty`), except that an
+/// array of numbers, strings, booleans or nulls stands on one line: a scene's 250 seeds
+/// take one line, not 250.
+pub fn json(value: &serde_json::Value) -> String {
+    let mut s = String::new();
+    write_json(&mut s, value, 0);
+    s
+}
+
+fn write_json(s: &mut String, value: &serde_json::Value, indent: usize) {
+    use serde_json::Value;
+    let flat = |v: &Value| !matches!(v, Value::Array(_) | Value::Object(_));
+    let pad = |s: &mut String, n: usize| s.extend(std::iter::repeat_n(' ', n));
+    match value {
+        Value::Object(map) if !map.is_empty() => {
+            s.push_str("{\n");
+            for (i, (key, v)) in map.iter().enumerate() {
+                pad(s, indent + 2);
+                s.push_str(&Value::String(key.clone()).to_string());
+                s.push_str(": ");
+                write_json(s, v, indent + 2);
+                s.push_str(if i + 1 < map.len() { ",\n" } else { "\n" });
+            }
+            pad(s, indent);
+            s.push('}');
+        }
+        Value::Array(items) if !items.iter().all(flat) => {
+            s.push_str("[\n");
+            for (i, v) in items.iter().enumerate() {
+                pad(s, indent + 2);
+                write_json(s, v, indent + 2);
+                s.push_str(if i + 1 < items.len() { ",\n" } else { "\n" });
+            }
+            pad(s, indent);
+            s.push(']');
+        }
+        Value::Array(items) => {
+            let inline: Vec<String> = items.iter().map(Value::to_string).collect();
+            let _ = write!(s, "[{}]", inline.join(", "));
+        }
+        other => s.push_str(&other.to_string()),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -234,6 +279,23 @@ mod tests {
             "NaNs and aNaN stay; 1 +- 0.1"
         );
         assert_eq!(prose("a_r = NaN"), "a\\_r = n/a");
+    }
+
+    #[test]
+    fn json_puts_lists_of_scalars_on_one_line_and_reads_back() {
+        let v = serde_json::json!({
+            "seeds": [1, 2, 3],
+            "empty": [],
+            "name": "a \"b\"",
+            "rows": [{"x": 0.5, "ok": true}, [null]],
+            "none": {}
+        });
+        let text = json(&v);
+        assert_eq!(
+            text,
+            "{\n  \"empty\": [],\n  \"name\": \"a \\\"b\\\"\",\n  \"none\": {},\n  \"rows\": [\n    {\n      \"ok\": true,\n      \"x\": 0.5\n    },\n    [null]\n  ],\n  \"seeds\": [1, 2, 3]\n}"
+        );
+        assert_eq!(serde_json::from_str::<serde_json::Value>(&text).unwrap(), v);
     }
 
     #[test]

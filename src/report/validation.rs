@@ -5,7 +5,7 @@
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
-use super::format::{duration, md, num, or_dash, pm, prose, push_rows, push_table, sig};
+use super::format::{duration, json, md, num, or_dash, pm, prose, push_rows, push_table, sig};
 use super::golden::GoldenMatch;
 use super::outcomes::{grid_cell, seeds_cell, Loaded};
 use super::table::headline;
@@ -225,7 +225,7 @@ fn guard_result(c: &Guard) -> &'static str {
 
 /// The scene as run, folded.
 fn scene(s: &mut String, o: &Outcome) {
-    let scene = serde_json::to_string_pretty(&o.scene).unwrap_or_default();
+    let scene = json(&o.scene);
     let _ = writeln!(
         s,
         "<details><summary>Scene as run</summary>\n\n```json\n{scene}\n```\n\n</details>\n"
