@@ -274,8 +274,9 @@ def remaining(args, root, binary, out, specs, texts):
             continue
         if need <= n:
             rows.append((0.0, "edge", f"| {claim} | {path} | {n} | {need} | 0 | its interval is "
-                         "already that narrow and its value lies at the rule's edge: no "
-                         "realizations decide it |"))
+                         "already that narrow and still reaches across the "
+                         "rule's edge: runs added for it would be chosen from its value "
+                         "(the claims page's estimate), which the plan excludes |"))
             continue
         if seeds_line(texts[name], path):
             base = plan_cost(binary, {name: texts[name]}, [name], out)
@@ -300,8 +301,9 @@ def remaining(args, root, binary, out, specs, texts):
     over = [r[0] for r in rows if r[1] == "over"]
     summary = [
         f"**{len(rows)} not established.** {count('waiting')} wait for the registered plan's "
-        f"runs; {count('ran')} ran as planned and stayed undecided; {count('edge')} lie at "
-        f"the rule's edge, where no realizations decide; {count('fitted')} are fitted "
+        f"runs; {count('ran')} ran as planned and stayed undecided; {count('edge')} meet the "
+        f"plan's criterion already and lie at the rule's edge, where only runs chosen from "
+        f"the value would decide; {count('fitted')} are fitted "
         f"constants; {count('over')} need more than {args.budget:g} core-hours"
         + (f" ({min(over):.1f} to {max(over):.0f})" if over else "")
         + f"; {count('within')} are within the budget and not planned. Were every planned "
