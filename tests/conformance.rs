@@ -71,12 +71,19 @@ fn converged(
     s
 }
 
-/// Cold, then warm from the cold solution, on a random surface in partial contact
-/// (64^2, H = 0.8, lambda_l = 32, lambda_s = 4, p0 = 0.1 E* g_bar).
-fn warm_from_the_solution(kind: SolverKind) {
+/// The random surface of the scenes below (64^2, H = 0.8, lambda_l = 32, lambda_s = 4,
+/// seed 3) at full resolution, on a periodic model with `E* = 1`: the model and heights.
+fn random_scene() -> (Model, Vec<f64>) {
     let surface = Surface::generate(&SurfaceModel::new(64, 0.8, 32.0, 4.0, 3)).unwrap();
     let model = Model::new(surface.grid().clone(), 1.0).unwrap();
     let h = surface.heights_at(f64::INFINITY, &model.fft);
+    (model, h)
+}
+
+/// Cold, then warm from the cold solution, on a random surface in partial contact
+/// (64^2, H = 0.8, lambda_l = 32, lambda_s = 4, p0 = 0.1 E* g_bar).
+fn warm_from_the_solution(kind: SolverKind) {
+    let (model, h) = random_scene();
     let problem = ContactProblem::new(&model, &h, 0.1).unwrap();
     let mut solver = kind.build();
     let scene = "random surface";
@@ -108,9 +115,7 @@ const STOP_AT: usize = 4;
 /// at `p0 = 0.12` warm from it (and another cold) stopped at iteration [`STOP_AT`] by its
 /// monitor; then the same warm solve again, not stopped, by the same solver.
 fn stopped_then_warm(kind: SolverKind) {
-    let surface = Surface::generate(&SurfaceModel::new(64, 0.8, 32.0, 4.0, 3)).unwrap();
-    let model = Model::new(surface.grid().clone(), 1.0).unwrap();
-    let h = surface.heights_at(f64::INFINITY, &model.fft);
+    let (model, h) = random_scene();
     let (first, second) = (
         ContactProblem::new(&model, &h, 0.1).unwrap(),
         ContactProblem::new(&model, &h, 0.12).unwrap(),
@@ -183,21 +188,23 @@ fn stopped_then_warm(kind: SolverKind) {
         TOL,
     );
     assert_eq!(
-        (
-            warm.stats.iterations,
-            field_bits(&warm.pressure),
-            field_bits(&warm.displacement)
-        ),
-        (
-            unstopped.stats.iterations,
-            field_bits(&unstopped.pressure),
-            field_bits(&unstopped.displacement)
-        ),
+        solve_bits(&warm),
+        solve_bits(&unstopped),
         "{name}: the stops changed the next solve (iterations, pressure and displacement bits)"
     );
 }
 
-/// A field's bits, for comparisons that must be exact.
+/// A solve's iterations and the bits of its pressure and displacement, for comparisons
+/// that must be exact.
+fn solve_bits(s: &ContactSolution) -> (usize, Vec<u64>, Vec<u64>) {
+    (
+        s.stats.iterations,
+        field_bits(&s.pressure),
+        field_bits(&s.displacement),
+    )
+}
+
+/// A field's bits.
 fn field_bits(values: &[f64]) -> Vec<u64> {
     values.iter().map(|v| v.to_bits()).collect()
 }
@@ -274,9 +281,8 @@ fn hertz_on_the_free_boundary(kind: SolverKind) {
 /// The scene of [`warm_from_the_solution`] solved cold in grid units and again with the
 /// modulus scaled by `a` and the lengths by `b` (see the module docs, 6).
 fn units_do_not_matter(kind: SolverKind) {
-    let surface = Surface::generate(&SurfaceModel::new(64, 0.8, 32.0, 4.0, 3)).unwrap();
-    let grid = surface.grid().clone();
-    let h = surface.heights_at(f64::INFINITY, &Model::new(grid.clone(), 1.0).unwrap().fft);
+    let (model, h) = random_scene();
+    let grid = &model.grid;
     let solve = |a: f64, b: f64| {
         let model = Model::new(Grid::new(grid.n(), b).unwrap(), a).unwrap();
         let h: Vec<f64> = h.iter().map(|h| b * h).collect();
@@ -299,16 +305,8 @@ fn units_do_not_matter(kind: SolverKind) {
     let unit = solve(1.0, 1.0);
     let exact = solve(16.0, 0.25);
     assert_eq!(
-        (
-            exact.stats.iterations,
-            field_bits(&exact.pressure),
-            field_bits(&exact.displacement)
-        ),
-        (
-            unit.stats.iterations,
-            field_bits(&unit.pressure),
-            field_bits(&unit.displacement)
-        ),
+        solve_bits(&exact),
+        solve_bits(&unit),
         "{name}: E* x 16 and lengths x 1/4 change the solve (iterations, pressure and displacement bits)"
     );
     let scaled = solve(3.7, 0.013);

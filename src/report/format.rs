@@ -215,29 +215,13 @@ pub fn json(value: &serde_json::Value) -> String {
 fn write_json(s: &mut String, value: &serde_json::Value, indent: usize) {
     use serde_json::Value;
     let flat = |v: &Value| !matches!(v, Value::Array(_) | Value::Object(_));
-    let pad = |s: &mut String, n: usize| s.extend(std::iter::repeat_n(' ', n));
     match value {
         Value::Object(map) if !map.is_empty() => {
-            s.push_str("{\n");
-            for (i, (key, v)) in map.iter().enumerate() {
-                pad(s, indent + 2);
-                s.push_str(&Value::String(key.clone()).to_string());
-                s.push_str(": ");
-                write_json(s, v, indent + 2);
-                s.push_str(if i + 1 < map.len() { ",\n" } else { "\n" });
-            }
-            pad(s, indent);
-            s.push('}');
+            let members = map.iter().map(|(k, v)| (Some(k.as_str()), v));
+            write_block(s, ('{', '}'), members, indent);
         }
         Value::Array(items) if !items.iter().all(flat) => {
-            s.push_str("[\n");
-            for (i, v) in items.iter().enumerate() {
-                pad(s, indent + 2);
-                write_json(s, v, indent + 2);
-                s.push_str(if i + 1 < items.len() { ",\n" } else { "\n" });
-            }
-            pad(s, indent);
-            s.push(']');
+            write_block(s, ('[', ']'), items.iter().map(|v| (None, v)), indent);
         }
         Value::Array(items) => {
             let inline: Vec<String> = items.iter().map(Value::to_string).collect();
@@ -245,6 +229,28 @@ fn write_json(s: &mut String, value: &serde_json::Value, indent: usize) {
         }
         other => s.push_str(&other.to_string()),
     }
+}
+
+/// An object's members (with their keys) or an array's items, one a line, between
+/// `brackets`.
+fn write_block<'a>(
+    s: &mut String,
+    (open, close): (char, char),
+    members: impl ExactSizeIterator<Item = (Option<&'a str>, &'a serde_json::Value)>,
+    indent: usize,
+) {
+    let count = members.len();
+    let _ = writeln!(s, "{open}");
+    for (i, (key, v)) in members.enumerate() {
+        s.extend(std::iter::repeat_n(' ', indent + 2));
+        if let Some(key) = key {
+            let _ = write!(s, "{}: ", serde_json::Value::from(key));
+        }
+        write_json(s, v, indent + 2);
+        s.push_str(if i + 1 < count { ",\n" } else { "\n" });
+    }
+    s.extend(std::iter::repeat_n(' ', indent));
+    s.push(close);
 }
 
 #[cfg(test)]
