@@ -140,6 +140,12 @@ pub fn rfc3339_utc(t: SystemTime) -> String {
     )
 }
 
+/// `t` in seconds since the Unix epoch (0 before it).
+pub fn epoch_seconds(t: SystemTime) -> f64 {
+    t.duration_since(UNIX_EPOCH)
+        .map_or(0.0, |d| d.as_secs_f64())
+}
+
 /// The current time, RFC 3339 UTC.
 pub fn now_utc() -> String {
     rfc3339_utc(SystemTime::now())

@@ -146,11 +146,10 @@ fn check_and_mark_checkpoints(out: &Path) -> BTreeSet<String> {
     marked
 }
 
-/// Wall time a stored job result reports.
-fn job_wall(out: &Path, key: &str) -> f64 {
+/// A stored job result.
+fn stored_job(out: &Path, key: &str) -> Value {
     let bytes = std::fs::read(jobs_dir(out).join(format!("{key}.json"))).unwrap();
-    let stored: Value = serde_json::from_slice(&bytes).unwrap();
-    stored["result"]["wall_s"].as_f64().unwrap()
+    serde_json::from_slice(&bytes).unwrap()
 }
 
 /// The per-point history, as the contact maps drawn from it.
@@ -234,7 +233,18 @@ fn sweeps_killed_mid_sweep_resume_to_the_same_numbers() {
     assert_same_as_reference(out);
     for key in &marked {
         // Continued from the checkpoint, not restarted.
-        assert!(job_wall(out, key) >= MARK, "job {key} restarted its sweep");
+        let stored = stored_job(out, key);
+        let wall = stored["result"]["wall_s"].as_f64().unwrap();
+        assert!(wall >= MARK, "job {key} restarted its sweep");
+        // The provenance's wall time counts the killed runs' segments too (up to their
+        // last checkpoints), beyond the span of the last one.
+        let run = &stored["run"];
+        let earlier = run["earlier_s"]
+            .as_f64()
+            .expect("earlier segments recorded");
+        let span = run["span"][1].as_f64().unwrap() - run["span"][0].as_f64().unwrap();
+        assert!(earlier > 0.0, "job {key}: {run}");
+        assert!(run["wall_s"].as_f64().unwrap() > span, "job {key}: {run}");
     }
     assert!(
         checkpoint_dirs(out).is_empty(),
@@ -290,10 +300,13 @@ fn a_fresh_run_ignores_the_checkpoints_of_an_interrupted_one() {
     // Without --resume every job starts from scratch.
     finish(validate(2, defs.path(), out, false));
     for key in &marked {
+        let stored = stored_job(out, key);
         assert!(
-            job_wall(out, key) < MARK,
+            stored["result"]["wall_s"].as_f64().unwrap() < MARK,
             "job {key} continued a stale checkpoint without --resume"
         );
+        // Nor does its wall time count the killed run's segment.
+        assert!(stored["run"]["earlier_s"].is_null(), "{}", stored["run"]);
     }
     assert_same_as_reference(out);
 }

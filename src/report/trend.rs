@@ -225,9 +225,7 @@ pub fn section(
 /// scorecard `scorecard` (`from` is only read) and appends its section to the scorecard;
 /// the files drawn.
 pub fn append(scorecard: &Path, from: &Path, history: &Path) -> Result<Vec<PathBuf>> {
-    let now = SystemTime::now()
-        .duration_since(UNIX_EPOCH)
-        .map_or(0.0, |d| d.as_secs_f64());
+    let now = crate::provenance::epoch_seconds(SystemTime::now());
     let tonight = night_of(from, now)?;
     let keys: Vec<String> = tonight.headlines.keys().cloned().collect();
     let mut nights = read_history(history)?;

@@ -25,6 +25,7 @@
 //! * [`source`]: the built-in definitions and definition folders;
 //! * [`outcome`]: the record of a run;
 //! * [`store`]: job results and checkpoints on disk;
+//! * [`segments`]: the wall time of a job resumed from its checkpoints;
 //! * [`runner`]: running one experiment's definition;
 //! * [`registry`]: the table of experiments;
 //! * [`shard`] and [`plan`]: runs split into shares over many machines (a scheduler's job
@@ -47,6 +48,7 @@ pub mod plan;
 pub mod register;
 pub mod registry;
 pub mod runner;
+pub mod segments;
 pub mod shard;
 pub mod source;
 pub mod store;

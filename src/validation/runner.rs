@@ -4,12 +4,14 @@
 //! A job's state directory ([`JobContext::state_dir`]) belongs to the runner: it is emptied
 //! before a job runs without `--resume` (so a fresh run never continues a stale sweep),
 //! left alone with `--resume` (so the job continues from its last checkpoint), and removed
-//! once the job's result is stored, never before.
+//! once the job's result is stored, never before. Besides the checkpoints it holds the
+//! runner's record of the job's earlier segments ([`segments`]), so that a resumed job's
+//! stored wall time is that of all its segments.
 
 use std::collections::{BTreeSet, HashSet};
 use std::path::PathBuf;
 use std::sync::Arc;
-use std::time::{Instant, SystemTime, UNIX_EPOCH};
+use std::time::{Instant, SystemTime};
 
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
@@ -20,6 +22,7 @@ use super::definition::{Definition, Scale};
 use super::outcome::{MergeRecord, Outcome, ShardRecord};
 use super::pending::{pending_parts, PartJob};
 use super::plan::{estimate_seconds, PlannedUnit};
+use super::segments;
 use super::shard::Shard;
 use super::source::Source;
 use super::store::{
@@ -28,6 +31,7 @@ use super::store::{
 use crate::engine::solver::SolverKind;
 use crate::error::{Error, Result};
 use crate::experiments::{keys_of, Experiment, JobContext, JobOf, Jobs, Keys, ResultOf, Work};
+use crate::provenance::epoch_seconds;
 
 /// How to run validations.
 #[derive(Debug, Clone)]
@@ -264,6 +268,7 @@ fn execute<E: Experiment>(
     }
     let started = SystemTime::now();
     let timer = Instant::now();
+    let earlier_s = segments::start(&ctx.state_dir, started)?;
     let result = scene.run_job(&unit.job, &ctx).map_err(|e| {
         Error::bad_file(
             &source.path,
@@ -275,7 +280,7 @@ fn execute<E: Experiment>(
             ),
         )
     })?;
-    let wall_s = timer.elapsed().as_secs_f64();
+    let wall_s = earlier_s + timer.elapsed().as_secs_f64();
     let ended = SystemTime::now();
     let stored = Stored {
         solver: unit.solver,
@@ -287,6 +292,7 @@ fn execute<E: Experiment>(
             end: crate::provenance::rfc3339_utc(ended),
             span: (epoch_seconds(started), epoch_seconds(ended)),
             wall_s,
+            earlier_s: (earlier_s > 0.0).then_some(earlier_s),
             commit: crate::provenance::commit_label(),
             definition: name.to_string(),
             definition_sha256: source.sha256(),
@@ -300,11 +306,6 @@ fn execute<E: Experiment>(
     remove_state(&ctx.state_dir).ok();
     mark_written(unit.path.clone());
     Ok(stored.result)
-}
-
-fn epoch_seconds(t: SystemTime) -> f64 {
-    t.duration_since(UNIX_EPOCH)
-        .map_or(0.0, |d| d.as_secs_f64())
 }
 
 /// Runs experiment `E` on `source`: every job and the outcome ([`Mode::All`]), the

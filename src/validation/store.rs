@@ -59,14 +59,21 @@ pub struct Stored<J, R> {
 pub struct JobRun {
     /// Host name of the machine.
     pub host: String,
-    /// Start, RFC 3339 UTC.
+    /// Start of the job's last segment (its only one, unless it resumed), RFC 3339 UTC.
     pub start: String,
     /// End, RFC 3339 UTC.
     pub end: String,
     /// Start and end, seconds since the Unix epoch (for spans across shards).
     pub span: (f64, f64),
-    /// Wall time of the job, seconds.
+    /// Wall time of the job, seconds: of every segment of a job resumed from checkpoints
+    /// (each earlier one up to its last checkpoint, [`super::segments`]), so more than
+    /// `span` then covers.
     pub wall_s: f64,
+    /// The part of `wall_s` spent by earlier, interrupted runs of the job; absent for a job
+    /// that ran in one go (and in results of older versions, whose `wall_s` is that of the
+    /// last segment alone).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub earlier_s: Option<f64>,
     /// The commit of the code (see [`crate::provenance::commit_label`]).
     pub commit: String,
     /// The validation whose run computed it.
