@@ -5,7 +5,7 @@ use crate::experiments::keys::{DetailKey, Tag};
 use std::collections::BTreeMap;
 
 use super::figures::{curve_figures, curve_table};
-use super::stats::{golden, mean_onset, Load, ModeEnsemble, PARTIAL};
+use super::stats::{ensemble_peak_shift, golden, mean_onset, Load, ModeEnsemble, PARTIAL};
 use super::{narrow_sweeps, sweeps, ModeScene};
 use crate::error::Result;
 use crate::experiments::climb::step_of;
@@ -44,6 +44,9 @@ pub struct NarrowPeak {
     /// realizations, loads and solves (the band changes what is recorded, not the
     /// climb), so the differences pair up one to one.
     pub shift: Estimate,
+    /// The same shift read from the ensemble curves' peaks, interpolated between steps
+    /// ([`ensemble_peak_shift`]); `None` when the sweeps do not pair up.
+    pub ensemble_shift: Option<Estimate>,
 }
 
 /// The statistics of assumption (d).
@@ -141,6 +144,8 @@ const PEAK_NARROW_BAND: &str = "peak_over_zeta_t_narrow";
 /// The key of the peak's shift that the band's width makes: the scene's bands' peak
 /// minus the narrow bands'.
 const PEAK_BAND_SHIFT: &str = "peak_band_shift";
+/// The key of that shift read from the peaks of the ensemble curves.
+const PEAK_BAND_SHIFT_ENSEMBLE: &str = "peak_band_shift_ensemble";
 
 type Run<'a> = crate::experiments::Run<'a, ModeOnset>;
 
@@ -168,6 +173,7 @@ impl Experiment for ModeOnset {
                 band,
                 peak: Estimate::mean_of(&ratios),
                 shift,
+                ensemble_shift: ensemble_peak_shift(run.scene, &loads, &narrow_loads),
             });
         }
         Ok(stats)
@@ -233,6 +239,17 @@ impl Experiment for ModeOnset {
                     scene.band
                 ),
                 |s: &OnsetStats| s.narrow.map(|n| n.shift),
+            )
+            .persson(0.0);
+            t.row(
+                PEAK_BAND_SHIFT_ENSEMBLE,
+                format!(
+                    "as peak_band_shift, read from the ensemble E_norm curve of each band and \
+                     load (ratio of sums over realizations), its peak interpolated between \
+                     steps by a parabola in ln zeta; mean over the bands and loads with \
+                     a_r < {PARTIAL} at zeta_t, error by jackknife over realizations"
+                ),
+                |s: &OnsetStats| s.narrow.and_then(|n| n.ensemble_shift),
             )
             .persson(0.0);
         }
@@ -348,6 +365,8 @@ mod tests {
         let c = ModeOnset::conclude(&criteria, &scene, &results).unwrap();
         let shift = c.detail(PEAK_BAND_SHIFT).unwrap().value;
         assert_eq!((shift.value, shift.std_error), (0.0, 0.0));
+        let shift = c.detail(PEAK_BAND_SHIFT_ENSEMBLE).unwrap().value;
+        assert_eq!((shift.value, shift.std_error), (0.0, 0.0));
         let (wide, narrow) = (
             c.detail(PEAK_OVER_ZETA_T).unwrap().value,
             c.detail(PEAK_NARROW_BAND).unwrap().value,
@@ -357,6 +376,27 @@ mod tests {
         results.retain(|(j, _)| matches!(j, ModeJob::Sweep(_)));
         let c = ModeOnset::conclude(&criteria, &scene, &results).unwrap();
         assert!(c.detail(PEAK_BAND_SHIFT).is_none());
+        assert!(c.detail(PEAK_BAND_SHIFT_ENSEMBLE).is_none());
+    }
+
+    #[test]
+    fn a_peak_between_steps_is_the_parabola_vertex_in_ln_zeta() {
+        use super::super::stats::interpolated_peak;
+        // Uneven steps around a parabola in ln zeta with its vertex at zeta = 3.
+        let zetas = [1.0, 2.0, 2.5, 3.4, 4.0, 8.0];
+        let e: Vec<f64> = zetas
+            .iter()
+            .map(|z: &f64| 1.0 - (z.ln() - 3f64.ln()).powi(2))
+            .collect();
+        assert!((interpolated_peak(&zetas, &e) - 3.0).abs() < 1e-12);
+        // At an end of the sweep: the step itself.
+        assert_eq!(
+            interpolated_peak(&zetas, &[6.0, 5.0, 4.0, 3.0, 2.0, 1.0]),
+            1.0
+        );
+        // A flat top of two equal steps: midway between them in ln zeta.
+        let z = interpolated_peak(&[1.0, 2.0, 4.0, 8.0], &[0.0, 1.0, 1.0, 0.0]);
+        assert!((z - 8f64.sqrt()).abs() < 1e-12, "{z}");
     }
 
     #[test]

@@ -470,6 +470,77 @@ pub fn peak_short_partial(scene: &ModeScene, loads: &[Load]) -> Option<Estimate>
     Some(Estimate::new(value, jackknife_error(&leave_out)))
 }
 
+/// The magnification where a curve `e` over `zetas` peaks: at its largest point (the last
+/// of equal ones), refined to the vertex of the parabola through that point and its two
+/// neighbours in `ln zeta`; the point itself at an end of the sweep. The middle point is
+/// the highest of the three and above the right one, so the parabola opens downwards
+/// and its vertex lies between the neighbours.
+pub fn interpolated_peak(zetas: &[f64], e: &[f64]) -> f64 {
+    let k = (0..e.len())
+        .max_by(|&a, &b| e[a].total_cmp(&e[b]))
+        .expect("a sweep has steps");
+    if k == 0 || k + 1 == e.len() {
+        return zetas[k];
+    }
+    let x = |i: usize| zetas[i].ln();
+    let (x0, x1, x2) = (x(k - 1), x(k), x(k + 1));
+    let (y0, y1, y2) = (e[k - 1], e[k], e[k + 1]);
+    let num = (x1 - x0).powi(2) * (y1 - y2) - (x1 - x2).powi(2) * (y1 - y0);
+    let den = (x1 - x0) * (y1 - y2) - (x1 - x2) * (y1 - y0);
+    (x1 - 0.5 * num / den).exp()
+}
+
+/// The ensemble `E_norm` curve of target `t` over `runs` (as [`ModeEnsemble::e_norm`]):
+/// at each step the sum of the runs' band energies over the sum of their denominators.
+fn ensemble_curve(runs: &[&ModeResult], t: usize, zeta_t: f64) -> Vec<f64> {
+    let d: f64 = runs.iter().map(|r| r.denominator(t, zeta_t)).sum();
+    (0..runs[0].zetas.len())
+        .map(|k| runs.iter().map(|r| r.band_energy[t][k]).sum::<f64>() / d)
+        .collect()
+}
+
+/// The shift of the ensemble curve's peak that the band's width makes: for every target
+/// of every load in partial contact at its `zeta_t` ([`partial_at`]), `zeta_peak / zeta_t`
+/// of the ensemble curve ([`interpolated_peak`]) with the scene's bands (`wide`) minus
+/// that with the narrow bands (`narrow`: the same realizations and solves, recorded with
+/// narrower bands), mean over those targets and loads. The standard error is the
+/// jackknife's over realizations (the `i`-th run of every load left out of both curves).
+/// `None` when the two sets of sweeps do not pair up (a partial run) or no band is in
+/// partial contact.
+pub fn ensemble_peak_shift(scene: &ModeScene, wide: &[Load], narrow: &[Load]) -> Option<Estimate> {
+    let paired = wide.len() == narrow.len()
+        && wide
+            .iter()
+            .zip(narrow)
+            .all(|(w, n)| w.contact_area == n.contact_area && w.runs.len() == n.runs.len());
+    let cells: Vec<(usize, usize)> = (0..wide.len())
+        .flat_map(|l| (0..scene.targets.len()).map(move |t| (l, t)))
+        .filter(|&(l, t)| partial_at(scene, &wide[l], t))
+        .collect();
+    if !paired || cells.is_empty() {
+        return None;
+    }
+    let runs = cells.iter().map(|&(l, _)| wide[l].runs.len()).min()?;
+    let peak = |load: &Load, t: usize, skip: Option<usize>| {
+        let kept: Vec<&ModeResult> = load
+            .runs
+            .iter()
+            .enumerate()
+            .filter(|&(i, _)| Some(i) != skip)
+            .map(|(_, r)| *r)
+            .collect();
+        let zt = scene.targets[t];
+        interpolated_peak(&kept[0].zetas, &ensemble_curve(&kept, t, zt)) / zt
+    };
+    Some(Estimate::jackknife(runs, |skip| {
+        cells
+            .iter()
+            .map(|&(l, t)| peak(&wide[l], t, skip) - peak(&narrow[l], t, skip))
+            .sum::<f64>()
+            / cells.len() as f64
+    }))
+}
+
 /// The jackknife standard error from the leave-one-out values of a statistic:
 /// `sqrt((n - 1)/n sum_i (f_i - mean f)^2)`.
 pub fn jackknife_error(leave_out: &[f64]) -> f64 {
