@@ -3,7 +3,7 @@
 use std::fmt::Write as _;
 
 use super::format::{duration, md, table};
-use super::outcomes::scene_seeds;
+use super::outcomes::{scene_seeds, Loaded};
 use super::Scorecard;
 use crate::provenance;
 use crate::validation::Scale;
@@ -27,7 +27,9 @@ impl Scorecard<'_> {
              threads, but not the commit that computed them: the commit above is the one \
              that wrote this scorecard. To reproduce a row, check out that commit and run \
              the command in the last column; the definition hash identifies the validation \
-             file.\n",
+             file. An outcome merged from stored job results is dated by the end of its last \
+             job, from its merge record; any other by its file's modification time, which a \
+             fresh checkout resets.\n",
             self.generated_at,
             provenance::VERSION,
             provenance::commit_label(),
@@ -61,8 +63,7 @@ impl Scorecard<'_> {
                     seeds,
                     o.threads.to_string(),
                     duration(o.wall_s),
-                    l.modified
-                        .map_or_else(|| "—".into(), provenance::rfc3339_utc),
+                    computed(l),
                     format!(
                         "`persson-check validate {}{full} --out {}`",
                         o.name,
@@ -79,10 +80,22 @@ impl Scorecard<'_> {
                 "seeds",
                 "threads",
                 "wall time",
-                "outcome written (UTC)",
+                "computed (UTC)",
                 "reproduce with",
             ],
             &rows,
         ));
     }
+}
+
+/// When an outcome was computed: the end of its last job for one merged from stored job
+/// results (a property of the outcome), else its file's modification time.
+pub(super) fn computed(l: &Loaded) -> String {
+    l.outcome
+        .merge
+        .as_ref()
+        .and_then(|m| m.shards.iter().map(|s| s.end.as_str()).max())
+        .map(str::to_string)
+        .or_else(|| l.modified.map(provenance::rfc3339_utc))
+        .unwrap_or_else(|| "—".into())
 }

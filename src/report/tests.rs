@@ -578,3 +578,38 @@ fn outcomes_with_null_or_absent_error_bars_are_read_and_say_so() {
         assert!(text.contains(line), "no line {line:?} in\n{text}");
     }
 }
+
+#[test]
+fn a_merged_outcome_is_dated_by_its_last_job_not_its_file() {
+    use crate::validation::outcome::{MergeRecord, ShardRecord};
+    let shard = |end: &str| ShardRecord {
+        shard: "unsharded".into(),
+        host: "vm".into(),
+        start: "2026-01-01T00:00:00Z".into(),
+        end: end.into(),
+        jobs: 1,
+        commit: "c".into(),
+    };
+    let mut o = outcome("a", Verdict::Violated, Some(true), Scale::Full);
+    let file_time = std::time::UNIX_EPOCH + std::time::Duration::from_secs(1_900_000_000);
+    let loaded = |o: &Outcome| Loaded {
+        outcome: o.clone(),
+        path: PathBuf::from("a.json"),
+        modified: Some(file_time),
+    };
+    // A plain run: the file's time.
+    assert_eq!(
+        provenance_section::computed(&loaded(&o)),
+        provenance::rfc3339_utc(file_time)
+    );
+    o.merge = Some(MergeRecord {
+        commit: "c".into(),
+        other_commits_accepted: false,
+        shards: vec![shard("2026-03-02T10:00:00Z"), shard("2026-03-04T08:00:00Z")],
+        pending: Vec::new(),
+    });
+    assert_eq!(
+        provenance_section::computed(&loaded(&o)),
+        "2026-03-04T08:00:00Z"
+    );
+}
