@@ -500,10 +500,11 @@ fn ensemble_curve(runs: &[&ModeResult], t: usize, zeta_t: f64) -> Vec<f64> {
 }
 
 /// The shift of the ensemble curve's peak that the band's width makes: for every target
-/// of every load in partial contact at its `zeta_t` (measured `a_r` there below [`PARTIAL`]), `zeta_peak / zeta_t`
-/// of the ensemble curve ([`interpolated_peak`]) with the scene's bands (`wide`) minus
-/// that with the narrow bands (`narrow`: the same realizations and solves, recorded with
-/// narrower bands), mean over those targets and loads. The standard error is the
+/// of every load in partial contact at its `zeta_t` (measured `a_r` there below
+/// [`PARTIAL`]), `zeta_peak / zeta_t` of the ensemble curve ([`interpolated_peak`]) with
+/// the scene's bands (`wide`) minus that with the narrow bands (`narrow`: the same
+/// realizations and solves, recorded with narrower bands), mean over those targets and
+/// loads. The standard error is the
 /// jackknife's over realizations (the `i`-th run of every load left out of both curves).
 /// `None` when the two sets of sweeps do not pair up (a partial run) or no band is in
 /// partial contact.
