@@ -453,7 +453,7 @@ mod tests {
 
     #[test]
     fn new_details_follow_their_formulas() {
-        use super::super::stats::{jackknife_error, mid_chord, onset_key};
+        use super::super::stats::{mid_chord, onset_key};
         use crate::experiments::climb::step_of;
         let (scene, _, criteria) = shipped("e_frozen");
         let (k, b, onset) = ((0.9, 1.0), 0.8, 0.05);
@@ -513,13 +513,6 @@ mod tests {
         assert!((p.value - mean).abs() < 1e-12, "{p:?} vs {mean}");
         assert!(p.std_error.abs() < 1e-12);
         assert!(step_of(&steps, zt) < steps.len());
-        // The jackknife error of a mean is the standard error of the mean.
-        let x = [1.0, 3.0, 4.0, 8.0];
-        let loo: Vec<f64> = (0..4)
-            .map(|i| (x.iter().sum::<f64>() - x[i]) / 3.0)
-            .collect();
-        let se = Estimate::mean_of(&x).std_error;
-        assert!((jackknife_error(&loo) - se).abs() < 1e-12);
     }
 
     #[test]

@@ -434,40 +434,27 @@ pub fn peak_short_partial(scene: &ModeScene, loads: &[Load]) -> Option<Estimate>
     let t = scene.targets.len().checked_sub(1)?;
     let zt = scene.targets[t];
     let partial: Vec<&Load> = loads.iter().filter(|l| partial_at(scene, l, t)).collect();
-    if partial.is_empty() {
-        return None;
-    }
-    let stat = |skip: Option<usize>| {
+    let n = partial.iter().map(|l| l.runs.len()).min()?;
+    Some(Estimate::jackknife(n, |skip| {
         partial
             .iter()
             .map(|l| {
-                let runs: Vec<&ModeResult> = l
-                    .runs
-                    .iter()
-                    .enumerate()
-                    .filter(|(i, _)| Some(*i) != skip)
-                    .map(|(_, r)| *r)
-                    .collect();
-                let steps = runs[0].zetas.len();
-                (0..steps)
-                    .map(|k| {
-                        let (e, d) = runs.iter().fold((0.0, 0.0), |(e, d), r| {
-                            (e + r.band_energy[t][k], d + r.denominator(t, zt))
-                        });
-                        e / d
-                    })
+                ensemble_curve(&without(&l.runs, skip), t, zt)
+                    .into_iter()
                     .fold(f64::NEG_INFINITY, f64::max)
             })
             .sum::<f64>()
             / partial.len() as f64
-    };
-    let n = partial.iter().map(|l| l.runs.len()).min()?;
-    let value = stat(None);
-    if n < 2 {
-        return Some(Estimate::new(value, f64::NAN));
-    }
-    let leave_out: Vec<f64> = (0..n).map(|i| stat(Some(i))).collect();
-    Some(Estimate::new(value, jackknife_error(&leave_out)))
+    }))
+}
+
+/// `runs` without the one at index `skip` (all of them for `None`): a jackknife's sample.
+fn without<'a>(runs: &[&'a ModeResult], skip: Option<usize>) -> Vec<&'a ModeResult> {
+    runs.iter()
+        .enumerate()
+        .filter(|&(i, _)| Some(i) != skip)
+        .map(|(_, r)| *r)
+        .collect()
 }
 
 /// The magnification where a curve `e` over `zetas` peaks: at its largest point (the last
@@ -504,10 +491,9 @@ fn ensemble_curve(runs: &[&ModeResult], t: usize, zeta_t: f64) -> Vec<f64> {
 /// [`PARTIAL`]), `zeta_peak / zeta_t` of the ensemble curve ([`interpolated_peak`]) with
 /// the scene's bands (`wide`) minus that with the narrow bands (`narrow`: the same
 /// realizations and solves, recorded with narrower bands), mean over those targets and
-/// loads. The standard error is the
-/// jackknife's over realizations (the `i`-th run of every load left out of both curves).
-/// `None` when the two sets of sweeps do not pair up (a partial run) or no band is in
-/// partial contact.
+/// loads. The standard error is the jackknife's over realizations (the `i`-th run of
+/// every load left out of both curves). `None` when the two sets of sweeps do not pair up
+/// (a partial run) or no band is in partial contact.
 pub fn ensemble_peak_shift(scene: &ModeScene, wide: &[Load], narrow: &[Load]) -> Option<Estimate> {
     let paired = wide.len() == narrow.len()
         && wide
@@ -523,13 +509,7 @@ pub fn ensemble_peak_shift(scene: &ModeScene, wide: &[Load], narrow: &[Load]) ->
     }
     let runs = cells.iter().map(|&(l, _)| wide[l].runs.len()).min()?;
     let peak = |load: &Load, t: usize, skip: Option<usize>| {
-        let kept: Vec<&ModeResult> = load
-            .runs
-            .iter()
-            .enumerate()
-            .filter(|&(i, _)| Some(i) != skip)
-            .map(|(_, r)| *r)
-            .collect();
+        let kept = without(&load.runs, skip);
         let zt = scene.targets[t];
         interpolated_peak(&kept[0].zetas, &ensemble_curve(&kept, t, zt)) / zt
     };
@@ -540,14 +520,6 @@ pub fn ensemble_peak_shift(scene: &ModeScene, wide: &[Load], narrow: &[Load]) ->
             .sum::<f64>()
             / cells.len() as f64
     }))
-}
-
-/// The jackknife standard error from the leave-one-out values of a statistic:
-/// `sqrt((n - 1)/n sum_i (f_i - mean f)^2)`.
-pub fn jackknife_error(leave_out: &[f64]) -> f64 {
-    let n = leave_out.len() as f64;
-    let mean = leave_out.iter().sum::<f64>() / n;
-    ((n - 1.0) / n * leave_out.iter().map(|f| (f - mean).powi(2)).sum::<f64>()).sqrt()
 }
 
 /// One realization's `E_norm` of target `t` at the step nearest the middle of the frozen
