@@ -367,6 +367,23 @@ mod tests {
         assert_eq!((shift.value, shift.std_error), (0.0, 0.0));
         let shift = c.detail(PEAK_BAND_SHIFT_ENSEMBLE).unwrap().value;
         assert_eq!((shift.value, shift.std_error), (0.0, 0.0));
+        // Narrow curves tilted upwards (E_norm times zeta^0.3) peak later: the shift, the
+        // scene's bands' peak minus the narrow ones', is negative in both readings.
+        let mut tilted = results.clone();
+        for (j, r) in &mut tilted {
+            if let (ModeJob::Narrow(_), ModeOutput::Narrow(r)) = (j, r) {
+                for band in &mut r.band_energy {
+                    for (e, z) in band.iter_mut().zip(&r.zetas) {
+                        *e *= z.powf(0.3);
+                    }
+                }
+            }
+        }
+        let later = ModeOnset::conclude(&criteria, &scene, &tilted).unwrap();
+        for key in [PEAK_BAND_SHIFT, PEAK_BAND_SHIFT_ENSEMBLE] {
+            let shift = later.detail(key).unwrap().value;
+            assert!(shift.value < 0.0, "{key}: {shift:?}");
+        }
         let (wide, narrow) = (
             c.detail(PEAK_OVER_ZETA_T).unwrap().value,
             c.detail(PEAK_NARROW_BAND).unwrap().value,
